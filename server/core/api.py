@@ -1,0 +1,162 @@
+"""The API table: every type, constructor and method a client may use, in one place.
+
+Names are the manual's (camelCase, as on the wire and in the JavaScript client); the
+Python name of each method is derived by :func:`snake`. ``protocol/api.json`` is this
+table exported for the clients (``python -m server.core.api_export``); a test fails when
+it drifts.
+
+Parameter kinds (how each argument is checked, see :mod:`server.core.arguments`):
+``number`` finite number · ``size`` finite number ≥ 0 · ``integer`` whole number ·
+``limit`` number or ±Infinity · ``angle`` number, ±Infinity (clamped), null or NaN
+(ignored) · ``bool`` · ``string`` · ``color`` CSS colour name, #hex or 0xRRGGBB number ·
+``axis`` 'x', 'y' or 'z' · ``order`` an Euler order · ``point`` [x, y, z] or x, y, z ·
+``node`` a robot or part reference · ``part`` a part reference · ``slot`` slot index or
+Slot reference.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+from . import figures
+from .math3d import ORIGIN
+
+REQUIRED: Any = type("Required", (), {"__repr__": lambda self: "REQUIRED"})()
+
+
+def snake(name: str) -> str:
+    """The Python name of a manual name: ``attachToSlot`` → ``attach_to_slot``, ``addGUI`` → ``add_gui``."""
+    return re.sub(r"([a-z0-9])([A-Z])", r"\1_\2", name).lower()
+
+
+@dataclass(frozen=True)
+class Param:
+    """One parameter: its name in the manual, its kind, its default, whether it repeats."""
+
+    name: str
+    kind: str
+    default: Any = REQUIRED
+    variadic: bool = False
+
+
+@dataclass(frozen=True)
+class Method:
+    """One method of a type as the manual names it."""
+
+    name: str
+    params: tuple[Param, ...] = ()
+    returns: str = "none"  # none, self, ref, refs, number, numbers, point
+    mutates: bool = True
+
+    @property
+    def python(self) -> str:
+        """The method's name in Python (the server core and the Python client)."""
+        return snake(self.name)
+
+
+@dataclass(frozen=True)
+class TypeSpec:
+    """A type: its base type, constructor parameters, own methods and client callbacks."""
+
+    name: str
+    base: str | None
+    params: tuple[Param, ...] = ()
+    methods: tuple[Method, ...] = ()
+    creatable: bool = True
+    callbacks: tuple[str, ...] = field(default=())
+
+
+def _sizes(*names_defaults: tuple[str, float]) -> tuple[Param, ...]:
+    return tuple(Param(name, "size", default) for name, default in names_defaults)
+
+
+def _motor_params(motor: str) -> tuple[Param, ...]:
+    figure = figures.MOTORS[motor]
+    return (Param("min", "limit", -math.inf), Param("max", "limit", math.inf),
+            Param("def", "number", 0.0), *_sizes(("width", figure.width),
+                                                ("height", figure.height)))
+
+
+def _edged(defaults: dict[str, float]) -> tuple[Param, ...]:
+    return _sizes(*defaults.items())
+
+
+POSITION = Method("setPosition", (Param("position", "point"),))
+ROTATION = Method("setRotation", (Param("x", "number"), Param("y", "number"),
+                                  Param("z", "number"), Param("order", "order", "XYZ")))
+HAND_METHODS = (
+    Method("flexFinger", (Param("index", "integer"), Param("angle", "angle"))),
+    Method("flexFingers", (Param("angle", "angle"),)),
+    Method("spreadFinger", (Param("index", "integer"), Param("angle", "angle"))),
+    Method("spreadFingers", (Param("angle", "number"), Param("includeThumb", "bool", False))),
+)
+
+TYPES: dict[str, TypeSpec] = {t.name: t for t in (
+    TypeSpec("Scene", None, creatable=False, methods=(
+        Method("setCameraPosition", (Param("position", "point"),)),
+        Method("setCameraTarget", (Param("target", "point"),)),
+        Method("getTime", returns="number", mutates=False),
+    )),
+    TypeSpec("Slot", None, (Param("position", "point", ORIGIN),), (POSITION, ROTATION)),
+    TypeSpec("Part", None, methods=(
+        Method("addSlot", (Param("position", "point", ORIGIN),), returns="ref"),
+        Method("attachToSlot", (Param("parent", "node"), Param("slot", "slot", 0)),
+               returns="self"),
+        POSITION, ROTATION,
+    ), callbacks=("beginContact", "endContact")),
+    TypeSpec("Motor", "Part", (Param("axis", "axis"), Param("min", "limit", -math.inf),
+                               Param("max", "limit", math.inf), Param("def", "number", 0.0)),
+             (Method("setName", (Param("name", "string"),), returns="self"),
+              Method("getAngle", returns="number", mutates=False),
+              Method("setAngle", (Param("angle", "angle"),)),
+              Method("flip", (Param("bool", "bool", True),), returns="self"))),
+    TypeSpec("MotorX", "Motor", _motor_params("MotorX")),
+    TypeSpec("MotorY", "Motor", _motor_params("MotorY")),
+    TypeSpec("MotorZ", "Motor", _motor_params("MotorZ")),
+    TypeSpec("Ball", "Part", (Param("radius", "size", 1.0),
+                              Param("color", "color", figures.DEFAULT_COLOR))),
+    TypeSpec("Box", "Part", (*_sizes(("sizex", 1.0), ("sizey", 1.0), ("sizez", 1.0)),
+                             Param("color", "color", figures.DEFAULT_COLOR))),
+    TypeSpec("EdgedFinger", "Part", _edged(figures.EDGED_FINGER_DEFAULTS)),
+    TypeSpec("EdgedTip", "Part", _edged(figures.EDGED_FINGER_DEFAULTS)),
+    TypeSpec("EdgedPalm", "Part", (Param("left", "bool", False),
+                                   *_edged(figures.EDGED_PALM_DEFAULTS))),
+    TypeSpec("Robot", None, methods=(
+        Method("attachChain", (Param("parts", "part", variadic=True),), returns="ref"),
+        Method("addChain", (Param("parts", "node", variadic=True),), returns="ref"),
+        Method("addGUI", (Param("title", "string", "Robot"),)),
+        Method("getParts", returns="refs", mutates=False),
+        Method("getMotors", returns="refs", mutates=False),
+        Method("getSensors", returns="refs", mutates=False),
+        Method("getPosition", returns="point", mutates=False),
+        Method("setPosition", (Param("position", "point", None),)),
+        ROTATION,
+        Method("getAngle", (Param("index", "integer"),), returns="number", mutates=False),
+        Method("setAngle", (Param("index", "integer"), Param("angle", "angle"))),
+        Method("getAngles", returns="numbers", mutates=False),
+        Method("setAngles", (Param("angles", "angle", variadic=True),)),
+    )),
+    TypeSpec("EdgedHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
+)}
+
+
+def lineage(type_name: str) -> list[TypeSpec]:
+    """The type and its bases, most derived first."""
+    chain = []
+    spec: TypeSpec | None = TYPES[type_name]
+    while spec is not None:
+        chain.append(spec)
+        spec = TYPES[spec.base] if spec.base else None
+    return chain
+
+
+def methods_of(type_name: str) -> dict[str, Method]:
+    """Every method callable on an object of ``type_name``, inherited ones included."""
+    found: dict[str, Method] = {}
+    for spec in lineage(type_name):
+        for method in spec.methods:
+            found.setdefault(method.name, method)
+    return found

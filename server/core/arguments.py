@@ -1,0 +1,184 @@
+"""Checking wire arguments against the API table and turning them into Python values.
+
+Non-finite numbers travel as the strings ``"Infinity"``, ``"-Infinity"`` and ``"NaN"``
+(JSON has no such numbers); ``null`` stands for a left-out argument (JavaScript's
+``undefined``), except for an ``angle``, where it means "leave the motor as it is".
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any, Callable, Sequence
+
+from ..errors import BadArguments, OutOfRange, WrongType
+from .api import REQUIRED, Param
+from .math3d import EULER_ORDERS, Vec3
+from .node import Node, Slot
+from .parts import Part
+from .robot import Robot
+from .wire import NON_FINITE
+
+Resolver = Callable[[str], Node]
+
+MAX_STRING = 200
+_COLOR = re.compile(r"^(#[0-9a-fA-F]{3,8}|[a-zA-Z]{3,40})$")
+
+
+def bind(params: Sequence[Param], raw: Sequence[Any], resolve: Resolver, where: str) -> list[Any]:
+    """The Python arguments for ``params`` from the wire arguments ``raw``."""
+    values: list[Any] = []
+    position = 0
+    for param in params:
+        if param.variadic:
+            values.extend(_coerce(param, item, resolve, f"{where}, argument {position + i}")
+                          for i, item in enumerate(raw[position:]))
+            return values
+        if param.kind == "point":
+            value, used = _point(param, raw, position, where)
+        else:
+            value, used = _single(param, raw, position, resolve, where)
+        values.append(value)
+        position += used
+    if position < len(raw):
+        raise BadArguments(f"{where} takes at most {position} arguments, got {len(raw)}",
+                           expected=position, got=len(raw))
+    return values
+
+
+def _single(param: Param, raw: Sequence[Any], position: int, resolve: Resolver,
+            where: str) -> tuple[Any, int]:
+    present = position < len(raw)
+    value = raw[position] if present else None
+    if value is None and not (present and param.kind == "angle"):
+        if param.default is REQUIRED:
+            raise BadArguments(f"{where} needs argument {position} ({param.name})",
+                               argument=position, name=param.name)
+        return param.default, 1 if present else 0
+    return _coerce(param, value, resolve, f"{where}, argument {position} ({param.name})"), 1
+
+
+def _point(param: Param, raw: Sequence[Any], position: int, where: str) -> tuple[Any, int]:
+    """A point given as [x, y, z] (one argument) or as x, y, z (three), or left out."""
+    value = raw[position] if position < len(raw) else None
+    label = f"{where}, argument {position} ({param.name})"
+    if value is None:
+        if param.default is REQUIRED:
+            raise BadArguments(f"{where} needs a {param.name} ([x, y, z] or x, y, z)",
+                               argument=position, name=param.name)
+        return param.default, 1 if position < len(raw) else 0
+    if isinstance(value, list):
+        return _vector(value, label), 1
+    return _vector(list(raw[position:position + 3]), label), 3
+
+
+def _vector(items: list[Any], label: str) -> Vec3:
+    if len(items) != 3:
+        raise BadArguments(f"{label}: a point needs 3 numbers, got {len(items)}")
+    return tuple(_number(item, label) for item in items)  # type: ignore[return-value]
+
+
+def _number(value: Any, label: str, allow: tuple[str, ...] = ()) -> float:
+    if isinstance(value, str) and value in allow:
+        return NON_FINITE[value]
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise WrongType(f"{label}: expected a number, got {_show(value)}")
+    if not math.isfinite(value):
+        raise OutOfRange(f"{label}: {value} is not a finite number")
+    return float(value)
+
+
+def _coerce(param: Param, value: Any, resolve: Resolver, label: str) -> Any:
+    return _KINDS[param.kind](value, resolve, label)
+
+
+def _size(value: Any, resolve: Resolver, label: str) -> float:
+    number = _number(value, label)
+    if number < 0:
+        raise OutOfRange(f"{label}: a size cannot be negative, got {number}")
+    return number
+
+
+def _integer(value: Any, resolve: Resolver, label: str) -> int:
+    number = _number(value, label)
+    if number != int(number):
+        raise WrongType(f"{label}: expected a whole number, got {number}")
+    return int(number)
+
+
+def _bool(value: Any, resolve: Resolver, label: str) -> bool:
+    if not isinstance(value, bool):
+        raise WrongType(f"{label}: expected true or false, got {_show(value)}")
+    return value
+
+
+def _string(value: Any, resolve: Resolver, label: str) -> str:
+    if not isinstance(value, str):
+        raise WrongType(f"{label}: expected a string, got {_show(value)}")
+    if len(value) > MAX_STRING:
+        raise OutOfRange(f"{label}: at most {MAX_STRING} characters, got {len(value)}")
+    return value
+
+
+def _color(value: Any, resolve: Resolver, label: str) -> str | int:
+    if isinstance(value, int) and not isinstance(value, bool) and 0 <= value <= 0xFFFFFF:
+        return value
+    if isinstance(value, str) and _COLOR.match(value):
+        return value
+    raise WrongType(f"{label}: expected a CSS colour name, #hex or 0xRRGGBB, got {_show(value)}")
+
+
+def _choice(options: Sequence[str]) -> Callable[[Any, Resolver, str], str]:
+    def check(value: Any, resolve: Resolver, label: str) -> str:
+        if value not in options:
+            raise OutOfRange(f"{label}: expected one of {', '.join(options)}, got {_show(value)}")
+        return value
+    return check
+
+
+def _reference(*types: type[Node]) -> Callable[[Any, Resolver, str], Node]:
+    names = " or ".join(t.__name__.lower() for t in types)
+
+    def check(value: Any, resolve: Resolver, label: str) -> Node:
+        if not (isinstance(value, dict) and set(value) == {"ref"} and isinstance(value["ref"], str)):
+            raise WrongType(f"{label}: expected a {names} reference {{\"ref\": id}}, "
+                            f"got {_show(value)}")
+        node = resolve(value["ref"])
+        if not isinstance(node, types):
+            raise WrongType(f"{label}: {node.id} is a {node.type_name}, not a {names}")
+        return node
+    return check
+
+
+def _slot(value: Any, resolve: Resolver, label: str) -> int | Node:
+    if isinstance(value, dict):
+        return _reference(Slot)(value, resolve, label)
+    index = _integer(value, resolve, label)
+    if index < 0:
+        raise OutOfRange(f"{label}: a slot index cannot be negative, got {index}")
+    return index
+
+
+_KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
+    "number": lambda v, r, label: _number(v, label),
+    "size": _size,
+    "integer": _integer,
+    "limit": lambda v, r, label: _number(v, label, ("Infinity", "-Infinity")),
+    "angle": lambda v, r, label: None if v is None else _number(v, label, tuple(NON_FINITE)),
+    "bool": _bool,
+    "string": _string,
+    "color": _color,
+    "axis": _choice(("x", "y", "z")),
+    "order": _choice(EULER_ORDERS),
+    "node": _reference(Robot, Part),
+    "part": _reference(Part),
+    "slot": _slot,
+}
+
+
+def _show(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+KINDS: frozenset[str] = frozenset(_KINDS) | {"point"}

@@ -1,0 +1,28 @@
+"""Which nodes changed, and how, since a change set was opened."""
+
+from __future__ import annotations
+
+
+class ChangeSet:
+    """Ids of nodes that were born, died, turned, moved or got new properties.
+
+    It stores only ids and field names; the values are read from the scene when the
+    change set is collected, so a change undone by a failed batch costs nothing more
+    than an idle re-send of the current value.
+    """
+
+    def __init__(self) -> None:
+        self.born: dict[str, None] = {}
+        self.died: set[str] = set()
+        self.angles: dict[str, None] = {}
+        self.poses: dict[str, None] = {}
+        self.updates: dict[str, set[str]] = {}
+        self.camera = False
+
+    def update(self, node_id: str, field: str) -> None:
+        """Note a changed property (``children`` when the order of a node's children changed)."""
+        self.updates.setdefault(node_id, set()).add(field)
+
+    def clear(self) -> None:
+        """Forget everything noted so far."""
+        self.__init__()

@@ -1,0 +1,119 @@
+"""The figures of the 1.0 parts: defaults, profiles, slots and hand chains.
+
+Every number that `spec/parts.md` gives for a part lives here and nowhere else; the part
+classes, the API table and the viewer's geometry all read them from this module.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .math3d import Vec3
+
+PI = math.pi
+
+DEFAULT_COLOR = "dimgray"
+MOTOR_COLOR = "#404040"
+EDGE_EPSILON = 0.003  # E in the spec: keeps the flat ends of edged fingers off the slot plane
+
+
+@dataclass(frozen=True)
+class MotorFigure:
+    """Drawing and slot rules of one motor class."""
+
+    axis: str
+    width: float
+    height: float
+    sides: int
+
+
+MOTORS: dict[str, MotorFigure] = {
+    "MotorX": MotorFigure("x", 0.1, 0.05, 16),
+    "MotorY": MotorFigure("y", 0.3, 0.05, 48),  # the manual says 0.1; 1.0 uses 0.3
+    "MotorZ": MotorFigure("z", 0.1, 0.05, 16),
+}
+
+
+def motor_slot(axis: str, height: float) -> Vec3:
+    """Slot 0 of a motor: its centre, or its top for the Y motor."""
+    return (0.0, height, 0.0) if axis == "y" else (0.0, 0.0, 0.0)
+
+
+def motor_cylinder(motor_type: str, width: float, height: float) -> dict:
+    """The cylinder a motor is drawn as, in the motor's own frame."""
+    figure = MOTORS[motor_type]
+    if figure.axis == "y":
+        radius, length, center = width / 2, height, [0.0, height / 2, 0.0]
+    else:
+        radius, length, center = height / 2, width, [0.0, 0.0, 0.0]
+    return {"kind": "cylinder", "axis": figure.axis, "radius": radius, "length": length,
+            "center": center, "sides": figure.sides, "color": MOTOR_COLOR}
+
+
+# --- edged parts ---------------------------------------------------------------------
+
+EDGED_FINGER_DEFAULTS = {"length": 1.0, "width": 0.3, "thickness": 0.3}
+EDGED_PALM_DEFAULTS = {"length": 1.4, "width": 1.4, "thickness": 0.3}
+
+
+def edged_finger_profile(length: float, thickness: float, tip: bool) -> list[tuple[float, float]]:
+    """The XY profile of an edged finger (or tip), extruded along Z into the part."""
+    big_l, t, e = length, thickness / 2, EDGE_EPSILON
+    i = min(length, thickness) / 8
+    top = [(t, big_l - i - e), (t - i, big_l - e)] if tip else [(t, big_l - t - e), (0.0, big_l - e)]
+    return [(-t, i), (-t + i, e), (0.0, e), (t, t), *top, (-t + i, big_l - e), (-t, big_l - i)]
+
+
+def edged_palm_profile(left: bool, length: float, width: float) -> list[tuple[float, float]]:
+    """Points p0…p5 of the edged palm profile, extruded along Z into the palm."""
+    s = 1.0 if left else -1.0
+    w, i, big_l = width / 2, width / 8, length
+    return [(-s * w + s * i, 0.0), (s * w - 2 * s * i, 0.0), (s * w, 2 * i),
+            (s * w, big_l), (-s * w, big_l), (-s * w, big_l / 2)]
+
+
+def extrude(profile: list[tuple[float, float]], depth: float) -> list[Vec3]:
+    """Points of a profile at z = -depth/2 and z = +depth/2 (the convex envelope's points)."""
+    half = depth / 2
+    return [(x, y, z) for z in (-half, half) for (x, y) in profile]
+
+
+# Edges of the palm profile that carry slots: (from point, to point, fraction) per slot.
+EDGED_PALM_SLOTS = [(2, 3, 1 / 4), (3, 4, 1 / 8), (3, 4, 3 / 8), (3, 4, 5 / 8), (3, 4, 7 / 8)]
+
+
+def edged_palm_slots(left: bool, length: float, width: float) -> list[tuple[Vec3, Vec3, str]]:
+    """Position, Euler rotation and order of the five edged palm slots (thumb first)."""
+    s = 1.0 if left else -1.0
+    points = edged_palm_profile(left, length, width)
+    slots = []
+    for a, b, k in EDGED_PALM_SLOTS:
+        (xa, ya), (xb, yb) = points[a], points[b]
+        position = (xa * (1 - k) + xb * k, ya * (1 - k) + yb * k, 0.0)
+        rotation = (0.0, PI / 2, (1 + s) * PI / 2 + math.atan2(yb - ya, xb - xa))
+        slots.append((position, rotation, "ZXY"))
+    return slots
+
+
+# --- hands ----------------------------------------------------------------------------
+
+FINGER_NAMES = ["Thumb", "Index finger", "Middle finger", "Ring finger", "Little finger"]
+EDGED_FINGER_SIZES = [1.0, 1.0, 1.1, 1.0, 0.8]
+EDGED_FLEX_MOTOR = (0.0, -PI / 2, -PI / 4, 0.3, 0.1)  # MotorZ(min, max, def, width, height)
+
+
+def edged_spread_motor(finger: int) -> tuple[float, float, float, float, float]:
+    """MotorX arguments of the spread motor at the base of an edged finger."""
+    span = 1.0 if finger == 0 else 0.4
+    return (-span, span, 0.0, 0.3, 0.1)
+
+
+# spreadFingers(a): thumb angle (when included) and the other four fingers' angles.
+SPREAD_THUMB = {"EdgedHand": lambda a: -1 + 3 * a}
+SPREAD_FINGERS = (1.0, 0.3, -0.3, -1.0)
+
+# --- scene ----------------------------------------------------------------------------
+
+CAMERA_POSITION: Vec3 = (4.0, 4.0, 7.0)
+CAMERA_TARGET: Vec3 = (0.0, 1.0, 0.0)

@@ -1,0 +1,177 @@
+"""The transform tree: every robot, part, motor, slot and sensor is a :class:`Node`."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, ClassVar, Iterator
+
+from ..errors import Cycle, OutOfRange
+from . import math3d
+from .math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
+
+class Node:
+    """A node of the scene's transform tree with a local pose relative to its parent.
+
+    All state changes go through :meth:`_assign` and :meth:`_link`, which record how to
+    undo them in the scene's journal and tell the scene what changed.
+    """
+
+    type_name: ClassVar[str] = "Node"
+    physical: ClassVar[bool] = False
+
+    def __init__(self, scene: Scene, node_id: str) -> None:
+        self.scene = scene
+        self.id = node_id
+        self.parent: Node | None = None
+        self.children: list[Node] = []
+        self.slots: list[Slot] = []
+        self.position: Vec3 = ORIGIN
+        self.quaternion: Quat = IDENTITY
+        self._world: Pose | None = None
+        scene.register(self)
+
+    # --- state changes -----------------------------------------------------------------
+
+    def _assign(self, field: str, value: Any) -> None:
+        """Set an attribute, journaled and reported to the scene."""
+        old = getattr(self, field)
+        if old == value:
+            return
+        self.scene.journal.record(lambda: self._put(field, old))
+        self._put(field, value)
+
+    def _put(self, field: str, value: Any) -> None:
+        setattr(self, field, value)
+        self.scene.node_changed(self, field)
+
+    def _link(self, parent: Node | None, index: int | None = None) -> None:
+        """Move this node under ``parent`` (at ``index``, default last), journaled."""
+        if parent is not None and (parent is self or self.is_ancestor_of(parent)):
+            raise Cycle(f"cannot attach {self.id} below itself (to {parent.id})",
+                        object=self.id, parent=parent.id)
+        old_parent = self.parent
+        old_index = old_parent.children.index(self) if old_parent is not None else None
+        self.scene.journal.record(lambda: self._relink(old_parent, old_index))
+        self._relink(parent, index)
+
+    def _relink(self, parent: Node | None, index: int | None) -> None:
+        old_parent = self.parent
+        if old_parent is not None:
+            old_parent.children.remove(self)
+        self.parent = parent
+        if parent is not None:
+            parent.children.insert(len(parent.children) if index is None else index, self)
+        self.scene.reparented(self, old_parent)
+
+    # --- tree ----------------------------------------------------------------------------
+
+    def is_ancestor_of(self, node: Node) -> bool:
+        """True when ``node`` lies below this node."""
+        walker = node.parent
+        while walker is not None:
+            if walker is self:
+                return True
+            walker = walker.parent
+        return False
+
+    def walk(self) -> Iterator[Node]:
+        """This node and its descendants in depth-first pre-order (three.js ``traverse``)."""
+        stack = [self]
+        while stack:
+            node = stack.pop()
+            yield node
+            stack.extend(reversed(node.children))
+
+    def root(self) -> Node:
+        """The topmost ancestor (the node itself when it has no parent)."""
+        node = self
+        while node.parent is not None:
+            node = node.parent
+        return node
+
+    def add_slot_node(self, slot: Slot) -> None:
+        """Make ``slot`` one of this node's slots (and its child), journaled."""
+        if slot.parent is not None and slot in slot.parent.slots:
+            slot.parent._drop_slot(slot)
+        self.slots.append(slot)
+        self.scene.journal.record(lambda: self._drop_slot(slot, journal=False))
+        slot._link(self)
+
+    def _drop_slot(self, slot: Slot, journal: bool = True) -> None:
+        index = self.slots.index(slot)
+        self.slots.pop(index)
+        if journal:
+            self.scene.journal.record(lambda: self.slots.insert(index, slot))
+
+    def slot_by_index(self, index: int) -> Node:
+        """The slot a part attaches to for an index; the node itself when it has no slots."""
+        if not self.slots:
+            return self
+        if not 0 <= index < len(self.slots):
+            raise OutOfRange(f"{self.id} has {len(self.slots)} slots; there is no slot {index}",
+                             object=self.id, slot=index)
+        return self.slots[index]
+
+    # --- pose ----------------------------------------------------------------------------
+
+    def local_pose(self) -> Pose:
+        """Pose relative to the parent (motors add their rotation to it)."""
+        return self.position, self.quaternion
+
+    def world_pose(self) -> Pose:
+        """Pose in the scene, cached until this node or an ancestor changes."""
+        if self._world is None:
+            local = self.local_pose()
+            self._world = local if self.parent is None else math3d.compose(
+                self.parent.world_pose(), local)
+        return self._world
+
+    def invalidate(self) -> Iterator[Node]:
+        """Drop the cached world poses of this subtree; yields the nodes that were clean.
+
+        A node without a cached pose never has a descendant with one, so the walk stops
+        at nodes that are already invalid.
+        """
+        stack = [self]
+        while stack:
+            node = stack.pop()
+            if node._world is None and node is not self:
+                continue
+            node._world = None
+            yield node
+            stack.extend(node.children)
+
+    def set_position(self, position: Vec3) -> None:
+        """Manual ``setPosition``: the position relative to the parent."""
+        self._assign("position", tuple(position))
+
+    def set_rotation(self, x: float, y: float, z: float, order: str = "XYZ") -> None:
+        """Manual ``setRotation``: Euler angles relative to the parent."""
+        self._assign("quaternion", math3d.euler_to_quat(x, y, z, order))
+
+    # --- description ---------------------------------------------------------------------
+
+    def describe(self) -> dict[str, Any]:
+        """The node as the snapshot and ``added`` messages carry it."""
+        return {"id": self.id, "type": self.type_name,
+                "parent": self.parent.id if self.parent is not None else None,
+                "children": [child.id for child in self.children],
+                "position": list(self.position), "quaternion": list(self.quaternion),
+                **self.properties()}
+
+    def properties(self) -> dict[str, Any]:
+        """Type-specific fields of :meth:`describe`."""
+        return {}
+
+
+class Slot(Node):
+    """A place on a part where other parts attach; its pose orients what attaches."""
+
+    type_name = "Slot"
+
+    def __init__(self, scene: Scene, node_id: str, position: Vec3 = ORIGIN) -> None:
+        super().__init__(scene, node_id)
+        self.position = tuple(position)

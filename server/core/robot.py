@@ -1,0 +1,105 @@
+"""Robots: roots of part trees, addressed through their motors in depth-first order."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from ..errors import WrongType
+from .math3d import Vec3
+from .motor import Motor
+from .node import Node
+from .parts import Part
+
+if TYPE_CHECKING:
+    from .scene import Scene
+
+
+class Robot(Node):
+    """A mechanism of parts; its motors, in depth-first pre-order, are its degrees of freedom.
+
+    The part and motor lists follow the tree as it is now (1.0 cached them at the first
+    call; here later attachments count).
+    """
+
+    type_name = "Robot"
+
+    def __init__(self, scene: Scene, node_id: str) -> None:
+        super().__init__(scene, node_id)
+        self.visible = True
+        self.gui: str | None = None
+        self._listing: tuple[int, list[Part]] | None = None
+
+    # --- chains ------------------------------------------------------------------------
+
+    def add_chain(self, *nodes: Node) -> Node | None:
+        """Manual ``addChain(a, b, …)``: each node to slot 0 of the one before; the last."""
+        for parent, part in zip(nodes, nodes[1:]):
+            if not isinstance(part, Part):
+                raise WrongType(f"addChain can only attach parts; {part.id} is a "
+                                f"{part.type_name}", object=part.id)
+            part.attach_to_slot(parent)
+        return nodes[-1] if nodes else None
+
+    def attach_chain(self, *parts: Part) -> Node | None:
+        """Manual ``attachChain(a, b, …)``: ``addChain(this, a, b, …)``."""
+        return self.add_chain(self, *parts)
+
+    def add_gui(self, title: str = "Robot") -> None:
+        """Manual ``addGUI(title)``: ask the viewers for a motor panel."""
+        self._assign("gui", title)
+
+    # --- listings ----------------------------------------------------------------------
+
+    def get_parts(self) -> list[Part]:
+        """Manual ``getParts()``: every part below the robot, motors included."""
+        version = self.scene.tree_version
+        if self._listing is None or self._listing[0] != version:
+            self._listing = (version, [n for n in self.walk() if isinstance(n, Part)])
+        return self._listing[1]
+
+    def get_motors(self) -> list[Motor]:
+        """Manual ``getMotors()``: the motors in depth-first order; index = position."""
+        return [p for p in self.get_parts() if isinstance(p, Motor)]
+
+    def get_sensors(self) -> list[Part]:
+        """Manual ``getSensors()``: the sensors below the robot."""
+        return [p for p in self.get_parts() if p.type_name == "Sensor"]
+
+    # --- pose --------------------------------------------------------------------------
+
+    def get_position(self) -> Vec3:
+        """Manual ``getPosition()``."""
+        return self.position
+
+    def set_position(self, position: Vec3 | None = None) -> None:
+        """Manual ``setPosition``; with no position the robot leaves the scene (kept)."""
+        if position is None:
+            self._assign("visible", False)
+            return
+        super().set_position(position)
+        self._assign("visible", True)
+
+    # --- angles ------------------------------------------------------------------------
+
+    def get_angle(self, index: int) -> float:
+        """Manual ``getAngle(index)``: 0 when there is no such motor."""
+        motors = self.get_motors()
+        return motors[index].angle if 0 <= index < len(motors) else 0.0
+
+    def set_angle(self, index: int, angle: float | None) -> None:
+        """Manual ``setAngle(index, angle)``: ignored when there is no such motor."""
+        motors = self.get_motors()
+        if 0 <= index < len(motors):
+            motors[index].set_angle(angle)
+
+    def get_angles(self) -> list[float]:
+        """Manual ``getAngles()``."""
+        return [m.angle for m in self.get_motors()]
+
+    def set_angles(self, *angles: float | None) -> None:
+        """Manual ``setAngles(a0, a1, …)``: None leaves a motor as it is; extras are ignored."""
+        for motor, angle in zip(self.get_motors(), angles):
+            motor.set_angle(angle)
+
+    def properties(self) -> dict[str, Any]:
+        return {"visible": self.visible, "gui": self.gui}

@@ -1,0 +1,228 @@
+"""The scene: one world of robots, its collision bodies, its clock and its change feed.
+
+Sans-I/O: the web layer calls :meth:`Scene.tick` at its own rate and ships the
+messages it returns; nothing here knows about sockets or event loops.
+"""
+
+from __future__ import annotations
+
+from contextlib import contextmanager
+from typing import Any, Iterator
+
+from ..errors import DuplicateId, LimitExceeded, UnknownObject
+from . import figures
+from .changes import ChangeSet
+from .journal import Journal
+from .math3d import Vec3
+from .node import Node
+from .physics import PhysicsWorld
+from .robot import Robot
+from .wire import encode_numbers
+
+MAX_NODES = 50_000
+_POSE_FIELDS = ("position", "quaternion", "angle", "flipped")
+
+
+class Scene:
+    """Robots and parts in one PyBullet world, with time, sequence number and camera."""
+
+    def __init__(self, name: str = "default") -> None:
+        self.name = name
+        self.nodes: dict[str, Node] = {}
+        self.retired: set[str] = set()
+        self.journal = Journal()
+        self.physics = PhysicsWorld()
+        self.time = 0.0
+        self.seq = 0
+        self.tree_version = 0
+        self.camera: dict[str, Vec3] = {"position": figures.CAMERA_POSITION,
+                                        "target": figures.CAMERA_TARGET}
+        self._pending = ChangeSet()
+        self._recorders: list[ChangeSet] = [self._pending]
+        self._physics_dirty: set[str] = set()
+
+    def close(self) -> None:
+        """Release the physics world."""
+        self.physics.close()
+
+    # --- registry ------------------------------------------------------------------------
+
+    def register(self, node: Node) -> None:
+        """Add a newly made node (journaled): its id must be new to this scene."""
+        if node.id in self.nodes or node.id in self.retired:
+            raise DuplicateId(f"id {node.id} is already in use in scene {self.name}",
+                              object=node.id)
+        if len(self.nodes) >= MAX_NODES:
+            raise LimitExceeded(f"scene {self.name} holds the maximum of {MAX_NODES} objects")
+        self.nodes[node.id] = node
+        self.journal.record(lambda: self._drop(node.id))
+        for changes in self._recorders:
+            changes.born[node.id] = None
+        self._physics_dirty.add(node.id)
+
+    def _drop(self, node_id: str) -> None:
+        del self.nodes[node_id]
+        self._physics_dirty.add(node_id)
+
+    def get(self, node_id: str) -> Node:
+        """The node with this id, or :class:`UnknownObject`."""
+        try:
+            return self.nodes[node_id]
+        except KeyError:
+            raise UnknownObject(f"no object {node_id} in scene {self.name}",
+                                object=node_id) from None
+
+    def delete(self, node: Node) -> None:
+        """Remove a node and everything below it; their ids are never used again."""
+        if node.parent is not None and node in node.parent.slots:
+            node.parent._drop_slot(node)
+        node._link(None)
+        for gone in list(node.walk()):
+            del self.nodes[gone.id]
+            self.retired.add(gone.id)
+            self._physics_dirty.add(gone.id)
+            for changes in self._recorders:
+                changes.died.add(gone.id)
+            self.journal.record(lambda gone=gone: self._revive(gone))
+
+    def _revive(self, node: Node) -> None:
+        self.nodes[node.id] = node
+        self.retired.discard(node.id)
+        self._physics_dirty.add(node.id)
+
+    def roots(self) -> list[Node]:
+        """Nodes without a parent, in the order they were made."""
+        return [n for n in self.nodes.values() if n.parent is None]
+
+    # --- change feed ---------------------------------------------------------------------
+
+    def node_changed(self, node: Node, field: str) -> None:
+        """Called by nodes after every change of their state (and of its undoing)."""
+        for changes in self._recorders:
+            if field in ("position", "quaternion"):
+                changes.poses[node.id] = None
+            elif field == "angle":
+                changes.angles[node.id] = None
+            else:
+                changes.update(node.id, field)
+        if field in _POSE_FIELDS or field == "parent":
+            self._moved(node)
+        if field == "visible":
+            self._physics_dirty.update(n.id for n in node.walk())
+
+    def reparented(self, node: Node, old_parent: Node | None) -> None:
+        """Called by a node that moved from ``old_parent`` to its current parent."""
+        self.tree_version += 1
+        for parent in (old_parent, node.parent):
+            if parent is not None:
+                for changes in self._recorders:
+                    changes.update(parent.id, "children")
+        self.node_changed(node, "parent")
+
+    def _moved(self, node: Node) -> None:
+        for changed in node.invalidate():
+            if changed.physical:
+                self._physics_dirty.add(changed.id)
+
+    @contextmanager
+    def recording(self) -> Iterator[ChangeSet]:
+        """Note, besides the tick's feed, what changes inside this block."""
+        changes = ChangeSet()
+        self._recorders.append(changes)
+        try:
+            yield changes
+        finally:
+            self._recorders.remove(changes)
+
+    def delta(self, changes: ChangeSet) -> dict[str, Any]:
+        """What a change set amounts to now, in wire form (empty parts left out)."""
+        nodes, born = self.nodes, changes.born
+        out: dict[str, Any] = {
+            "added": [encode_numbers(nodes[i].describe()) for i in born if i in nodes],
+            "angles": {i: nodes[i].angle for i in changes.angles if i in nodes and i not in born},
+            "poses": {i: [*nodes[i].position, *nodes[i].quaternion] for i in changes.poses
+                      if i in nodes and i not in born},
+            "updates": {i: {f: _field(nodes[i], f) for f in sorted(fields)}
+                        for i, fields in changes.updates.items() if i in nodes and i not in born},
+            "removed": [i for i in changes.died if i not in nodes and i not in born],
+        }
+        if changes.camera:
+            out["camera"] = {k: list(v) for k, v in self.camera.items()}
+        return {k: v for k, v in out.items() if v}
+
+    # --- time ----------------------------------------------------------------------------
+
+    def tick(self, dt: float) -> list[dict[str, Any]]:
+        """Advance the clock, place the collision bodies and return this tick's messages.
+
+        The messages are ``added`` (new nodes), ``frame`` (always: time, sequence number
+        and what changed) and ``removed``, in that order.
+        """
+        self.time += dt
+        self.seq += 1
+        self.sync_physics()
+        delta = self.delta(self._pending)
+        self._pending.clear()
+        messages = []
+        if "added" in delta:
+            messages.append({"op": "added", "seq": self.seq, "nodes": delta.pop("added")})
+        removed = delta.pop("removed", None)
+        messages.append({"op": "frame", "seq": self.seq, "time": self.time, **delta})
+        if removed:
+            messages.append({"op": "removed", "seq": self.seq, "ids": removed})
+        return messages
+
+    def sync_physics(self) -> None:
+        """Create, move or remove collision bodies for every part that changed."""
+        physics = self.physics
+        for node_id in self._physics_dirty:
+            node = self.nodes.get(node_id)
+            wanted = node is not None and node.physical and self.in_scene(node)
+            if wanted and node_id in physics:
+                physics.move(node_id, node.world_pose())
+            elif wanted:
+                physics.add(node_id, node.geometry(), node.world_pose())
+            elif node_id in physics:
+                physics.remove(node_id)
+        self._physics_dirty.clear()
+
+    @staticmethod
+    def in_scene(node: Node) -> bool:
+        """False for the parts of a robot taken out of the scene with ``setPosition()``."""
+        root = node.root()
+        return not isinstance(root, Robot) or root.visible
+
+    def snapshot(self) -> dict[str, Any]:
+        """The whole scene: every node (parents before children), camera, time."""
+        nodes = [encode_numbers(n.describe()) for root in self.roots() for n in root.walk()]
+        return {"op": "snapshot", "scene": self.name, "seq": self.seq, "time": self.time,
+                "camera": {k: list(v) for k, v in self.camera.items()}, "nodes": nodes}
+
+    # --- scene calls (the manual's Scene API) --------------------------------------------
+
+    def set_camera_position(self, position: Vec3) -> None:
+        """Manual ``setCameraPosition``: every viewer's camera moves there."""
+        self._set_camera("position", position)
+
+    def set_camera_target(self, target: Vec3) -> None:
+        """Manual ``setCameraTarget``: every viewer's camera turns towards it."""
+        self._set_camera("target", target)
+
+    def _set_camera(self, key: str, value: Vec3) -> None:
+        old = self.camera[key]
+        self.journal.record(lambda: self.camera.__setitem__(key, old))
+        self.camera[key] = tuple(value)
+        for changes in self._recorders:
+            changes.camera = True
+
+    def get_time(self) -> float:
+        """Manual ``getTime()``: seconds since the scene started."""
+        return self.time
+
+
+def _field(node: Node, field: str) -> Any:
+    if field == "parent":
+        return node.parent.id if node.parent is not None else None
+    if field == "children":
+        return [child.id for child in node.children]
+    return encode_numbers(getattr(node, field))

@@ -1,0 +1,28 @@
+"""How values the JSON standard cannot carry travel: non-finite numbers as strings."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+NON_FINITE: dict[str, float] = {"Infinity": math.inf, "-Infinity": -math.inf, "NaN": math.nan}
+
+
+def wire_number(value: float) -> float | str:
+    """A number as it travels: finite ones as they are, others as "Infinity", "-Infinity", "NaN"."""
+    if math.isfinite(value):
+        return value
+    if math.isnan(value):
+        return "NaN"
+    return "Infinity" if value > 0 else "-Infinity"
+
+
+def encode_numbers(value: Any) -> Any:
+    """``value`` with every non-finite float inside it replaced by its wire string."""
+    if isinstance(value, float):
+        return wire_number(value)
+    if isinstance(value, dict):
+        return {k: encode_numbers(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [encode_numbers(v) for v in value]
+    return value

@@ -1,0 +1,146 @@
+"""Every error the server reports, one class per wire ``code``.
+
+Hierarchy::
+
+    VPError                      base: code, message, details
+    ├── ProtocolError            the message itself is unusable
+    │   ├── BadJSON              bad_json       text that is not JSON
+    │   ├── BadMessage           bad_message    JSON that breaks the protocol schema
+    │   ├── UnknownOp            unknown_op     an "op" the protocol does not define
+    │   └── TooLarge             too_large      a message over the size limit
+    ├── LookupFailure            a name or id that does not exist
+    │   ├── UnknownType          unknown_type   create with a type the API lacks
+    │   ├── UnknownMethod        unknown_method call of a method the type lacks
+    │   ├── UnknownObject        unknown_object an id no object in the scene has
+    │   └── UnknownScene         unknown_scene  a scene name that is not served
+    ├── ArgumentError            arguments of a create or call
+    │   ├── BadArguments         bad_arguments  wrong number of arguments
+    │   ├── WrongType            wrong_type     an argument of the wrong kind
+    │   └── OutOfRange           out_of_range   a value outside what is allowed
+    ├── ConflictError            a request that contradicts the scene
+    │   ├── DuplicateId          duplicate_id   an id already (or once) in use
+    │   ├── ForeignId            foreign_id     an id without this client's prefix
+    │   └── Cycle                cycle          attaching a node below itself
+    ├── Forbidden                forbidden      a viewer asked to change something
+    ├── LimitExceeded            limit_exceeded a documented limit was reached
+    └── InternalError            internal       a server fault (a bug): reported, not hidden
+
+The wire form (``{"op": "error", "id", "code", "message", "details"}``) is defined in
+``protocol/schema/messages.json``; :meth:`VPError.to_wire` produces it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class VPError(Exception):
+    """Base of every reported error: a machine-readable ``code`` and a human ``message``."""
+
+    code = "error"
+
+    def __init__(self, message: str, **details: Any) -> None:
+        super().__init__(message)
+        self.message = message
+        self.details = {k: v for k, v in details.items() if v is not None}
+
+    def to_wire(self, request_id: int | None = None, op: str | None = None) -> dict[str, Any]:
+        """The error message that answers a request (``request_id`` None: fire-and-forget)."""
+        wire: dict[str, Any] = {"op": "error", "id": request_id, "code": self.code,
+                                "message": self.message}
+        if op is not None:
+            wire["request"] = op
+        if self.details:
+            wire["details"] = self.details
+        return wire
+
+
+class ProtocolError(VPError):
+    """The message cannot be read as a protocol message."""
+
+
+class BadJSON(ProtocolError):
+    code = "bad_json"
+
+
+class BadMessage(ProtocolError):
+    code = "bad_message"
+
+
+class UnknownOp(ProtocolError):
+    code = "unknown_op"
+
+
+class TooLarge(ProtocolError):
+    code = "too_large"
+
+
+class LookupFailure(VPError):
+    """A type, method, object or scene that does not exist."""
+
+
+class UnknownType(LookupFailure):
+    code = "unknown_type"
+
+
+class UnknownMethod(LookupFailure):
+    code = "unknown_method"
+
+
+class UnknownObject(LookupFailure):
+    code = "unknown_object"
+
+
+class UnknownScene(LookupFailure):
+    code = "unknown_scene"
+
+
+class ArgumentError(VPError):
+    """Arguments that do not fit the called constructor or method."""
+
+
+class BadArguments(ArgumentError):
+    code = "bad_arguments"
+
+
+class WrongType(ArgumentError):
+    code = "wrong_type"
+
+
+class OutOfRange(ArgumentError):
+    code = "out_of_range"
+
+
+class ConflictError(VPError):
+    """A request that contradicts the current scene."""
+
+
+class DuplicateId(ConflictError):
+    code = "duplicate_id"
+
+
+class ForeignId(ConflictError):
+    code = "foreign_id"
+
+
+class Cycle(ConflictError):
+    code = "cycle"
+
+
+class Forbidden(VPError):
+    code = "forbidden"
+
+
+class LimitExceeded(VPError):
+    code = "limit_exceeded"
+
+
+class InternalError(VPError):
+    code = "internal"
+
+
+ERROR_CODES: tuple[str, ...] = tuple(
+    cls.code for cls in (BadJSON, BadMessage, UnknownOp, TooLarge, UnknownType, UnknownMethod,
+                         UnknownObject, UnknownScene, BadArguments, WrongType, OutOfRange,
+                         DuplicateId, ForeignId, Cycle, Forbidden, LimitExceeded, InternalError)
+)

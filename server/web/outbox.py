@@ -1,0 +1,63 @@
+"""What waits to be sent to one connection."""
+
+from __future__ import annotations
+
+import asyncio
+from collections import deque
+from dataclasses import dataclass
+from typing import Any
+
+from ..core.frames import merge_frames
+from ..core.messages import encode
+
+
+@dataclass
+class Outgoing:
+    """A message with its JSON text, encoded once however many connections get it."""
+
+    message: dict[str, Any]
+    text: str
+
+    @classmethod
+    def of(cls, message: dict[str, Any]) -> Outgoing:
+        return cls(message, encode(message))
+
+
+class SlowConsumer(Exception):
+    """A connection fell so far behind that it is closed rather than buffered forever."""
+
+
+class Outbox:
+    """A queue of messages in order, where a frame behind a waiting frame merges into it.
+
+    Answers, ``added`` and ``removed`` are never dropped; frames are folded, so a slow
+    viewer gets the latest state, not a growing backlog.
+    """
+
+    def __init__(self, limit: int = 10_000) -> None:
+        self._queue: deque[Outgoing] = deque()
+        self._ready = asyncio.Event()
+        self._limit = limit
+        self.merged = 0
+
+    def __len__(self) -> int:
+        return len(self._queue)
+
+    def put(self, item: Outgoing) -> None:
+        """Queue a message; raises :class:`SlowConsumer` past the limit."""
+        queue = self._queue
+        if item.message["op"] == "frame" and queue and queue[-1].message["op"] == "frame":
+            queue[-1] = Outgoing.of(merge_frames(queue[-1].message, item.message))
+            self.merged += 1
+        else:
+            if len(queue) >= self._limit:
+                raise SlowConsumer(f"more than {self._limit} messages waiting")
+            queue.append(item)
+        self._ready.set()
+
+    async def get(self) -> Outgoing:
+        """The next message, waiting for one if needed."""
+        while not self._queue:
+            self._ready.clear()
+            await self._ready.wait()
+        return self._queue.popleft()
