@@ -1,0 +1,34 @@
+"""Virtual Prosthetics client: the 1.0 library's API, in Python, against a server.
+
+    import virtual_prosthetics as vp
+    vp.connect("ws://127.0.0.1:8000")
+    robot = vp.Robot()
+    robot.attach_chain(vp.MotorZ(-0.7, 0.7, 0, 0.2, 0.6), vp.EdgedFinger(1, 1, 0.1))
+    vp.set_animation(lambda t: robot.set_angles(0.7 * math.sin(t)))
+    vp.run(10)
+"""
+
+from .animation import get_time, run, set_animation
+from .errors import ConnectionLost, ServerError, Timeout, VPError
+from .objects import (Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Motor, MotorX, MotorY,
+                      MotorZ, Node, Part, Slot)
+from .robots import EdgedHand, Robot
+from .scene import Scene, connect, current_scene
+
+
+def set_camera_position(*position: float) -> None:
+    """Manual ``setCameraPosition(x, y, z)``: every viewer's camera moves there."""
+    current_scene().set_camera_position(*position)
+
+
+def set_camera_target(*target: float) -> None:
+    """Manual ``setCameraTarget(x, y, z)``: every viewer's camera turns towards it."""
+    current_scene().set_camera_target(*target)
+
+
+__all__ = [
+    "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
+    "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "ServerError",
+    "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
+    "set_animation", "set_camera_position", "set_camera_target",
+]

@@ -1,0 +1,49 @@
+"""The manual's animation loop: ``set_animation(func, fps)`` then ``run()``."""
+
+from __future__ import annotations
+
+import inspect
+import time
+from typing import Callable
+
+from .scene import current_scene
+
+
+def set_animation(func: Callable[..., None], fps: float = 30) -> None:
+    """Manual ``setAnimation(func, fps=30)``: ``func(time, dtime)`` runs ``fps`` times a second."""
+    if fps <= 0:
+        raise ValueError(f"fps must be positive, got {fps}")
+    current_scene().animation = (func, fps)
+
+
+def _arity(func: Callable[..., None]) -> int:
+    try:
+        parameters = inspect.signature(func).parameters.values()
+    except (TypeError, ValueError):
+        return 2
+    if any(p.kind is p.VAR_POSITIONAL for p in parameters):
+        return 2
+    return min(2, sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) for p in parameters))
+
+
+def run(seconds: float | None = None) -> None:
+    """Run the animation (server time) for ``seconds``, or until the connection closes."""
+    scene = current_scene()
+    if scene.animation is None:
+        raise RuntimeError("no animation: call set_animation(func) first")
+    func, fps = scene.animation
+    arity, period = _arity(func), 1.0 / fps
+    start = last = scene.get_time()
+    next_wake = time.monotonic()
+    while seconds is None or last - start < seconds:
+        now = scene.get_time()
+        func(*(now, now - last)[:arity])
+        last = now
+        next_wake = max(next_wake + period, time.monotonic())
+        time.sleep(max(0.0, next_wake - time.monotonic()))
+    scene.sync()
+
+
+def get_time() -> float:
+    """Manual ``getTime()``: the current scene's server time."""
+    return current_scene().get_time()

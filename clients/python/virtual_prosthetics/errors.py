@@ -1,0 +1,47 @@
+"""Exceptions of the Python client.
+
+Hierarchy::
+
+    VPError                 base of everything this package raises
+    ├── ServerError         the server answered a request with an error
+    ├── ConnectionLost      the WebSocket closed (or never opened)
+    └── Timeout             the server did not answer in time
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class VPError(Exception):
+    """Base of every exception raised by the client."""
+
+
+class ServerError(VPError):
+    """An error answer of the server, with the wire fields as attributes.
+
+    ``code`` is one of the protocol's codes (``wrong_type``, ``unknown_object``, …),
+    ``message`` says what was wrong, ``request`` names the op that failed and
+    ``details`` holds structured facts (object id, argument, batch index).
+    """
+
+    def __init__(self, code: str, message: str, request: str | None = None,
+                 details: dict[str, Any] | None = None) -> None:
+        super().__init__(f"{code}: {message}")
+        self.code = code
+        self.message = message
+        self.request = request
+        self.details = details or {}
+
+    @classmethod
+    def from_wire(cls, wire: dict[str, Any]) -> ServerError:
+        """The exception for an ``error`` message."""
+        return cls(wire["code"], wire["message"], wire.get("request"), wire.get("details"))
+
+
+class ConnectionLost(VPError):
+    """The connection to the server is closed."""
+
+
+class Timeout(VPError):
+    """The server did not answer within the time limit."""

@@ -1,0 +1,88 @@
+"""The client's copy of the scene, kept current by the server's messages."""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Iterator
+
+NodeState = dict[str, Any]
+
+
+class Mirror:
+    """Nodes by id (as the server describes them), the camera and the server clock.
+
+    Not thread-safe on its own: the :class:`~virtual_prosthetics.scene.Scene` holds a
+    lock around every use.
+    """
+
+    def __init__(self) -> None:
+        self.nodes: dict[str, NodeState] = {}
+        self.camera: dict[str, list[float]] = {}
+        self.time = 0.0
+        self.seq = 0
+        self._time_received = time.monotonic()
+
+    def apply(self, message: dict[str, Any]) -> None:
+        """Fold one server message (snapshot, added, frame, removed) into the mirror."""
+        op = message["op"]
+        if op == "snapshot":
+            self.nodes.clear()
+            self.camera = message["camera"]
+            self._add(message["nodes"])
+            self._clock(message)
+        elif op == "added":
+            self._add(message["nodes"])
+        elif op == "removed":
+            self._remove(message["ids"])
+        elif op == "frame":
+            self.apply_changes(message)
+            self._clock(message)
+
+    def apply_changes(self, changes: dict[str, Any]) -> None:
+        """Fold a change set (an ``ok`` answer's ``changes`` or a frame's fields)."""
+        self._add(changes.get("added", ()))
+        for node_id, fields in changes.get("updates", {}).items():
+            if node_id in self.nodes:
+                self.nodes[node_id].update(fields)
+        for node_id, angle in changes.get("angles", {}).items():
+            if node_id in self.nodes:
+                self.nodes[node_id]["angle"] = angle
+        for node_id, pose in changes.get("poses", {}).items():
+            if node_id in self.nodes:
+                self.nodes[node_id].update(position=pose[:3], quaternion=pose[3:])
+        if "camera" in changes:
+            self.camera = changes["camera"]
+        self._remove(changes.get("removed", ()))
+
+    def _add(self, nodes: Any) -> None:
+        for node in nodes:
+            self.nodes[node["id"]] = dict(node)
+
+    def _remove(self, ids: Any) -> None:
+        for node_id in ids:
+            self.nodes.pop(node_id, None)
+
+    def _clock(self, message: dict[str, Any]) -> None:
+        self.time, self.seq = message["time"], message["seq"]
+        self._time_received = time.monotonic()
+
+    def now(self) -> float:
+        """Server time now: the last frame's time plus what elapsed here since it came."""
+        return self.time + (time.monotonic() - self._time_received)
+
+    def walk(self, node_id: str) -> Iterator[NodeState]:
+        """A node and its descendants in depth-first pre-order."""
+        stack = [node_id]
+        while stack:
+            node = self.nodes.get(stack.pop())
+            if node is not None:
+                yield node
+                stack.extend(reversed(node["children"]))
+
+    def parts(self, robot_id: str) -> list[NodeState]:
+        """The parts below a robot (motors included, slots not), in tree order."""
+        return [n for n in self.walk(robot_id) if n["id"] != robot_id and n["type"] != "Slot"]
+
+    def motors(self, robot_id: str) -> list[NodeState]:
+        """The motors below a robot: their order is their index."""
+        return [n for n in self.parts(robot_id) if "axis" in n]

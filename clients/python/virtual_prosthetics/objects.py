@@ -1,0 +1,188 @@
+"""The manual's classes, in Python: each object stands for one object on the server.
+
+Constructors and methods take the manual's arguments in the manual's order; a left-out
+argument (None) takes the server's default. Names are the manual's in snake_case.
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+from .errors import VPError
+from .scene import Scene, current_scene
+
+
+class Node:
+    """Base of every scene object: its ``id`` and the scene it lives in."""
+
+    _type: ClassVar[str] = ""
+    id: str
+    _scene: Scene
+
+    def _create(self, scene: Scene | None, *args: Any) -> None:
+        self._scene = scene if scene is not None else current_scene()
+        self.id = self._scene.new_id()
+        self._scene.create(self, self._type, args)
+
+    def _call(self, method: str, *args: Any) -> None:
+        self._scene.call(self.id, method, args)
+
+    def _state(self) -> dict[str, Any]:
+        node = self._scene.read(lambda mirror: mirror.nodes.get(self.id))
+        if node is None:
+            raise VPError(f"{self.id} is not in the scene (deleted, or its creation failed)")
+        return node
+
+    def delete(self) -> None:
+        """Remove the object (and what is attached below it) from the scene."""
+        self._scene.delete(self.id)
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {getattr(self, 'id', '?')}>"
+
+
+class Posed(Node):
+    """An object with a settable position and rotation relative to its parent."""
+
+    def set_position(self, *position: Any) -> None:
+        """Manual ``setPosition([x, y, z])`` or ``setPosition(x, y, z)``."""
+        self._call("setPosition", *position)
+
+    def set_rotation(self, x: float, y: float, z: float, order: str = "XYZ") -> None:
+        """Manual ``setRotation(x, y, z, order='XYZ')``: Euler angles."""
+        self._call("setRotation", x, y, z, order)
+
+
+class Slot(Posed):
+    """Manual ``Slot()``, ``Slot([x, y, z])`` or ``Slot(x, y, z)``."""
+
+    _type = "Slot"
+
+    def __init__(self, *position: Any, scene: Scene | None = None) -> None:
+        self._create(scene, *position)
+
+
+class Part(Posed):
+    """Manual ``Part``: the base of every robot part (invisible, no shape)."""
+
+    _type = "Part"
+
+    def __init__(self, *, scene: Scene | None = None) -> None:
+        self._create(scene)
+
+    def add_slot(self, *position: Any) -> Slot:
+        """Manual ``addSlot(x, y, z)``: a new slot on this part (waits for the server)."""
+        result = self._scene.call(self.id, "addSlot", position, wait=True)
+        return self._scene.proxy(result["ref"])  # type: ignore[return-value]
+
+    def attach_to_slot(self, parent: Node, slot: int | Slot = 0) -> Part:
+        """Manual ``attachToSlot(parent, slot=0)``; returns this part."""
+        self._call("attachToSlot", parent, slot)
+        return self
+
+    def begin_contact(self, other: Node) -> None:
+        """Manual ``beginContact(otherPart)``: override to react to a new contact."""
+
+    def end_contact(self, other: Node) -> None:
+        """Manual ``endContact(otherPart)``: override to react to a lost contact."""
+
+
+class Motor(Part):
+    """Manual ``Motor(axis, min=-Infinity, max=Infinity, def=0)``."""
+
+    _type = "Motor"
+
+    def __init__(self, axis: str, min: float | None = None, max: float | None = None,
+                 default: float | None = None, *, scene: Scene | None = None) -> None:
+        self._create(scene, axis, min, max, default)
+
+    def set_name(self, name: str) -> Motor:
+        """Manual ``setName(name)``; returns the motor."""
+        self._call("setName", name)
+        return self
+
+    def get_angle(self) -> float:
+        """Manual ``getAngle()``."""
+        return self._state()["angle"]
+
+    def set_angle(self, angle: float | None) -> None:
+        """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""
+        self._call("setAngle", angle)
+
+    def flip(self, flipped: bool = True) -> Motor:
+        """Manual ``flip(bool)``: turn the other way; returns the motor."""
+        self._call("flip", flipped)
+        return self
+
+
+class _AxisMotor(Motor):
+    def __init__(self, min: float | None = None, max: float | None = None,
+                 default: float | None = None, width: float | None = None,
+                 height: float | None = None, *, scene: Scene | None = None) -> None:
+        self._create(scene, min, max, default, width, height)
+
+
+class MotorX(_AxisMotor):
+    """Manual ``MotorX(min, max, def, width=0.1, height=0.05)``."""
+
+    _type = "MotorX"
+
+
+class MotorY(_AxisMotor):
+    """Manual ``MotorY(min, max, def, width=0.3, height=0.05)``."""
+
+    _type = "MotorY"
+
+
+class MotorZ(_AxisMotor):
+    """Manual ``MotorZ(min, max, def, width=0.1, height=0.05)``."""
+
+    _type = "MotorZ"
+
+
+class Ball(Part):
+    """Manual ``Ball(radius=1, color='dimgray')``."""
+
+    _type = "Ball"
+
+    def __init__(self, radius: float | None = None, color: str | int | None = None, *,
+                 scene: Scene | None = None) -> None:
+        self._create(scene, radius, color)
+
+
+class Box(Part):
+    """Manual ``Box(sizex=1, sizey=1, sizez=1, color='dimgray')``."""
+
+    _type = "Box"
+
+    def __init__(self, sizex: float | None = None, sizey: float | None = None,
+                 sizez: float | None = None, color: str | int | None = None, *,
+                 scene: Scene | None = None) -> None:
+        self._create(scene, sizex, sizey, sizez, color)
+
+
+class EdgedFinger(Part):
+    """Manual ``EdgedFinger(length=1, width=0.3, thickness=0.3)``."""
+
+    _type = "EdgedFinger"
+
+    def __init__(self, length: float | None = None, width: float | None = None,
+                 thickness: float | None = None, *, scene: Scene | None = None) -> None:
+        self._create(scene, length, width, thickness)
+
+
+class EdgedTip(EdgedFinger):
+    """Manual ``EdgedTip(length=1, width=0.3, thickness=0.3)``."""
+
+    _type = "EdgedTip"
+
+
+class EdgedPalm(Part):
+    """Manual ``EdgedPalm(left, length=1.4, width=1.4, thickness=0.3)``."""
+
+    _type = "EdgedPalm"
+
+    def __init__(self, left: bool | None = None, length: float | None = None,
+                 width: float | None = None, thickness: float | None = None, *,
+                 scene: Scene | None = None) -> None:
+        self._create(scene, left, length, width, thickness)

@@ -1,0 +1,120 @@
+"""Robots and hands, and the classes that stand in for objects other code created."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from . import objects
+from .objects import Node, Part, Posed
+from .scene import Scene
+
+
+class Robot(Posed):
+    """Manual ``Robot``: subclass it and build the robot in ``__init__``.
+
+    The motors, in depth-first order of the tree as it is now, are the robot's degrees of
+    freedom: ``set_angles`` and ``get_angles`` use that order.
+    """
+
+    _type = "Robot"
+
+    def __init__(self, *, scene: Scene | None = None) -> None:
+        self._create(scene)
+
+    def attach_chain(self, *parts: Part) -> Part | None:
+        """Manual ``attachChain(a, b, …)``: a chain from this robot; returns the last part."""
+        self._call("attachChain", *parts)
+        return parts[-1] if parts else None
+
+    def add_chain(self, *parts: Node) -> Node | None:
+        """Manual ``addChain(a, b, …)``: each part to slot 0 of the one before; the last."""
+        self._call("addChain", *parts)
+        return parts[-1] if parts else None
+
+    def add_gui(self, title: str = "Robot") -> None:
+        """Manual ``addGUI(title)``: a motor panel in every viewer."""
+        self._call("addGUI", title)
+
+    def _listing(self, kind: str) -> list[Any]:
+        def read(mirror: Any) -> list[str]:
+            nodes = mirror.motors(self.id) if kind == "motors" else mirror.parts(self.id)
+            return [n["id"] for n in nodes if kind != "sensors" or n["type"] == "Sensor"]
+        return [self._scene.proxy(node_id) for node_id in self._scene.read(read)]
+
+    def get_parts(self) -> list[Part]:
+        """Manual ``getParts()``: every part, motors included."""
+        return self._listing("parts")
+
+    def get_motors(self) -> list[objects.Motor]:
+        """Manual ``getMotors()``: the motors in index order."""
+        return self._listing("motors")
+
+    def get_sensors(self) -> list[Part]:
+        """Manual ``getSensors()``."""
+        return self._listing("sensors")
+
+    def get_position(self) -> list[float]:
+        """Manual ``getPosition()``: [x, y, z]."""
+        return list(self._state()["position"])
+
+    def _angles(self) -> list[float]:
+        return self._scene.read(lambda mirror: [m["angle"] for m in mirror.motors(self.id)])
+
+    def get_angle(self, index: int) -> float:
+        """Manual ``getAngle(index)``: 0 when there is no such motor."""
+        angles = self._angles()
+        return angles[index] if 0 <= index < len(angles) else 0.0
+
+    def set_angle(self, index: int, angle: float | None) -> None:
+        """Manual ``setAngle(index, angle)``: ignored without such a motor or for None."""
+        self._call("setAngle", index, angle)
+
+    def get_angles(self) -> list[float]:
+        """Manual ``getAngles()``."""
+        return self._angles()
+
+    def set_angles(self, *angles: float | None) -> None:
+        """Manual ``setAngles(a0, a1, …)``: None leaves that motor as it is."""
+        self._call("setAngles", *angles)
+
+
+class Hand(Robot):
+    """The hands' finger control (thumb 0, index 1, middle 2, ring 3, little 4)."""
+
+    def __init__(self, is_left: bool = True, *, scene: Scene | None = None) -> None:
+        self._create(scene, is_left)
+
+    def flex_finger(self, index: int, angle: float | None) -> None:
+        """Manual ``flexFinger(index, angle)``."""
+        self._call("flexFinger", index, angle)
+
+    def flex_fingers(self, angle: float | None) -> None:
+        """Manual ``flexFingers(angle)``."""
+        self._call("flexFingers", angle)
+
+    def spread_finger(self, index: int, angle: float | None) -> None:
+        """Manual ``spreadFinger(index, angle)``."""
+        self._call("spreadFinger", index, angle)
+
+    def spread_fingers(self, angle: float, include_thumb: bool = False) -> None:
+        """Manual ``spreadFingers(angle, includeThumb=false)``."""
+        self._call("spreadFingers", angle, include_thumb)
+
+
+class EdgedHand(Hand):
+    """Manual ``EdgedHand(isLeft=true)``."""
+
+    _type = "EdgedHand"
+
+
+CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
+    objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
+    objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
+    Robot, EdgedHand)}
+
+
+def stand_in(scene: Scene, node_id: str, type_name: str) -> Node:
+    """An object for an id this client did not make (a hand's parts, another client's)."""
+    obj = CLASSES.get(type_name, Node).__new__(CLASSES.get(type_name, Node))
+    obj._scene, obj.id = scene, node_id
+    return obj

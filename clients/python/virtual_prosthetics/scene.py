@@ -1,0 +1,178 @@
+"""A connection to one scene of a server, with its mirror and its objects."""
+
+from __future__ import annotations
+
+import math
+import threading
+from itertools import count
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
+from urllib.parse import urlencode
+
+from .connection import Connection
+from .errors import ConnectionLost, Timeout, VPError
+from .mirror import Mirror
+
+if TYPE_CHECKING:
+    from .objects import Node
+
+T = TypeVar("T")
+SCENE_ID = "scene"
+_current: Scene | None = None
+
+
+def current_scene() -> Scene:
+    """The scene new objects go to: the last one :func:`connect` opened."""
+    if _current is None:
+        raise VPError("not connected: call virtual_prosthetics.connect() first")
+    return _current
+
+
+def encode_arg(value: Any) -> Any:
+    """An argument as it travels: objects as {"ref": id}, non-finite numbers as strings."""
+    if hasattr(value, "_scene") and hasattr(value, "id"):
+        return {"ref": value.id}
+    if isinstance(value, float) and not math.isfinite(value):
+        return "NaN" if math.isnan(value) else ("Infinity" if value > 0 else "-Infinity")
+    if isinstance(value, (list, tuple)):
+        return [encode_arg(v) for v in value]
+    return value
+
+
+def trim(args: tuple[Any, ...]) -> list[Any]:
+    """Arguments without trailing Nones (left-out arguments take the server's defaults)."""
+    items = list(args)
+    while items and items[-1] is None:
+        items.pop()
+    return [encode_arg(a) for a in items]
+
+
+class Scene:
+    """One scene on a server, seen and driven through a WebSocket.
+
+    Writes are sent at once and return; reads come from the mirror after every earlier
+    write of this client has been answered, so a read always sees this client's writes.
+    """
+
+    def __init__(self, url: str = "ws://127.0.0.1:8000", scene: str = "default",
+                 role: str = "controller", timeout: float = 10.0) -> None:
+        self.mirror = Mirror()
+        self.lock = threading.RLock()
+        self.objects: dict[str, Node] = {}
+        self.hello: dict[str, Any] = {}
+        self.animation: tuple[Callable[..., None], float] | None = None
+        self._ids = count(1)
+        self._ready = threading.Event()
+        query = urlencode({"scene": scene, "role": role})
+        self.connection = Connection(f"{url.rstrip('/')}/ws?{query}", self._on_message,
+                                     self._on_answer)
+        self.connection.start()
+        if not self._ready.wait(timeout):
+            self.connection.close()
+            raise Timeout(f"no snapshot from {url} within {timeout} s")
+        if "client" not in self.hello:
+            self.connection.raise_deferred()
+            raise ConnectionLost(self.connection.closed or "the server refused the connection")
+
+    @property
+    def name(self) -> str:
+        """The scene's name."""
+        return self.hello["scene"]
+
+    @property
+    def client_id(self) -> str:
+        """This client's id (the prefix of every id it makes)."""
+        return self.hello["client"]
+
+    def _on_message(self, message: dict[str, Any]) -> None:
+        if message["op"] == "hello":
+            self.hello = message
+            return
+        with self.lock:
+            self.mirror.apply(message)
+        if message["op"] == "snapshot" or (message["op"] == "error" and not self.hello):
+            self._ready.set()
+
+    def _on_answer(self, answer: dict[str, Any]) -> None:
+        if "changes" in answer:
+            with self.lock:
+                self.mirror.apply_changes(answer["changes"])
+
+    # --- requests ------------------------------------------------------------------------
+
+    def new_id(self) -> str:
+        """A fresh object id of this client."""
+        return f"{self.client_id}.{next(self._ids)}"
+
+    def create(self, obj: Node, type_name: str, args: tuple[Any, ...]) -> None:
+        """Ask the server to make ``obj`` (returns at once)."""
+        self.objects[obj.id] = obj
+        self.connection.send({"op": "create", "object": obj.id, "type": type_name,
+                              "args": trim(args)})
+
+    def call(self, object_id: str, method: str, args: tuple[Any, ...] = (),
+             wait: bool = False) -> Any:
+        """Call a manual method on the server; with ``wait``, return its result."""
+        return self.connection.send({"op": "call", "object": object_id, "method": method,
+                                     "args": [encode_arg(a) for a in args]}, wait=wait)
+
+    def delete(self, object_id: str) -> None:
+        """Delete an object and everything attached below it."""
+        self.objects.pop(object_id, None)
+        self.connection.send({"op": "delete", "object": object_id})
+
+    def read(self, reader: Callable[[Mirror], T]) -> T:
+        """Run ``reader`` on the mirror once every earlier write has been answered."""
+        self.connection.settle()
+        with self.lock:
+            return reader(self.mirror)
+
+    def sync(self) -> None:
+        """Wait until the server has answered everything sent; raise its first error."""
+        self.connection.settle()
+
+    def proxy(self, node_id: str) -> Node:
+        """The object for an id: the one this client made, or a new stand-in of its type."""
+        obj = self.objects.get(node_id)
+        if obj is None:
+            from .robots import stand_in
+            with self.lock:
+                type_name = self.mirror.nodes[node_id]["type"]
+            obj = self.objects[node_id] = stand_in(self, node_id, type_name)
+        return obj
+
+    # --- the manual's scene functions ----------------------------------------------------
+
+    def set_camera_position(self, *position: Any) -> None:
+        """Manual ``setCameraPosition``: move every viewer's camera."""
+        self.call(SCENE_ID, "setCameraPosition", position)
+
+    def set_camera_target(self, *target: Any) -> None:
+        """Manual ``setCameraTarget``: turn every viewer's camera."""
+        self.call(SCENE_ID, "setCameraTarget", target)
+
+    def get_time(self) -> float:
+        """Manual ``getTime()``: the server's scene time now."""
+        self.connection.raise_deferred()
+        with self.lock:
+            return self.mirror.now()
+
+    def close(self) -> None:
+        """Disconnect; the server deletes what this client made."""
+        global _current
+        self.connection.close()
+        if _current is self:
+            _current = None
+
+    def __enter__(self) -> Scene:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+
+def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
+            role: str = "controller") -> Scene:
+    """Connect to a scene of a server and make it the current scene."""
+    global _current
+    _current = Scene(url, scene, role)
+    return _current
