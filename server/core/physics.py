@@ -7,9 +7,26 @@ never stepped, nothing falls or gets pushed.
 
 from __future__ import annotations
 
+import os
+import sys
 from typing import Any, Sequence
 
-import pybullet
+
+def _quiet_import():  # type: ignore[no-untyped-def]
+    # PyBullet prints its build time on stdout when imported; stdout belongs to the log.
+    sys.stdout.flush()
+    saved, devnull = os.dup(1), os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, 1)
+    try:
+        import pybullet
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(devnull)
+    return pybullet
+
+
+pybullet = _quiet_import()
 
 from .math3d import Pose, Vec3
 

@@ -1,0 +1,90 @@
+"""Shared fixtures: a real server on a free loopback port, started once per test session."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from dataclasses import dataclass
+from itertools import count
+from pathlib import Path
+from typing import Any, Iterator
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+VP_SERVER = Path(sys.executable).with_name("vp-server")
+_scene_numbers = count(1)
+
+
+@dataclass
+class RunningServer:
+    """A vp-server process and how to reach it."""
+
+    process: subprocess.Popen[bytes]
+    port: int
+
+    @property
+    def http(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    @property
+    def ws(self) -> str:
+        return f"ws://127.0.0.1:{self.port}"
+
+    def get(self, path: str) -> Any:
+        """GET a REST path; the decoded JSON body (raises HTTPError for 4xx/5xx)."""
+        with urllib.request.urlopen(self.http + path, timeout=10) as response:
+            return json.loads(response.read())
+
+
+def free_port() -> int:
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def start_server(*args: str) -> RunningServer:
+    """Start vp-server and wait until /api/health answers."""
+    port = free_port()
+    process = subprocess.Popen([str(VP_SERVER), "--port", str(port), "--log-level", "warning",
+                                *args], cwd=ROOT)
+    server = RunningServer(process, port)
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline:
+        if process.poll() is not None:
+            raise RuntimeError(f"vp-server exited with {process.returncode}")
+        try:
+            server.get("/api/health")
+            return server
+        except OSError:
+            time.sleep(0.1)
+    process.kill()
+    raise RuntimeError("vp-server did not answer /api/health within 30 s")
+
+
+def stop_server(server: RunningServer) -> None:
+    server.process.send_signal(signal.SIGINT)
+    try:
+        server.process.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        server.process.kill()
+
+
+@pytest.fixture(scope="session")
+def server() -> Iterator[RunningServer]:
+    """A server with an empty default scene (no demo), shared by the whole session."""
+    running = start_server("--no-demo")
+    yield running
+    stop_server(running)
+
+
+@pytest.fixture
+def scene_name() -> str:
+    """A scene name no other test uses, so tests on the shared server never meet."""
+    return f"t{os.getpid()}x{next(_scene_numbers)}"

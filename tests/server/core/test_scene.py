@@ -1,0 +1,128 @@
+"""The scene: ids, transactions, the change feed, ticks and the collision world."""
+
+import math
+
+import pytest
+
+from server.core import math3d
+from server.core.motor import MotorZ
+from server.core.parts import Box, EdgedFinger
+from server.core.robot import Robot
+from server.core.scene import Scene
+from server.errors import DuplicateId, OutOfRange
+
+
+@pytest.fixture
+def scene():
+    s = Scene("test")
+    yield s
+    s.close()
+
+
+def test_ids_are_unique_and_never_reused(scene):
+    box = Box(scene, "a")
+    with pytest.raises(DuplicateId):
+        Box(scene, "a")
+    scene.delete(box)
+    with pytest.raises(DuplicateId):
+        Box(scene, "a")
+
+
+def test_failed_transaction_undoes_everything(scene):
+    robot = Robot(scene, "r")
+    motor = MotorZ(scene, "m", -1, 1)
+    robot.attach_chain(motor)
+    motor.set_angle(0.5)
+    with pytest.raises(OutOfRange), scene.journal.transaction():
+        motor.set_angle(-0.25)
+        extra = EdgedFinger(scene, "f")
+        extra.attach_to_slot(motor)
+        robot.set_position((1, 2, 3))
+        scene.delete(motor)
+        raise OutOfRange("late failure")
+    assert motor.angle == 0.5 and robot.position == (0, 0, 0)
+    assert "f" not in scene.nodes and scene.nodes["m"] is motor
+    assert motor.parent is robot and motor.slots[0].children == []
+    assert robot.get_motors() == [motor]
+
+
+def test_tick_reports_added_frame_removed_in_order(scene):
+    first = scene.tick(0.5)
+    assert first == [{"op": "frame", "seq": 1, "time": 0.5}]
+    robot = Robot(scene, "r")
+    motor = MotorZ(scene, "m")
+    robot.attach_chain(motor)
+    added, frame = scene.tick(0.5)
+    assert added["op"] == "added" and [n["id"] for n in added["nodes"]] == ["r", "m", "m/s0"]
+    assert frame == {"op": "frame", "seq": 2, "time": 1.0}  # new nodes come whole
+    motor.set_angle(0.3)
+    robot.set_position((1, 0, 0))
+    [frame] = scene.tick(0.5)
+    assert frame["angles"] == {"m": 0.3}
+    assert frame["poses"] == {"r": [1, 0, 0, 0, 0, 0, 1]}
+    scene.delete(motor)
+    frame, removed = scene.tick(0.5)
+    assert removed == {"op": "removed", "seq": 4, "ids": sorted(["m", "m/s0"])} or \
+        set(removed["ids"]) == {"m", "m/s0"}
+    assert frame["updates"] == {"r": {"children": []}}
+
+
+def test_reattaching_reports_both_parents_children(scene):
+    a, b, part = Box(scene, "a"), Box(scene, "b"), Box(scene, "p")
+    part.attach_to_slot(a)
+    scene.tick(0.1)
+    part.attach_to_slot(b)
+    [frame] = scene.tick(0.1)
+    assert frame["updates"] == {"a": {"children": []}, "b": {"children": ["p"]},
+                                "p": {"parent": "b"}}
+
+
+def test_delta_of_a_recording_holds_only_its_changes(scene):
+    motor = MotorZ(scene, "m")
+    scene.tick(0.1)
+    with scene.recording() as changes:
+        motor.set_angle(1.0)
+    assert scene.delta(changes) == {"angles": {"m": 1.0}}
+
+
+def test_snapshot_lists_parents_before_children_and_encodes_infinity(scene):
+    robot = Robot(scene, "r")
+    robot.attach_chain(MotorZ(scene, "m"))
+    snapshot = scene.snapshot()
+    ids = [n["id"] for n in snapshot["nodes"]]
+    assert ids == ["r", "m", "m/s0"]
+    motor = snapshot["nodes"][1]
+    assert (motor["min"], motor["max"]) == ("-Infinity", "Infinity")
+
+
+def test_collision_bodies_follow_the_motors(scene):
+    robot = Robot(scene, "r")
+    finger = EdgedFinger(scene, "f", 1)
+    motor = MotorZ(scene, "m")
+    robot.attach_chain(motor, finger)
+    robot.set_position((0, 1, 0))
+    motor.set_angle(math.pi / 2)
+    scene.tick(0.1)
+    position, orientation = scene.physics.pose("f")
+    assert position == pytest.approx((0, 1, 0), abs=1e-6)
+    assert orientation == pytest.approx(math3d.axis_angle("z", math.pi / 2), abs=1e-6)
+
+
+def test_a_ray_hits_the_finger_where_the_tree_puts_it(scene):
+    robot = Robot(scene, "r")
+    motor = MotorZ(scene, "m")
+    robot.attach_chain(motor, EdgedFinger(scene, "f", 1, 0.3, 0.3))
+    robot.set_position((0, 1, 0))
+    motor.set_angle(math.pi / 2)  # the finger now lies along -X at height 1
+    scene.tick(0.1)
+    # straight down at x = -0.5: the finger's upper face is 0.15 above its axis
+    [(key, fraction)] = scene.physics.cast_rays([(-0.5, 3, 0)], [(-0.5, -1, 0)])
+    assert key == "f" and 3 - 4 * fraction == pytest.approx(1.15, abs=0.01)
+    [(key, fraction)] = scene.physics.cast_rays([(0.5, 3, 0)], [(0.5, -1, 0)])
+    assert key == "ground" and 3 - 4 * fraction == pytest.approx(0, abs=1e-6)
+
+
+def test_camera_changes_are_reported(scene):
+    scene.set_camera_position((1, 2, 3))
+    [frame] = scene.tick(0.1)
+    assert frame["camera"] == {"position": [1, 2, 3], "target": [0, 1, 0]}
