@@ -7,6 +7,7 @@ never stepped, nothing falls or gets pushed.
 
 from __future__ import annotations
 
+import ctypes
 import os
 import sys
 from typing import Any, Sequence
@@ -19,6 +20,7 @@ def _quiet_import():  # type: ignore[no-untyped-def]
     os.dup2(devnull, 1)
     try:
         import pybullet
+        ctypes.CDLL(None).fflush(None)  # the C library buffers it; flush while muted
     finally:
         os.dup2(saved, 1)
         os.close(saved)

@@ -38,7 +38,8 @@ class Connection:
     """
 
     def __init__(self, url: str, on_message: Handler, on_answer: Handler) -> None:
-        self._ws = ws_connect(url, max_size=None, open_timeout=10)
+        # entered by hand: the connection outlives this constructor (closed by close())
+        self._ws = ws_connect(url, max_size=None, open_timeout=10).__enter__()
         self._on_message = on_message
         self._on_answer = on_answer
         self._ids = count(1)

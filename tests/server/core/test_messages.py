@@ -1,0 +1,44 @@
+"""Decoding limits and schema checks of incoming messages."""
+
+import pytest
+
+from server.core import messages
+from server.errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp
+
+
+def test_decode_accepts_an_object_or_an_array():
+    assert messages.decode('{"op": "ping"}') == [{"op": "ping"}]
+    assert messages.decode('[{"op": "ping"}, {"op": "ping"}]') == [{"op": "ping"}] * 2
+
+
+def test_oversize_text_is_refused_before_parsing():
+    with pytest.raises(TooLarge):
+        messages.decode(" " * (messages.LIMITS["messageBytes"] + 1))
+
+
+def test_too_many_messages_in_one_text():
+    with pytest.raises(LimitExceeded):
+        messages.decode("[" + ",".join(["{}"] * (messages.LIMITS["messagesPerText"] + 1)) + "]")
+
+
+@pytest.mark.parametrize("text", ["NaN", "[Infinity]", '{"a": -Infinity}', "{", ""])
+def test_non_json_is_refused(text):
+    with pytest.raises(BadJSON):
+        messages.decode(text)
+
+
+def test_deep_nesting_is_refused_not_crashed():
+    with pytest.raises(BadJSON):
+        messages.decode("[" * 100_000 + "]" * 100_000)
+
+
+def test_schema_errors_name_the_field():
+    with pytest.raises(BadMessage, match="args"):
+        messages.check_client_message({"op": "call", "object": "a", "method": "m", "args": 5})
+    with pytest.raises(UnknownOp):
+        messages.check_client_message({"op": "frame"})
+
+
+def test_encode_refuses_bare_non_finite_numbers():
+    with pytest.raises(ValueError):
+        messages.encode({"op": "frame", "time": float("inf")})

@@ -1,0 +1,74 @@
+"""REST inspection against a real server."""
+
+import json
+import time
+import urllib.error
+
+import pytest
+from websockets.sync.client import connect
+
+from .ws_requests import request_all
+
+
+def test_health(server):
+    health = server.get("/api/health")
+    assert health["status"] == "ok" and health["protocol"] == 1
+
+
+def test_robot_report_lists_motors_in_order(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
+        client = json.loads(ws.recv(timeout=10))["client"]
+        request_all(ws, [
+            {"op": "create", "object": f"{client}.1", "type": "EdgedHand", "args": [False]},
+            {"op": "call", "object": f"{client}.1", "method": "setPosition", "args": [1, 2, 3]},
+            {"op": "call", "object": f"{client}.1", "method": "flexFinger", "args": [2, 0.4]},
+        ])
+        robots = server.get(f"/api/scenes/{scene_name}/robots")
+        assert robots == [{"id": f"{client}.1", "type": "EdgedHand", "position": [1, 2, 3],
+                           "visible": True, "motors": 20, "parts": 36}]
+        report = server.get(f"/api/scenes/{scene_name}/robots/{client}.1")
+        motors = report["motors"]
+        assert [m["index"] for m in motors] == list(range(20))
+        assert {"id", "index", "type", "axis", "min", "max", "angle", "name", "flipped"} <= set(motors[0])
+        assert [m["angle"] for m in motors[9:12]] == [-0.4] * 3
+        assert motors[0]["type"] == "MotorX" and motors[0]["flipped"] is False
+        summary = server.get(f"/api/scenes/{scene_name}")
+        assert summary["robots"] == 1 and summary["clients"] == 1
+        snapshot = server.get(f"/api/scenes/{scene_name}/snapshot")
+        assert len(snapshot["nodes"]) == summary["objects"]
+
+
+def test_infinite_limits_are_strings_in_rest(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
+        client = json.loads(ws.recv(timeout=10))["client"]
+        request_all(ws, [
+            {"op": "create", "object": f"{client}.1", "type": "Robot"},
+            {"op": "create", "object": f"{client}.2", "type": "MotorY"},
+            {"op": "call", "object": f"{client}.1", "method": "attachChain",
+             "args": [{"ref": f"{client}.2"}]},
+        ])
+        [motor] = server.get(f"/api/scenes/{scene_name}/robots/{client}.1")["motors"]
+        assert (motor["min"], motor["max"]) == ("-Infinity", "Infinity")
+
+
+@pytest.mark.parametrize("path,code", [
+    ("/api/scenes/no-such-scene", "unknown_scene"),
+    ("/api/scenes/default/robots/nobody.1", "unknown_object"),
+])
+def test_unknown_things_are_structured_404s(server, path, code):
+    with pytest.raises(urllib.error.HTTPError) as caught:
+        server.get(path)
+    assert caught.value.code == 404
+    assert json.loads(caught.value.read())["code"] == code
+
+
+def test_openapi_documents_the_routes(server):
+    paths = server.get("/openapi.json")["paths"]
+    for path in ("/api/health", "/api/scenes", "/api/scenes/{scene}/robots/{robot_id}"):
+        assert path in paths
+
+
+def test_metrics_report_ticks(server):
+    first = server.get("/api/metrics")["scenes"]["default"]["ticks"]
+    time.sleep(0.2)
+    assert server.get("/api/metrics")["scenes"]["default"]["ticks"] > first

@@ -1,0 +1,105 @@
+"""The /ws endpoint with real connections: many clients, roles, frames, bad input."""
+
+import json
+import time
+
+from websockets.sync.client import connect
+
+from server.core.messages import check_server_message
+
+from .ws_requests import next_message, request_all, wait_ticks
+
+
+def open_client(server, scene, role="controller"):
+    ws = connect(f"{server.ws}/ws?scene={scene}&role={role}").__enter__()
+    hello = json.loads(ws.recv(timeout=10))
+    snapshot = json.loads(ws.recv(timeout=10))
+    check_server_message(hello)
+    check_server_message(snapshot)
+    return ws, hello, snapshot
+
+
+def test_second_client_sees_the_first_ones_robot_and_its_motion(server, scene_name):
+    first, hello, _ = open_client(server, scene_name)
+    me = hello["client"]
+    with first:
+        request_all(first, [
+            {"op": "create", "object": f"{me}.1", "type": "Robot"},
+            {"op": "create", "object": f"{me}.2", "type": "MotorZ", "args": [-1, 1]},
+            {"op": "call", "object": f"{me}.1", "method": "attachChain",
+             "args": [{"ref": f"{me}.2"}]},
+        ])
+        wait_ticks(first)  # later changes come in frames, not as part of "added"
+        second, hello2, snapshot = open_client(server, scene_name, "viewer")
+        with second:
+            assert hello2["client"] != me and hello2["role"] == "viewer"
+            assert [n["id"] for n in snapshot["nodes"]] == [f"{me}.1", f"{me}.2", f"{me}.2/s0"]
+            request_all(first, [{"op": "call", "object": f"{me}.2", "method": "setAngle",
+                                 "args": [0.75]}])
+            for _ in range(600):
+                frame = next_message(second, "frame")
+                check_server_message(frame)
+                if f"{me}.2" in frame.get("angles", {}):
+                    break
+            assert frame["angles"][f"{me}.2"] == 0.75
+
+
+def test_viewer_cannot_change_anything(server, scene_name):
+    owner, hello, _ = open_client(server, scene_name)
+    me = hello["client"]
+    with owner:
+        request_all(owner, [{"op": "create", "object": f"{me}.1", "type": "MotorZ"}])
+        viewer, vhello, _ = open_client(server, scene_name, "viewer")
+        with viewer:
+            viewer.send(json.dumps({"op": "call", "id": 1, "object": f"{me}.1",
+                                    "method": "setAngle", "args": [1]}))
+            error = next_message(viewer, "error")
+            assert error["code"] == "forbidden" and error["id"] == 1
+            viewer.send(json.dumps({"op": "delete", "id": 2, "object": f"{me}.1"}))
+            assert next_message(viewer, "error")["code"] == "forbidden"
+        [answer] = request_all(owner, [{"op": "call", "object": f"{me}.1", "method": "getAngle"}])
+        assert answer["result"] == 0
+
+
+def test_idle_frames_keep_time_and_sequence(server, scene_name):
+    ws, _, snapshot = open_client(server, scene_name)
+    with ws:
+        frames = [next_message(ws, "frame") for _ in range(5)]
+    assert [f["seq"] for f in frames] == list(range(frames[0]["seq"], frames[0]["seq"] + 5))
+    assert all(set(f) == {"op", "seq", "time"} for f in frames)
+    assert frames[-1]["time"] > frames[0]["time"] >= snapshot["time"]
+
+
+def test_disconnecting_removes_what_the_client_made(server, scene_name):
+    watcher, _, _ = open_client(server, scene_name, "viewer")
+    with watcher:
+        maker, hello, _ = open_client(server, scene_name)
+        me = hello["client"]
+        request_all(maker, [{"op": "create", "object": f"{me}.1", "type": "EdgedHand"}])
+        added = next_message(watcher, "added")
+        maker.close()
+        removed = next_message(watcher, "removed")
+        assert sorted(removed["ids"]) == sorted(n["id"] for n in added["nodes"])
+        assert f"{me}.1" in removed["ids"] and len(removed["ids"]) == 77
+    deadline = time.monotonic() + 5
+    while server.get(f"/api/scenes/{scene_name}")["objects"] and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert server.get(f"/api/scenes/{scene_name}")["objects"] == 0
+
+
+def test_oversize_and_garbage_get_errors_and_the_connection_lives_on(server, scene_name):
+    ws, hello, _ = open_client(server, scene_name)
+    with ws:
+        ws.send("x" * (2 << 20))
+        assert next_message(ws, "error")["code"] == "too_large"
+        ws.send(b"\xff\xfe binary")
+        assert next_message(ws, "error")["code"] == "bad_json"
+        [answer] = request_all(ws, [{"op": "ping"}])
+        assert answer["op"] == "ok"
+
+
+def test_bad_role_or_scene_name_is_refused_with_a_reason(server):
+    for query in ("scene=ok&role=admin", "scene=bad%20name"):
+        with connect(f"{server.ws}/ws?{query}") as ws:
+            error = json.loads(ws.recv(timeout=10))
+            assert error["op"] == "error" and error["code"] == "out_of_range"
