@@ -9,13 +9,16 @@ WEB_STAMP := web/node_modules/.installed
 HOST ?= 127.0.0.1
 PORT ?= 8000
 
-.PHONY: run test install clean
+.PHONY: run test bench install clean
 
 run: install
 	$(BIN)/vp-server --host $(HOST) --port $(PORT)
 
 test: install
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
+
+bench: install
+	$(BIN)/python bench/tick.py
 
 install: $(PY_STAMP) $(WEB_STAMP)
 

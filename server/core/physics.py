@@ -14,16 +14,20 @@ from typing import Any, Sequence
 
 
 def _quiet_import():  # type: ignore[no-untyped-def]
-    # PyBullet prints its build time on stdout when imported; stdout belongs to the log.
+    # PyBullet prints its build time when imported; the server's output belongs to its log.
     sys.stdout.flush()
-    saved, devnull = os.dup(1), os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, 1)
+    sys.stderr.flush()
+    saved = [os.dup(fd) for fd in (1, 2)]
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    for fd in (1, 2):
+        os.dup2(devnull, fd)
     try:
         import pybullet
         ctypes.CDLL(None).fflush(None)  # the C library buffers it; flush while muted
     finally:
-        os.dup2(saved, 1)
-        os.close(saved)
+        for fd, copy in zip((1, 2), saved):
+            os.dup2(copy, fd)
+            os.close(copy)
         os.close(devnull)
     return pybullet
 

@@ -14,12 +14,13 @@ from . import figures
 from .changes import ChangeSet
 from .journal import Journal
 from .math3d import Vec3
+from .messages import LIMITS
 from .node import Node
 from .physics import PhysicsWorld
 from .robot import Robot
 from .wire import encode_numbers
 
-MAX_NODES = 50_000
+MAX_NODES = LIMITS["sceneObjects"]
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped")
 
 
