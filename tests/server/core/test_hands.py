@@ -5,15 +5,7 @@ import math
 import pytest
 
 from server.core.hands import EdgedHand
-from server.core.scene import Scene
 from server.errors import OutOfRange
-
-
-@pytest.fixture
-def scene():
-    s = Scene("test")
-    yield s
-    s.close()
 
 
 def test_edged_hand_has_twenty_motors_in_finger_order(scene):

@@ -6,15 +6,7 @@ import pytest
 
 from server.core import math3d
 from server.core.motor import Motor, MotorX, MotorY, MotorZ
-from server.core.scene import Scene
 from server.errors import OutOfRange
-
-
-@pytest.fixture
-def scene():
-    s = Scene("test")
-    yield s
-    s.close()
 
 
 def test_limits_are_swapped_and_default_clamped(scene):

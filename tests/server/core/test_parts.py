@@ -8,19 +8,11 @@ from server.core import math3d
 from server.core.node import Slot
 from server.core.parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
 from server.core.robot import Robot
-from server.core.scene import Scene
 from server.errors import Cycle, OutOfRange
 
 
 def flat(points):
     return [c for p in points for c in p]
-
-
-@pytest.fixture
-def scene():
-    s = Scene("test")
-    yield s
-    s.close()
 
 
 def test_edged_finger_profile_and_slot(scene):

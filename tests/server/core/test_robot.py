@@ -7,14 +7,6 @@ import pytest
 from server.core.motor import MotorX, MotorZ
 from server.core.parts import Box, EdgedFinger
 from server.core.robot import Robot
-from server.core.scene import Scene
-
-
-@pytest.fixture
-def scene():
-    s = Scene("test")
-    yield s
-    s.close()
 
 
 def chain(scene, prefix="r"):

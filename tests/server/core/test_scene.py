@@ -8,15 +8,7 @@ from server.core import math3d
 from server.core.motor import MotorZ
 from server.core.parts import Box, EdgedFinger
 from server.core.robot import Robot
-from server.core.scene import Scene
 from server.errors import DuplicateId, OutOfRange
-
-
-@pytest.fixture
-def scene():
-    s = Scene("test")
-    yield s
-    s.close()
 
 
 def test_ids_are_unique_and_never_reused(scene):

@@ -2,17 +2,8 @@
 
 import json
 
-import pytest
 
-from server.core.scene import Scene
 from server.core.session import Session
-
-
-@pytest.fixture
-def scene():
-    s = Scene("test")
-    yield s
-    s.close()
 
 
 def send(session, *messages):
