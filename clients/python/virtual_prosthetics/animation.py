@@ -6,6 +6,7 @@ import inspect
 import time
 from typing import Callable
 
+from .errors import ConnectionLost
 from .scene import current_scene
 
 
@@ -36,6 +37,8 @@ def run(seconds: float | None = None) -> None:
     start = last = scene.get_time()
     next_wake = time.monotonic()
     while seconds is None or last - start < seconds:
+        if scene.connection.closed is not None:
+            raise ConnectionLost(scene.connection.closed)
         now = scene.get_time()
         func(*(now, now - last)[:arity])
         last = now

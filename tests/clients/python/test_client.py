@@ -176,3 +176,16 @@ def test_disconnect_removes_the_clients_robots(server, scene_name):
     while server.get(f"/api/scenes/{scene_name}")["robots"] and time.monotonic() < deadline:
         time.sleep(0.05)
     assert server.get(f"/api/scenes/{scene_name}")["robots"] == 0
+
+
+def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
+    from ...conftest import start_server, stop_server
+    own = start_server("--no-demo")
+    try:
+        vp.connect(own.ws, scene=scene_name)
+        vp.set_animation(lambda t: None)
+        stop_server(own)
+        with pytest.raises(vp.ConnectionLost):
+            vp.run(30)
+    finally:
+        stop_server(own)
