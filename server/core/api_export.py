@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from .api import REQUIRED, TYPES, Param
+from .api import REQUIRED, TYPES, Param, snake
 from .wire import encode_numbers
 
 API_PATH = Path(__file__).resolve().parents[2] / "protocol" / "api.json"
@@ -29,7 +29,7 @@ def table() -> dict[str, Any]:
                     "methods": {m.name: {"python": m.python, "params": [_param(p) for p in m.params],
                                          "returns": m.returns, "mutates": m.mutates}
                                 for m in spec.methods},
-                    "callbacks": list(spec.callbacks)}
+                    "callbacks": {c: snake(c) for c in spec.callbacks}}
         for spec in TYPES.values()}}
 
 
