@@ -11,7 +11,12 @@ Parameter kinds (how each argument is checked, see :mod:`server.core.arguments`)
 (ignored) · ``bool`` · ``string`` · ``color`` CSS colour name, #hex or 0xRRGGBB number ·
 ``axis`` 'x', 'y' or 'z' · ``order`` an Euler order · ``point`` [x, y, z] or x, y, z ·
 ``node`` a robot or part reference · ``part`` a part reference · ``slot`` slot index or
-Slot reference.
+Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) ·
+``contact`` a part reference or "ground".
+
+Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
+or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z].
+A method marked ``client`` is handed the calling client's id (``watch`` is per client).
 """
 
 from __future__ import annotations
@@ -48,8 +53,9 @@ class Method:
 
     name: str
     params: tuple[Param, ...] = ()
-    returns: str = "none"  # none, self, ref, refs, number, numbers, point
+    returns: str = "none"
     mutates: bool = True
+    client: bool = False
 
     @property
     def python(self) -> str:
@@ -124,6 +130,17 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
     TypeSpec("EdgedTip", "Part", _edged(figures.EDGED_FINGER_DEFAULTS)),
     TypeSpec("EdgedPalm", "Part", (Param("left", "bool", False),
                                    *_edged(figures.EDGED_PALM_DEFAULTS))),
+    TypeSpec("Sensor", "Part", (Param("visible", "bool", True),
+                                Param("laserColor", "laser", None)), (
+        Method("senseDistance", returns="number", mutates=False),
+        Method("senseTouch", returns="number", mutates=False),
+        Method("sensePosition", returns="point", mutates=False),
+        Method("senseCollision", returns="bool", mutates=False),
+        Method("senseObjects", returns="ids", mutates=False),
+        Method("senseObject", (Param("otherObject", "contact"),), returns="bool",
+               mutates=False),
+        Method("watch", (Param("on", "bool", True),), mutates=False, client=True),
+    )),
     TypeSpec("Robot", None, methods=(
         Method("attachChain", (Param("parts", "part", variadic=True),), returns="ref"),
         Method("addChain", (Param("parts", "node", variadic=True),), returns="ref"),

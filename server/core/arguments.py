@@ -16,6 +16,7 @@ from .api import REQUIRED, Param
 from .math3d import EULER_ORDERS, Vec3
 from .node import Node, Slot
 from .parts import Part
+from .physics import GROUND
 from .robot import Robot
 from .wire import NON_FINITE
 
@@ -150,6 +151,16 @@ def _reference(*types: type[Node]) -> Callable[[Any, Resolver, str], Node]:
     return check
 
 
+def _laser(value: Any, resolve: Resolver, label: str) -> str | int | bool:
+    return value if isinstance(value, bool) else _color(value, resolve, label)
+
+
+def _contact(value: Any, resolve: Resolver, label: str) -> Node | str:
+    if value == GROUND:
+        return GROUND
+    return _reference(Part)(value, resolve, label)
+
+
 def _slot(value: Any, resolve: Resolver, label: str) -> int | Node:
     if isinstance(value, dict):
         return _reference(Slot)(value, resolve, label)
@@ -173,6 +184,8 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "node": _reference(Robot, Part),
     "part": _reference(Part),
     "slot": _slot,
+    "laser": _laser,
+    "contact": _contact,
 }
 
 

@@ -96,6 +96,23 @@ def edged_palm_slots(left: bool, length: float, width: float) -> list[tuple[Vec3
     return slots
 
 
+# --- sensors --------------------------------------------------------------------------
+
+SENSOR_PAD_RADIUS = 0.1   # the dome's radius in X and Z
+SENSOR_PAD_HEIGHT = 0.05  # and along +Y, the sensing direction
+SENSOR_PAD_COLOR = "lightgray"
+SENSOR_NEAR = 0.05        # senseDistance ignores hits nearer than the pad's size
+TOUCH_RANGE = 0.05        # senseTouch sees hits in [0, TOUCH_RANGE]
+SENSOR_RANGE = 10_000.0   # a ray must end somewhere: farther than this reads Infinity
+LASER_COLOR = "crimson"   # Sensor(visible, true)
+
+
+def sensor_pad() -> dict:
+    """The pad a visible sensor is drawn as: a half dome over its +Y axis."""
+    return {"kind": "dome", "radius": SENSOR_PAD_RADIUS, "height": SENSOR_PAD_HEIGHT,
+            "color": SENSOR_PAD_COLOR}
+
+
 # --- hands ----------------------------------------------------------------------------
 
 FINGER_NAMES = ["Thumb", "Index finger", "Middle finger", "Ring finger", "Little finger"]

@@ -20,6 +20,7 @@ LIMITS: dict[str, int] = {
     "messagesPerText": 10_000,  # messages in one array
     "batchOps": 10_000,
     "sceneObjects": 50_000,
+    "watchedSensors": 1_000,   # sensors whose readings every frame carries
 }
 
 

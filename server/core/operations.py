@@ -13,11 +13,12 @@ from .node import Node, Slot
 from .parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
 from .robot import Robot
 from .scene import Scene
+from .sensor import Sensor
 from .wire import encode_numbers
 
 NODE_CLASSES: dict[str, type[Node]] = {cls.type_name: cls for cls in (
     Slot, Part, Motor, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,
-    Robot, EdgedHand)}
+    Sensor, Robot, EdgedHand)}
 SCENE_ID = "scene"
 
 
@@ -30,6 +31,8 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
     "self": lambda target, value: _ref(target),
     "ref": lambda target, value: _ref(value),
     "refs": lambda target, value: [_ref(v) for v in value],
+    "ids": lambda target, value: [{"ref": v} for v in value],
+    "bool": lambda target, value: bool(value),
     "number": lambda target, value: encode_numbers(float(value)),
     "numbers": lambda target, value: encode_numbers([float(v) for v in value]),
     "point": lambda target, value: list(value),
@@ -39,8 +42,9 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
 class Operations:
     """Turns checked protocol messages into calls on a scene and results into wire values."""
 
-    def __init__(self, scene: Scene) -> None:
+    def __init__(self, scene: Scene, client_id: str = "") -> None:
         self.scene = scene
+        self.client_id = client_id
 
     def type_of(self, object_id: str) -> str:
         """The API type name of an object (``Scene`` for the scene itself)."""
@@ -102,5 +106,6 @@ class Operations:
         method = self.method(object_id, name)
         target = self.scene if object_id == SCENE_ID else self.scene.get(object_id)
         args = bind(method.params, raw_args, self.scene.get, f"{name} of {object_id}")
-        value = getattr(target, method.python)(*args)
+        extra = {"client": self.client_id} if method.client else {}
+        value = getattr(target, method.python)(*args, **extra)
         return RESULTS[method.returns](target, value)

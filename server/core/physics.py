@@ -3,6 +3,11 @@
 Kinematic mode, as in 1.0: bodies are placed from the transform tree and never stepped.
 Bullet skips pairs of mass-0 bodies, so every part body has mass 1; since the world is
 never stepped, nothing falls or gets pushed.
+
+Two Bullet habits are undone here so that contacts are those of the exact shapes:
+convex hulls are padded by a collision margin (``CONVEX_MARGIN``, subtracted again), and
+contact manifolds keep points from earlier poses after a body is teleported (so a pair
+that looks touching is measured afresh with ``getClosestPoints``).
 """
 
 from __future__ import annotations
@@ -38,6 +43,8 @@ from .math3d import Pose, Vec3
 
 GROUND = "ground"
 _BODY_MASS = 1.0
+CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
+TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
 
 
 class PhysicsWorld:
@@ -47,6 +54,7 @@ class PhysicsWorld:
         self._client = pybullet.connect(pybullet.DIRECT)
         self._bodies: dict[str, int] = {}
         self._keys: dict[int, str] = {}
+        self._padding: dict[int, float] = {}
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, planeNormal=[0, 1, 0],
                                               physicsClientId=self._client)
         ground = pybullet.createMultiBody(0, plane, physicsClientId=self._client)
@@ -72,11 +80,12 @@ class PhysicsWorld:
                                         baseOrientation=pose[1], physicsClientId=self._client)
         self._bodies[key] = body
         self._keys[body] = key
+        self._padding[body] = CONVEX_MARGIN if geometry["kind"] == "convex" else 0.0
 
     def remove(self, key: str) -> None:
         """Take the body of ``key`` out of the world."""
         body = self._bodies.pop(key)
-        del self._keys[body]
+        del self._keys[body], self._padding[body]
         pybullet.removeBody(body, physicsClientId=self._client)
 
     def move(self, key: str, pose: Pose) -> None:
@@ -96,15 +105,26 @@ class PhysicsWorld:
         return [(self._keys.get(hit[0], ""), hit[2]) for hit in hits]
 
     def overlaps(self) -> set[tuple[str, str]]:
-        """Pairs of keys (sorted) whose shapes touch or intersect: closest distance ≤ 0."""
-        pybullet.performCollisionDetection(physicsClientId=self._client)
+        """Pairs of keys (sorted) whose exact shapes touch or intersect."""
+        client = self._client
+        pybullet.performCollisionDetection(physicsClientId=client)
+        nearest: dict[tuple[int, int], float] = {}
+        for point in pybullet.getContactPoints(physicsClientId=client):
+            pair = (point[1], point[2])
+            nearest[pair] = min(point[8], nearest.get(pair, point[8]))
         pairs = set()
-        for point in pybullet.getContactPoints(physicsClientId=self._client):
-            if point[8] <= 0.0:
-                a, b = self._keys.get(point[1]), self._keys.get(point[2])
-                if a and b and a != b:
-                    pairs.add((a, b) if a < b else (b, a))
+        for (a, b), distance in nearest.items():
+            padding = self._padding.get(a, 0.0) + self._padding.get(b, 0.0)
+            if distance <= TOUCH_TOLERANCE - padding and self._touch(a, b, padding):
+                key_a, key_b = self._keys.get(a), self._keys.get(b)
+                if key_a and key_b and key_a != key_b:
+                    pairs.add((key_a, key_b) if key_a < key_b else (key_b, key_a))
         return pairs
+
+    def _touch(self, a: int, b: int, padding: float) -> bool:
+        """A fresh measure of a pair that looks touching (manifolds can hold stale points)."""
+        points = pybullet.getClosestPoints(a, b, TOUCH_TOLERANCE, physicsClientId=self._client)
+        return any(point[8] <= TOUCH_TOLERANCE - padding for point in points)
 
 
 def _shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:

@@ -8,6 +8,7 @@ from . import math3d
 from .motor import Motor
 from .robot import Robot
 from .scene import Scene
+from .sensor import Sensor
 from .wire import encode_numbers
 
 
@@ -45,4 +46,25 @@ def robot_report(robot: Robot) -> dict[str, Any]:
             "rotation": list(rotation), "gui": robot.gui,
             "parts": [{"id": p.id, "type": p.type_name,
                        "parent": p.parent.id if p.parent else None} for p in robot.get_parts()],
-            "motors": [motor_report(m, i) for i, m in enumerate(robot.get_motors())]}
+            "motors": [motor_report(m, i) for i, m in enumerate(robot.get_motors())],
+            "sensors": [s.id for s in robot.get_sensors()]}
+
+
+def sensor_report(sensor: Sensor, other: str | None = None) -> dict[str, Any]:
+    """A sensor's six readings, exact for the scene as it is now.
+
+    ``object`` (the manual's ``senseObject(other)``) is there when ``other`` is given.
+    """
+    reading = sensor.reading()
+    host = sensor.host()
+    out = {"id": sensor.id, "type": sensor.type_name, "part": host.id if host else None,
+           "watched": sensor.id in sensor.scene.watches, "laserColor": sensor.laser_color,
+           **reading.wire(), "collision": bool(reading.objects)}
+    if other is not None:
+        out["object"] = other in reading.objects
+    return out
+
+
+def contacts_report(scene: Scene) -> dict[str, Any]:
+    """The pairs touching at the last tick."""
+    return {"seq": scene.seq, "time": scene.time, "contacts": scene.contacts.wire()}

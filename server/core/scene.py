@@ -7,18 +7,24 @@ messages it returns; nothing here knows about sockets or event loops.
 from __future__ import annotations
 
 from contextlib import contextmanager
-from typing import Any, Iterator
+from typing import TYPE_CHECKING, Any, Iterator
 
 from ..errors import DuplicateId, LimitExceeded, UnknownObject
 from . import figures
 from .changes import ChangeSet
+from .contacts import ContactBook, Overlaps
 from .journal import Journal
 from .math3d import Vec3
 from .messages import LIMITS
 from .node import Node
 from .physics import PhysicsWorld
 from .robot import Robot
+from .sensing import Reading, read_sensors
+from .watches import Watches
 from .wire import encode_numbers
+
+if TYPE_CHECKING:
+    from .sensor import Sensor
 
 MAX_NODES = LIMITS["sceneObjects"]
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped")
@@ -41,6 +47,9 @@ class Scene:
         self._pending = ChangeSet()
         self._recorders: list[ChangeSet] = [self._pending]
         self._physics_dirty: set[str] = set()
+        self.watches = Watches(self.journal, LIMITS["watchedSensors"])
+        self.contacts = ContactBook()  # as announced by the last tick
+        self._overlaps: Overlaps | None = None  # as the bodies are now
 
     def close(self) -> None:
         """Release the physics world."""
@@ -70,7 +79,8 @@ class Scene:
         try:
             return self.nodes[node_id]
         except KeyError:
-            raise UnknownObject(f"no object {node_id} in scene {self.name}",
+            fate = "was deleted from" if node_id in self.retired else "is not in"
+            raise UnknownObject(f"object {node_id} {fate} scene {self.name}",
                                 object=node_id) from None
 
     def delete(self, node: Node) -> None:
@@ -161,9 +171,15 @@ class Scene:
         """
         self.time += dt
         self.seq += 1
-        self.sync_physics()
         delta = self.delta(self._pending)
         self._pending.clear()
+        began, ended = self.contacts.update(self.overlaps())
+        if began or ended:
+            delta["contacts"] = {"begin": [list(p) for p in began],
+                                 "end": [list(p) for p in ended]}
+        readings = self.watched_readings()
+        if readings:
+            delta["sensors"] = {i: reading.wire() for i, reading in readings.items()}
         messages = []
         if "added" in delta:
             messages.append({"op": "added", "seq": self.seq, "nodes": delta.pop("added")})
@@ -185,7 +201,34 @@ class Scene:
                 physics.add(node_id, node.geometry(), node.world_pose())
             elif node_id in physics:
                 physics.remove(node_id)
+            else:
+                continue
+            self._overlaps = None
         self._physics_dirty.clear()
+
+    # --- contacts and sensors ------------------------------------------------------------
+
+    def overlaps(self) -> Overlaps:
+        """The bodies that touch now (after placing every changed body)."""
+        self.sync_physics()
+        if self._overlaps is None:
+            self._overlaps = Overlaps(self.physics.overlaps())
+        return self._overlaps
+
+    def touching(self, part: Node | None) -> list[str]:
+        """Ids of what ``part`` touches now, sorted ("ground" for the ground)."""
+        return [] if part is None else list(self.overlaps().of(part.id))
+
+    def read_sensors(self, sensors: list[Sensor]) -> dict[str, Reading]:
+        """Exact readings of ``sensors`` for the scene as it is now."""
+        self.sync_physics()
+        return read_sensors(self.physics, sensors, lambda sensor: self.touching(sensor.host()))
+
+    def watched_readings(self) -> dict[str, Reading]:
+        """Readings of every watched sensor (frames carry them); forgets deleted ones."""
+        ids = self.watches.ids()
+        self.watches.forget(i for i in ids if i in self.retired)
+        return self.read_sensors([self.nodes[i] for i in ids if i in self.nodes])  # type: ignore[misc]
 
     @staticmethod
     def in_scene(node: Node) -> bool:
@@ -197,7 +240,8 @@ class Scene:
         """The whole scene: every node (parents before children), camera, time."""
         nodes = [encode_numbers(n.describe()) for root in self.roots() for n in root.walk()]
         return {"op": "snapshot", "scene": self.name, "seq": self.seq, "time": self.time,
-                "camera": {k: list(v) for k, v in self.camera.items()}, "nodes": nodes}
+                "camera": {k: list(v) for k, v in self.camera.items()}, "nodes": nodes,
+                "contacts": self.contacts.wire()}
 
     # --- scene calls (the manual's Scene API) --------------------------------------------
 

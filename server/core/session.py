@@ -28,7 +28,7 @@ class Session:
         self.scene = scene
         self.client_id = client_id
         self.role = role
-        self.operations = Operations(scene)
+        self.operations = Operations(scene, client_id)
         self.owned: list[str] = []
         self._own_id = re.compile(rf"^{re.escape(client_id)}\.[A-Za-z0-9_.:-]+$")
 
@@ -89,6 +89,7 @@ class Session:
 
     def close(self) -> list[str]:
         """The client left: delete what it created; the ids deleted at the top."""
+        self.scene.watches.drop_watcher(self.client_id)
         deleted = []
         for object_id in reversed(self.owned):
             node = self.scene.nodes.get(object_id)

@@ -15,6 +15,7 @@ from fastapi.responses import JSONResponse
 from ..core import reports
 from ..core.messages import PROTOCOL_VERSION
 from ..core.robot import Robot
+from ..core.sensor import Sensor
 from ..errors import UnknownObject, UnknownScene, VPError
 from .hub import Hubs, SceneHub
 
@@ -80,6 +81,22 @@ async def robot_detail(request: Request, scene: str, robot_id: str) -> dict[str,
     if not isinstance(node, Robot):
         raise UnknownObject(f"no robot {robot_id!r} in scene {scene!r}", object=robot_id)
     return reports.robot_report(node)
+
+
+@router.get("/scenes/{scene}/sensors/{sensor_id:path}",
+            summary="A sensor's readings now: distance, touch, position, collision, objects "
+                    "(and object, with ?other=<id>)")
+async def sensor_detail(request: Request, scene: str, sensor_id: str,
+                        other: str | None = None) -> dict[str, Any]:
+    node = _hub(request, scene).scene.nodes.get(sensor_id)
+    if not isinstance(node, Sensor):
+        raise UnknownObject(f"no sensor {sensor_id!r} in scene {scene!r}", object=sensor_id)
+    return reports.sensor_report(node, other)
+
+
+@router.get("/scenes/{scene}/contacts", summary="The pairs of parts (and ground) touching now")
+async def contacts(request: Request, scene: str) -> dict[str, Any]:
+    return reports.contacts_report(_hub(request, scene).scene)
 
 
 @router.get("/metrics", summary="Tick timing, connections and queue lengths per scene")

@@ -14,6 +14,7 @@ from .objects import (Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Motor, MotorX
                       MotorZ, Node, Part, Slot)
 from .robots import EdgedHand, Robot
 from .scene import Scene, connect, current_scene
+from .sensor import Sensor
 
 
 def set_camera_position(*position: float) -> None:
@@ -28,7 +29,7 @@ def set_camera_target(*target: float) -> None:
 
 __all__ = [
     "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
-    "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "ServerError",
-    "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
+    "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Sensor",
+    "ServerError", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target",
 ]

@@ -28,19 +28,23 @@ def _arity(func: Callable[..., None]) -> int:
 
 
 def run(seconds: float | None = None) -> None:
-    """Run the animation (server time) for ``seconds``, or until the connection closes."""
+    """Run the animation (server time) for ``seconds``, or until the connection closes.
+
+    Before every step the contact callbacks that are due run (``begin_contact`` and
+    ``end_contact`` of this client's parts). Without an animation, ``run`` only does that.
+    """
     scene = current_scene()
-    if scene.animation is None:
-        raise RuntimeError("no animation: call set_animation(func) first")
-    func, fps = scene.animation
-    arity, period = _arity(func), 1.0 / fps
+    func, fps = scene.animation or (None, 30.0)
+    arity, period = _arity(func) if func else 0, 1.0 / fps
     start = last = scene.get_time()
     next_wake = time.monotonic()
     while seconds is None or last - start < seconds:
         if scene.connection.closed is not None:
             raise ConnectionLost(scene.connection.closed)
+        scene.dispatch_contacts()
         now = scene.get_time()
-        func(*(now, now - last)[:arity])
+        if func is not None:
+            func(*(now, now - last)[:arity])
         last = now
         next_wake = max(next_wake + period, time.monotonic())
         time.sleep(max(0.0, next_wake - time.monotonic()))

@@ -2,14 +2,21 @@
 
 from __future__ import annotations
 
+import math
 import time
+from collections import deque
 from typing import Any, Iterator
 
 NodeState = dict[str, Any]
+ContactEvent = tuple[str, str, str]  # "begin" or "end", then the pair's two ids
+_NON_FINITE = {"Infinity": math.inf, "-Infinity": -math.inf, "NaN": math.nan}
 
 
 class Mirror:
-    """Nodes by id (as the server describes them), the camera and the server clock.
+    """Nodes by id (as the server describes them), camera, clock, contacts and readings.
+
+    Contact changes are also queued in ``events`` until the client's own thread takes
+    them, so that callbacks never run on the thread that reads the socket.
 
     Not thread-safe on its own: the :class:`~virtual_prosthetics.scene.Scene` holds a
     lock around every use.
@@ -20,6 +27,9 @@ class Mirror:
         self.camera: dict[str, list[float]] = {}
         self.time = 0.0
         self.seq = 0
+        self.contacts: set[tuple[str, str]] = set()
+        self.readings: dict[str, dict[str, Any]] = {}
+        self.events: deque[ContactEvent] = deque()
         self._time_received = time.monotonic()
 
     def apply(self, message: dict[str, Any]) -> None:
@@ -29,6 +39,7 @@ class Mirror:
             self.nodes.clear()
             self.camera = message["camera"]
             self._add(message["nodes"])
+            self.contacts = {tuple(pair) for pair in message["contacts"]}  # type: ignore[misc]
             self._clock(message)
         elif op == "added":
             self._add(message["nodes"])
@@ -36,6 +47,9 @@ class Mirror:
             self._remove(message["ids"])
         elif op == "frame":
             self.apply_changes(message)
+            self._contacts(message.get("contacts"))
+            for sensor_id, reading in message.get("sensors", {}).items():
+                self.readings[sensor_id] = _reading(reading)
             self._clock(message)
 
     def apply_changes(self, changes: dict[str, Any]) -> None:
@@ -54,6 +68,19 @@ class Mirror:
             self.camera = changes["camera"]
         self._remove(changes.get("removed", ()))
 
+    def _contacts(self, changes: dict[str, list[list[str]]] | None) -> None:
+        if not changes:
+            return
+        for kind in ("begin", "end"):
+            for a, b in changes[kind]:
+                self.events.append((kind, a, b))
+        self.contacts.difference_update(tuple(p) for p in changes["end"])
+        self.contacts.update(tuple(p) for p in changes["begin"])  # type: ignore[misc]
+
+    def touching(self, node_id: str) -> list[str]:
+        """Ids of what a part touched at the last frame, sorted."""
+        return sorted(b if a == node_id else a for a, b in self.contacts if node_id in (a, b))
+
     def _add(self, nodes: Any) -> None:
         for node in nodes:
             self.nodes[node["id"]] = dict(node)
@@ -61,6 +88,7 @@ class Mirror:
     def _remove(self, ids: Any) -> None:
         for node_id in ids:
             self.nodes.pop(node_id, None)
+            self.readings.pop(node_id, None)
 
     def _clock(self, message: dict[str, Any]) -> None:
         self.time, self.seq = message["time"], message["seq"]
@@ -86,3 +114,9 @@ class Mirror:
     def motors(self, robot_id: str) -> list[NodeState]:
         """The motors below a robot: their order is their index."""
         return [n for n in self.parts(robot_id) if "axis" in n]
+
+
+def _reading(wire: dict[str, Any]) -> dict[str, Any]:
+    """A sensor reading with its distance as a float (Infinity travels as a string)."""
+    distance = wire["distance"]
+    return {**wire, "distance": _NON_FINITE.get(distance, distance)}

@@ -7,6 +7,7 @@ from typing import Any
 from . import objects
 from .objects import Node, Part, Posed
 from .scene import Scene
+from .sensor import Sensor
 
 
 class Robot(Posed):
@@ -110,7 +111,7 @@ class EdgedHand(Hand):
 CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
     objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
     objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
-    Robot, EdgedHand)}
+    Sensor, Robot, EdgedHand)}
 
 
 def stand_in(scene: Scene, node_id: str, type_name: str) -> Node:

@@ -127,8 +127,12 @@ class Scene:
             return reader(self.mirror)
 
     def sync(self) -> None:
-        """Wait until the server has answered everything sent; raise its first error."""
+        """Wait until the server has answered everything sent; raise its first error.
+
+        Contact callbacks due so far run here too.
+        """
         self.connection.settle()
+        self.dispatch_contacts()
 
     def proxy(self, node_id: str) -> Node:
         """The object for an id: the one this client made, or a new stand-in of its type."""
@@ -139,6 +143,38 @@ class Scene:
                 type_name = self.mirror.nodes[node_id]["type"]
             obj = self.objects[node_id] = stand_in(self, node_id, type_name)
         return obj
+
+    def resolve(self, node_id: str) -> Node | str:
+        """What an id in a reading or contact stands for in this client.
+
+        The object this client made (or a part of it, such as a hand's finger); for
+        objects other clients made, and for "ground", the id itself.
+        """
+        obj = self.objects.get(node_id)
+        if obj is not None:
+            return obj
+        with self.lock:
+            known = node_id in self.mirror.nodes
+        if known and node_id.startswith(f"{self.client_id}."):
+            return self.proxy(node_id)
+        return node_id
+
+    def dispatch_contacts(self) -> None:
+        """Call ``begin_contact``/``end_contact`` of this client's parts for every contact
+        change received so far, in the order the server reported them.
+
+        :func:`~virtual_prosthetics.run` calls this before every animation step and
+        :meth:`sync` after waiting; a script without an animation loop may call it itself.
+        """
+        while True:
+            with self.lock:
+                if not self.mirror.events:
+                    return
+                kind, a, b = self.mirror.events.popleft()
+            for this, other in ((a, b), (b, a)):
+                callback = getattr(self.objects.get(this), f"{kind}_contact", None)
+                if callback is not None:
+                    callback(self.resolve(other))
 
     # --- the manual's scene functions ----------------------------------------------------
 

@@ -65,3 +65,22 @@ def test_open_hand_fingertips_are_above_the_palm(scene):
     heights = [tip.slots[0].world_pose()[0][1] for tip in tips[1:]]
     # palm 1.4 + spread motor + size + 0.5 + 0.5 (the thumb points sideways)
     assert heights == pytest.approx([1.4 + s + 1.0 for s in (1, 1.1, 1, 0.8)])
+
+
+def test_a_hand_at_rest_touches_nothing(scene):
+    hand = EdgedHand(scene, "h", True)
+    hand.set_position((0, 1, 0))
+    assert scene.overlaps().pairs == frozenset()
+
+
+def test_a_finger_flexed_into_its_palm_touches_it_and_stops_on_unflexing(scene):
+    hand = EdgedHand(scene, "h", True)
+    hand.set_position((0, 1, 0))
+    palm, index_base = hand.get_parts()[0], hand.get_parts()[10]
+    assert (palm.type_name, index_base.type_name) == ("EdgedPalm", "EdgedFinger")
+    hand.flex_finger(1, 1.2)
+    assert scene.overlaps().pairs == {(palm.id, index_base.id)}
+    hand.flex_finger(1, 0)  # straight again: Bullet's cached contact points must not linger
+    assert scene.overlaps().pairs == frozenset()
+    hand.flex_finger(0, 1.5)
+    assert scene.touching(palm) == [hand.get_parts()[3].id]  # the thumb's base

@@ -2,7 +2,7 @@
 
 import json
 
-
+from server.core.messages import LIMITS
 from server.core.session import Session
 
 
@@ -69,3 +69,49 @@ def test_internal_errors_are_reported_and_undone(scene, monkeypatch):
         {"op": "call", "object": "c1.1", "method": "setAngle", "args": [1]},
         {"op": "call", "object": "c1.1", "method": "setName", "args": ["x"]}]})
     assert error["code"] == "internal" and scene.nodes["c1.1"].angle == 0
+
+
+def test_sensing_errors_name_what_was_wrong(scene):
+    session = Session(scene, "c1")
+    send(session, {"op": "create", "object": "c1.s", "type": "Sensor"},
+         {"op": "create", "object": "c1.u", "type": "Sensor"},
+         {"op": "create", "object": "c1.r", "type": "Robot"},
+         {"op": "delete", "object": "c1.s"})
+    deleted, robot, part, word, ground, laser = send(
+        session,
+        {"op": "call", "id": 1, "object": "c1.s", "method": "senseDistance"},
+        {"op": "call", "id": 2, "object": "c1.r", "method": "senseTouch"},
+        {"op": "call", "id": 3, "object": "c1.u", "method": "senseObject",
+         "args": [{"ref": "c1.r"}]},
+        {"op": "call", "id": 4, "object": "c1.u", "method": "senseObject", "args": ["floor"]},
+        {"op": "call", "id": 5, "object": "c1.u", "method": "senseObject", "args": ["ground"]},
+        {"op": "create", "id": 6, "object": "c1.t", "type": "Sensor",
+         "args": [True, "not a colour!"]})
+    assert deleted["code"] == "unknown_object" and "was deleted" in deleted["message"]
+    assert robot["code"] == "unknown_method" and "Robot has no method" in robot["message"]
+    assert part["code"] == "wrong_type" and "c1.r is a Robot" in part["message"]
+    assert word["code"] == "wrong_type" and "'floor'" in word["message"]
+    assert ground == {"op": "ok", "id": 5, "result": False}
+    assert laser["code"] == "wrong_type" and "c1.t" not in scene.nodes
+
+
+def test_viewers_may_watch_and_a_closed_client_stops_watching(scene):
+    Session(scene, "c1").receive(json.dumps({"op": "create", "object": "c1.s",
+                                             "type": "Sensor"}))
+    viewer = Session(scene, "c2", "viewer")
+    [answer] = send(viewer, {"op": "call", "id": 1, "object": "c1.s", "method": "watch"})
+    assert answer == {"op": "ok", "id": 1} and scene.watches.ids() == ["c1.s"]
+    viewer.close()
+    assert scene.watches.ids() == []
+
+
+def test_watching_past_the_limit_fails_and_watches_nothing(scene):
+    session = Session(scene, "c1")
+    count = LIMITS["watchedSensors"] + 1
+    send(session, {"op": "batch", "ops": [{"op": "create", "object": f"c1.{k}",
+                                           "type": "Sensor"} for k in range(count)]})
+    [error] = send(session, {"op": "batch", "id": 1, "ops": [
+        {"op": "call", "object": f"c1.{k}", "method": "watch"} for k in range(count)]})
+    assert error["code"] == "limit_exceeded" and error["details"]["index"] == count - 1
+    assert f"at most {count - 1} sensors" in error["message"]
+    assert len(scene.watches) == 0

@@ -1,0 +1,86 @@
+"""The manual's Sensor, with readings either exact (a round trip) or from the frames."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .objects import Node, Part
+from .scene import Scene
+
+_NON_FINITE = {"Infinity": math.inf, "-Infinity": -math.inf, "NaN": math.nan}
+
+
+class Sensor(Part):
+    """Manual ``Sensor(visible=True, laser_color=None)``: senses along its local +Y.
+
+    An unwatched sensor asks the server at every reading, so the reading reflects every
+    earlier call of this client. After :meth:`watch` the readings come with every frame
+    and a reading is the last frame's, with no round trip (what an animation loop
+    wants); ``exact=True`` asks the server anyway.
+    """
+
+    _type = "Sensor"
+
+    def __init__(self, visible: bool | None = None, laser_color: Any = None, *,
+                 scene: Scene | None = None) -> None:
+        self._watched = False
+        self._create(scene, visible, laser_color)
+
+    def watch(self, on: bool = True) -> Sensor:
+        """Have every frame carry this sensor's readings (or stop); returns the sensor."""
+        self._call("watch", on)
+        self._watched = on
+        return self
+
+    def _framed(self, exact: bool) -> dict[str, Any] | None:
+        """The last frame's reading when watched (None until one has come)."""
+        if exact or not getattr(self, "_watched", False):
+            return None
+        self._scene.connection.raise_deferred()
+        with self._scene.lock:
+            return self._scene.mirror.readings.get(self.id)
+
+    def _ask(self, method: str, *args: Any) -> Any:
+        return self._scene.call(self.id, method, args, wait=True)
+
+    def sense_distance(self, exact: bool = False) -> float:
+        """Manual ``senseDistance()``: distance along +Y to a body past 0.05, or inf."""
+        reading = self._framed(exact)
+        value = reading["distance"] if reading else self._ask("senseDistance")
+        return _NON_FINITE.get(value, value) if isinstance(value, str) else float(value)
+
+    def sense_touch(self, exact: bool = False) -> float:
+        """Manual ``senseTouch()``: 0 (nothing within 0.05) to 1 (touching the pad)."""
+        reading = self._framed(exact)
+        return float(reading["touch"] if reading else self._ask("senseTouch"))
+
+    def sense_position(self, exact: bool = False) -> list[float]:
+        """Manual ``sensePosition()``: the sensor's world position [x, y, z]."""
+        reading = self._framed(exact)
+        return list(reading["position"] if reading else self._ask("sensePosition"))
+
+    def _objects(self, exact: bool) -> list[str]:
+        reading = self._framed(exact)
+        if reading:
+            return list(reading["objects"])
+        return [ref["ref"] for ref in self._ask("senseObjects")]
+
+    def sense_objects(self, exact: bool = False) -> list[Node | str]:
+        """Manual ``senseObjects()``: what the sensor's part touches.
+
+        This client's objects come back as themselves; other clients' objects and the
+        ground ("ground") as their ids.
+        """
+        return [self._scene.resolve(node_id) for node_id in self._objects(exact)]
+
+    def sense_collision(self, exact: bool = False) -> bool:
+        """Manual ``senseCollision()``: whether the sensor's part touches anything."""
+        return bool(self._objects(exact))
+
+    def sense_object(self, other: Node | str, exact: bool = False) -> bool:
+        """Manual ``senseObject(other)``: whether the sensor's part touches ``other``."""
+        if not isinstance(other, str) and not isinstance(other, Part):
+            raise TypeError(f"sense_object needs a part or 'ground', got {other!r}")
+        other_id = other if isinstance(other, str) else other.id
+        return other_id in self._objects(exact)

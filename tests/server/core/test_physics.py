@@ -1,0 +1,48 @@
+"""The collision world: exact contacts between padded Bullet shapes, batched rays."""
+
+import pytest
+
+from server.core import figures
+from server.core.physics import GROUND, PhysicsWorld
+
+IDENTITY = (0.0, 0.0, 0.0, 1.0)
+CUBE = {"kind": "box", "size": [1, 1, 1]}
+HULL = {"kind": "convex", "points": figures.extrude([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5),
+                                                      (-0.5, 0.5)], 1.0)}
+
+
+@pytest.fixture
+def world():
+    w = PhysicsWorld()
+    yield w
+    w.close()
+
+
+@pytest.mark.parametrize("shape", [CUBE, HULL])
+@pytest.mark.parametrize("gap, touching", [(0.0005, False), (0.0, True), (-0.0005, True)])
+def test_contacts_are_those_of_the_exact_shapes(world, shape, gap, touching):
+    world.add("a", HULL, ((0, 5, 0), IDENTITY))
+    world.add("b", shape, ((1 + gap, 5, 0), IDENTITY))
+    assert (("a", "b") in world.overlaps()) is touching
+
+
+def test_ground_takes_part(world):
+    world.add("hull", HULL, ((0, 0.5005, 0), IDENTITY))
+    world.add("ball", {"kind": "sphere", "radius": 0.5}, ((3, 0.4995, 0), IDENTITY))
+    assert world.overlaps() == {("ball", GROUND)}
+
+
+def test_removed_bodies_stop_touching(world):
+    world.add("a", CUBE, ((0, 0.4, 0), IDENTITY))
+    assert world.overlaps() == {("a", GROUND)}
+    world.remove("a")
+    assert world.overlaps() == set() and "a" not in world
+
+
+def test_rays_in_one_batch(world):
+    world.add("a", CUBE, ((0, 5, 0), IDENTITY))
+    hits = world.cast_rays([(0, 10, 0), (3, 10, 0), (0, 5, 0)],
+                           [(0, 0, 0), (3, 20, 0), (0, 7, 0)])
+    assert hits[0][0] == "a" and hits[0][1] == pytest.approx(0.45)
+    assert hits[1] == ("", 1.0)  # a miss
+    assert hits[2] == ("", 1.0)  # rays do not see the body they start in
