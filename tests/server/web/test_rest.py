@@ -7,7 +7,7 @@ import urllib.error
 import pytest
 from websockets.sync.client import connect
 
-from .ws_requests import request_all
+from .ws_requests import request_all, wait_ticks
 
 
 def test_health(server):
@@ -54,12 +54,44 @@ def test_infinite_limits_are_strings_in_rest(server, scene_name):
 @pytest.mark.parametrize("path,code", [
     ("/api/scenes/no-such-scene", "unknown_scene"),
     ("/api/scenes/default/robots/nobody.1", "unknown_object"),
+    ("/api/scenes/default/sensors/nobody.1", "unknown_object"),
+    ("/api/scenes/no-such-scene/contacts", "unknown_scene"),
 ])
 def test_unknown_things_are_structured_404s(server, path, code):
     with pytest.raises(urllib.error.HTTPError) as caught:
         server.get(path)
     assert caught.value.code == 404
     assert json.loads(caught.value.read())["code"] == code
+
+
+def test_sensor_readings_and_contacts(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
+        client = json.loads(ws.recv(timeout=10))["client"]
+        finger, sensor, box = (f"{client}.{name}" for name in ("finger", "sensor", "box"))
+        request_all(ws, [
+            {"op": "create", "object": finger, "type": "EdgedFinger"},
+            {"op": "call", "object": finger, "method": "setPosition", "args": [0, 0.5, 0]},
+            {"op": "create", "object": sensor, "type": "Sensor"},
+            {"op": "call", "object": sensor, "method": "attachToSlot", "args": [{"ref": finger}]},
+            {"op": "create", "object": box, "type": "Box", "args": [1, 0.1, 0.1]},
+            {"op": "call", "object": box, "method": "setPosition", "args": [0, 2, 0]},
+        ])
+        reading = server.get(f"/api/scenes/{scene_name}/sensors/{sensor}?other={box}")
+        assert reading == {"id": sensor, "type": "Sensor", "part": finger, "watched": False,
+                           "laserColor": None, "distance": pytest.approx(0.45),
+                           "touch": 0.0, "position": [0, 1.5, 0], "objects": [],
+                           "collision": False, "object": False}
+        request_all(ws, [{"op": "call", "object": box, "method": "setPosition",
+                          "args": [0, 1.5, 0]}])
+        reading = server.get(f"/api/scenes/{scene_name}/sensors/{sensor}?other={box}")
+        assert reading["objects"] == [box] and reading["collision"] and reading["object"]
+        assert reading["distance"] == "Infinity"  # the box is around the sensor now
+        wait_ticks(ws)
+        contacts = server.get(f"/api/scenes/{scene_name}/contacts")["contacts"]
+        assert contacts == [[box, finger]]
+        with pytest.raises(urllib.error.HTTPError) as caught:
+            server.get(f"/api/scenes/{scene_name}/sensors/{finger}")  # a part, not a sensor
+        assert caught.value.code == 404
 
 
 def test_openapi_documents_the_routes(server):

@@ -103,3 +103,45 @@ def test_bad_role_or_scene_name_is_refused_with_a_reason(server):
         with connect(f"{server.ws}/ws?{query}") as ws:
             error = json.loads(ws.recv(timeout=10))
             assert error["op"] == "error" and error["code"] == "out_of_range"
+
+
+def test_a_hundred_watched_sensors_come_with_every_frame(server, scene_name):
+    ws, hello, _ = open_client(server, scene_name)
+    me = hello["client"]
+    with ws:
+        heights = {f"{me}.s{k}": 0.1 + 0.05 * k for k in range(100)}
+        request_all(ws, [{"op": "batch", "ops": [op for k, (sensor, height) in
+                                                 enumerate(heights.items()) for op in (
+            {"op": "create", "object": sensor, "type": "Sensor"},
+            {"op": "call", "object": sensor, "method": "setPosition", "args": [0.3 * k, height, 0]},
+            {"op": "call", "object": sensor, "method": "setRotation",
+             "args": [3.141592653589793, 0, 0]},
+            {"op": "call", "object": sensor, "method": "watch"})]}])
+        wait_ticks(ws, 1)
+        for _ in range(10):
+            frame = next_message(ws, "frame")
+            check_server_message(frame)
+            readings = frame["sensors"]
+            assert set(readings) == set(heights)
+            for sensor, height in heights.items():
+                assert abs(readings[sensor]["distance"] - height) < 1e-4
+
+
+def test_frames_carry_contact_changes_to_every_client(server, scene_name):
+    ws, hello, _ = open_client(server, scene_name)
+    viewer, _, _ = open_client(server, scene_name, "viewer")
+    me = hello["client"]
+    with ws, viewer:
+        request_all(ws, [{"op": "create", "object": f"{me}.b", "type": "Box"},
+                         {"op": "call", "object": f"{me}.b", "method": "setPosition",
+                          "args": [0, 0.4, 0]}])
+        began = next_message(viewer, "frame")
+        while "contacts" not in began:
+            began = next_message(viewer, "frame")
+        assert began["contacts"] == {"begin": [[f"{me}.b", "ground"]], "end": []}
+        request_all(ws, [{"op": "call", "object": f"{me}.b", "method": "setPosition",
+                          "args": [0, 0.6, 0]}])
+        ended = next_message(viewer, "frame")
+        while "contacts" not in ended:
+            ended = next_message(viewer, "frame")
+        assert ended["contacts"] == {"begin": [], "end": [[f"{me}.b", "ground"]]}
