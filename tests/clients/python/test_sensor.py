@@ -1,0 +1,114 @@
+"""The Python client's sensors and contact callbacks against a real server."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import pytest
+
+import virtual_prosthetics as vp
+
+DOWN = (math.pi, 0, 0)
+
+
+@pytest.fixture
+def scene(server, scene_name):
+    connected = vp.connect(server.ws, scene=scene_name)
+    yield connected
+    connected.close()
+
+
+def eventually(check, timeout=5.0):
+    """Wait until ``check()`` is true (frames arrive on their own schedule)."""
+    deadline = time.monotonic() + timeout
+    while not check():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.01)
+
+
+def test_exact_readings_reflect_earlier_writes(scene):
+    sensor = vp.Sensor()
+    sensor.set_rotation(*DOWN)
+    for height in (0.4, 1.25, 3.0):
+        sensor.set_position(0, height, 0)
+        assert sensor.sense_distance() == pytest.approx(height, abs=1e-4)
+        assert sensor.sense_position() == pytest.approx([0, height, 0])
+    sensor.set_rotation(0, 0, 0)
+    assert sensor.sense_distance() == math.inf
+    sensor.set_position(0, 0.01, 0)
+    sensor.set_rotation(*DOWN)
+    assert sensor.sense_touch() == pytest.approx(0.8, abs=1e-4)
+
+
+def test_watched_readings_come_with_the_frames(scene):
+    sensor = vp.Sensor(True, True)
+    sensor.set_position(0, 2, 0)
+    sensor.set_rotation(*DOWN)
+    sensor.watch()
+    eventually(lambda: sensor.id in scene.mirror.readings)  # until then: exact reads
+    assert sensor.sense_distance() == pytest.approx(2.0, abs=1e-4)
+    sensor.set_position(0, 1, 0)
+    assert sensor.sense_distance(exact=True) == pytest.approx(1.0, abs=1e-4)
+    eventually(lambda: sensor.sense_position() == pytest.approx([0, 1, 0]))
+    assert sensor.sense_distance() == pytest.approx(1.0, abs=1e-4)
+    assert scene.mirror.readings[sensor.id]["distance"] == pytest.approx(1.0, abs=1e-4)
+
+
+def test_sense_objects_gives_own_objects_other_clients_ids_and_ground(server, scene,
+                                                                     scene_name):
+    finger = vp.EdgedFinger()
+    finger.set_position(0, -0.2, 0)
+    sensor = vp.Sensor().attach_to_slot(finger)
+    box = vp.Box(1, 0.1, 0.1)
+    box.set_position(0, 0.5, 0)
+    with vp.Scene(server.ws, scene=scene_name) as other:
+        theirs = vp.Ball(0.2, scene=other)
+        theirs.set_position(0, 0.3, 0)
+        other.sync()
+        assert sensor.sense_objects() == sorted([box, theirs.id, "ground"],
+                                                key=lambda o: getattr(o, "id", o))
+        assert sensor.sense_collision() and sensor.sense_object(box)
+        assert sensor.sense_object("ground") and sensor.sense_object(theirs.id)
+    with pytest.raises(TypeError):
+        sensor.sense_object(42)
+
+
+class Recorder(vp.Box):
+    """A box that notes its contacts, as the manual's MyPart example does."""
+
+    def __init__(self, *args, **kwargs):
+        self.log = []
+        super().__init__(*args, **kwargs)
+
+    def begin_contact(self, other):
+        self.log.append(("begin", other))
+
+    def end_contact(self, other):
+        self.log.append(("end", other))
+
+
+def test_contact_callbacks_run_once_per_change_in_order(scene):
+    finger = vp.EdgedFinger()
+    finger.set_position(0, 1, 0)
+    box = Recorder(1, 0.1, 0.1)
+    box.set_position(0, 1.5, 0)  # across the finger
+    vp.set_animation(lambda: None)
+    vp.run(0.2)
+    assert box.log == [("begin", finger)]
+    box.set_position(0, 0.02, 0)  # onto the ground
+    vp.run(0.2)
+    assert box.log == [("begin", finger), ("begin", "ground"), ("end", finger)]
+    box.set_position(0, 3, 0)
+    scene.sync()
+    eventually(lambda: (scene.dispatch_contacts(), len(box.log) == 4)[1])
+    assert box.log[3] == ("end", "ground")
+    vp.run(0.2)
+    assert len(box.log) == 4  # nothing more changed
+
+
+def test_run_without_an_animation_still_delivers_callbacks(scene):
+    box = Recorder(0.5, 0.5, 0.5)
+    box.set_position(0, 0, 0)
+    vp.run(0.2)
+    assert box.log == [("begin", "ground")]
