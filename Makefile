@@ -19,6 +19,7 @@ test: install
 
 bench: install
 	$(BIN)/python bench/tick.py
+	$(BIN)/python bench/sensing.py
 
 install: $(PY_STAMP) $(WEB_STAMP)
 

@@ -45,6 +45,7 @@ GROUND = "ground"
 _BODY_MASS = 1.0
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
 TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
+_THREADED_RAYS = 256
 
 
 class PhysicsWorld:
@@ -100,8 +101,14 @@ class PhysicsWorld:
         return tuple(position), tuple(orientation)
 
     def cast_rays(self, starts: Sequence[Vec3], ends: Sequence[Vec3]) -> list[tuple[str, float]]:
-        """For each ray, the key hit first and the hit fraction ('' and 1.0 for a miss)."""
-        hits = pybullet.rayTestBatch(list(starts), list(ends), physicsClientId=self._client)
+        """For each ray, the key hit first and the hit fraction ('' and 1.0 for a miss).
+
+        Large batches use every core (PyBullet's ``numThreads=0``); small ones stay on
+        this thread, where starting threads would cost more than it saves.
+        """
+        threads = 0 if len(starts) >= _THREADED_RAYS else -1
+        hits = pybullet.rayTestBatch(list(starts), list(ends), numThreads=threads,
+                                     physicsClientId=self._client)
         return [(self._keys.get(hit[0], ""), hit[2]) for hit in hits]
 
     def overlaps(self) -> set[tuple[str, str]]:

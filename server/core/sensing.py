@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Sequence
 
-from . import figures, math3d
+from . import figures
 from .math3d import Vec3
 from .wire import wire_number
 
@@ -22,7 +22,6 @@ if TYPE_CHECKING:
     from .physics import PhysicsWorld
     from .sensor import Sensor
 
-_UP: Vec3 = (0.0, 1.0, 0.0)
 _EARLY = 1e-6
 
 
@@ -41,21 +40,19 @@ class Reading:
                 "position": list(self.position), "objects": list(self.objects)}
 
 
-def _along(origin: Vec3, direction: Vec3, distance: float) -> Vec3:
-    return tuple(o + d * distance for o, d in zip(origin, direction))  # type: ignore[return-value]
-
-
 def _rays(sensors: Sequence[Sensor]) -> tuple[list[Vec3], list[Vec3], list[Vec3]]:
     """Per sensor its position, and the two rays' starts and ends, distance ray first."""
     positions, starts, ends = [], [], []
+    near, far, touch = figures.SENSOR_NEAR - _EARLY, figures.SENSOR_RANGE, figures.TOUCH_RANGE
     for sensor in sensors:
-        position, quaternion = sensor.world_pose()
-        direction = math3d.rotate(quaternion, _UP)
-        positions.append(position)
-        starts += [_along(position, direction, figures.SENSOR_NEAR - _EARLY),
-                   _along(position, direction, -_EARLY)]
-        ends += [_along(position, direction, figures.SENSOR_RANGE),
-                 _along(position, direction, figures.TOUCH_RANGE)]
+        (px, py, pz), (x, y, z, w) = sensor.world_pose()
+        # the sensor's +Y axis in the world: the second column of its rotation matrix
+        dx, dy, dz = 2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)
+        positions.append((px, py, pz))
+        starts += [(px + dx * near, py + dy * near, pz + dz * near),
+                   (px - dx * _EARLY, py - dy * _EARLY, pz - dz * _EARLY)]
+        ends += [(px + dx * far, py + dy * far, pz + dz * far),
+                 (px + dx * touch, py + dy * touch, pz + dz * touch)]
     return positions, starts, ends
 
 
