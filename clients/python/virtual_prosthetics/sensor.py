@@ -33,6 +33,11 @@ class Sensor(Part):
         self._watched = on
         return self
 
+    def delete(self) -> None:
+        """Remove the sensor; later readings raise :class:`~virtual_prosthetics.ServerError`."""
+        self._watched = False
+        super().delete()
+
     def _framed(self, exact: bool) -> dict[str, Any] | None:
         """The last frame's reading when watched (None until one has come)."""
         if exact or not getattr(self, "_watched", False):

@@ -112,3 +112,13 @@ def test_run_without_an_animation_still_delivers_callbacks(scene):
     box.set_position(0, 0, 0)
     vp.run(0.2)
     assert box.log == [("begin", "ground")]
+
+
+def test_reading_a_deleted_sensor_raises_a_clear_error(scene):
+    sensor = vp.Sensor().watch()
+    sensor.delete()
+    with pytest.raises(vp.ServerError) as caught:
+        sensor.sense_distance()
+    assert caught.value.code == "unknown_object" and "was deleted" in caught.value.message
+    with pytest.raises(TypeError, match="needs a part or 'ground'"):
+        vp.Sensor().sense_object(vp.Robot())
