@@ -77,10 +77,6 @@ class Mirror:
         self.contacts.difference_update(tuple(p) for p in changes["end"])
         self.contacts.update(tuple(p) for p in changes["begin"])  # type: ignore[misc]
 
-    def touching(self, node_id: str) -> list[str]:
-        """Ids of what a part touched at the last frame, sorted."""
-        return sorted(b if a == node_id else a for a, b in self.contacts if node_id in (a, b))
-
     def _add(self, nodes: Any) -> None:
         for node in nodes:
             self.nodes[node["id"]] = dict(node)

@@ -112,6 +112,7 @@ def test_run_without_an_animation_still_delivers_callbacks(scene):
     box.set_position(0, 0, 0)
     vp.run(0.2)
     assert box.log == [("begin", "ground")]
+    assert scene.mirror.contacts == {(box.id, "ground")}  # the mirror keeps the pairs too
 
 
 def test_reading_a_deleted_sensor_raises_a_clear_error(scene):
