@@ -6,6 +6,8 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PY_STAMP  := $(VENV)/.installed
 WEB_STAMP := web/node_modules/.installed
+CHROMIUM  := /usr/bin/chromium
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 HOST ?= 127.0.0.1
 PORT ?= 8000
 
@@ -14,7 +16,7 @@ PORT ?= 8000
 run: install
 	$(BIN)/vp-server --host $(HOST) --port $(PORT)
 
-test: install
+test: install $(CHROMIUM)
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
 bench: install
@@ -34,6 +36,11 @@ $(PY_STAMP): $(BIN)/python pyproject.toml requirements-dev.txt clients/python/py
 $(WEB_STAMP): web/package.json web/package-lock.json
 	cd web && npm ci --no-audit --no-fund --loglevel=error
 	touch $@
+
+# The browser tests drive Debian's chromium (headless, software WebGL).
+$(CHROMIUM):
+	$(SUDO) apt-get update -q
+	DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends chromium
 
 clean:
 	rm -rf $(VENV) web/node_modules

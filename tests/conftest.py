@@ -49,9 +49,9 @@ def free_port() -> int:
         return probe.getsockname()[1]
 
 
-def start_server(*args: str) -> RunningServer:
-    """Start vp-server and wait until /api/health answers."""
-    port = free_port()
+def start_server(*args: str, port: int | None = None) -> RunningServer:
+    """Start vp-server (on a free port unless told) and wait until /api/health answers."""
+    port = port or free_port()
     process = subprocess.Popen([str(VP_SERVER), "--port", str(port), "--log-level", "warning",
                                 *args], cwd=ROOT)
     server = RunningServer(process, port)

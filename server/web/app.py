@@ -7,22 +7,15 @@ from contextlib import asynccontextmanager
 from typing import AsyncIterator, Callable
 
 from fastapi import FastAPI, Request
-from fastapi.responses import HTMLResponse, JSONResponse
+from fastapi.responses import JSONResponse
 
 from ..core.scene import Scene
 from ..errors import LookupFailure, VPError
 from . import rest, socket
 from .hub import Hubs
+from .pages import mount_pages
 
 SceneSetup = Callable[[Scene], Callable[[Scene, float], None] | None]
-
-INDEX = """<!DOCTYPE html><html><head><meta charset="utf-8"><title>Virtual Prosthetics</title>
-</head><body><h1>Virtual Prosthetics server</h1><ul>
-<li><a href="/api/scenes">/api/scenes</a>: the running scenes</li>
-<li><a href="/docs">/docs</a>: the REST API</li>
-<li>WebSocket: <code>ws://HOST/ws?scene=default&amp;role=controller|viewer</code></li>
-</ul></body></html>"""
-
 
 def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None) -> FastAPI:
     """The server: the ``default`` scene exists from the start (prepared by ``setup``)."""
@@ -48,8 +41,5 @@ def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None) -> Fast
     async def vp_error(request: Request, error: VPError) -> JSONResponse:
         return rest.error_response(error, 404 if isinstance(error, LookupFailure) else 400)
 
-    @app.get("/", response_class=HTMLResponse, include_in_schema=False)
-    async def index() -> str:
-        return INDEX
-
+    mount_pages(app)
     return app

@@ -1,0 +1,37 @@
+"""The browser pages: the index, the viewer, its ES modules and its npm dependencies.
+
+three.js and lil-gui are served from ``web/node_modules`` (installed from the npm registry
+by the set-up command, never committed); the pages find them through an import map.
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+from fastapi import FastAPI
+from fastapi.responses import FileResponse
+from fastapi.staticfiles import StaticFiles
+
+log = logging.getLogger(__name__)
+
+WEB = Path(__file__).resolve().parents[2] / "web"
+VENDOR = {"three": WEB / "node_modules" / "three", "lil-gui": WEB / "node_modules" / "lil-gui"}
+
+
+def mount_pages(app: FastAPI) -> None:
+    """Add ``/``, ``/view`` and the static trees the pages load."""
+    for name, folder in VENDOR.items():
+        if not folder.is_dir():
+            log.warning("%s is missing: run `make install` (the viewer needs it)", folder)
+        app.mount(f"/vendor/{name}", StaticFiles(directory=folder, check_dir=False),
+                  name=f"vendor-{name}")
+    app.mount("/web", StaticFiles(directory=WEB / "src"), name="web")
+
+    @app.get("/", include_in_schema=False)
+    async def index() -> FileResponse:
+        return FileResponse(WEB / "index.html")
+
+    @app.get("/view", include_in_schema=False)
+    async def view() -> FileResponse:
+        return FileResponse(WEB / "view.html")

@@ -1,0 +1,63 @@
+"""Real headless Chromium (Debian's package, software WebGL) driven by Playwright."""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+import pytest
+from playwright.sync_api import Browser, Page, sync_playwright
+
+CHROMIUM = "/usr/bin/chromium"
+FLAGS = ["--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
+         "--enable-unsafe-swiftshader", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", "--no-first-run"]
+VIEWPORT = {"width": 800, "height": 500}
+
+
+@pytest.fixture(scope="session")
+def browser() -> Iterator[Browser]:
+    with sync_playwright() as playwright:
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
+        yield chromium
+        chromium.close()
+
+
+@pytest.fixture
+def pages(browser: Browser) -> Iterator[list[Page]]:
+    """A list to open pages into; each is closed after the test, with its errors checked."""
+    opened: list[Page] = []
+    yield opened
+    for page in opened:
+        close_page(page)
+
+
+def close_page(page: Page) -> None:
+    """Close a page (software WebGL is slow: fewer open pages, faster tests); it must have
+    had no uncaught error."""
+    if page.is_closed():
+        return
+    errors = page.evaluate("() => window.__errors || []")
+    page.context.close()
+    assert errors == [], errors
+
+
+def open_page(browser: Browser, pages: list[Page], url: str) -> Page:
+    """A new page at ``url`` that records uncaught errors in ``window.__errors``."""
+    page = browser.new_context(viewport=VIEWPORT).new_page()
+    page.add_init_script("window.__errors = []; window.addEventListener('error', "
+                         "(e) => window.__errors.push(String(e.message)));")
+    pages.append(page)
+    page.goto(url)
+    return page
+
+
+def open_viewer(browser: Browser, pages: list[Page], server, query: str) -> Page:
+    """A viewer page that has its first snapshot."""
+    page = open_page(browser, pages, f"{server.http}/view?{query}")
+    page.wait_for_function("() => window.VP && window.VP.snapshots > 0", timeout=20_000)
+    return page
+
+
+def wait_until(page: Page, script: str, arg=None, timeout: float = 10_000) -> None:
+    """Wait until a JavaScript predicate holds in the page."""
+    page.wait_for_function(script, arg=arg, timeout=timeout)

@@ -1,0 +1,118 @@
+"""The viewer in real headless Chromium: many pages follow one scene, and show it right."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+import virtual_prosthetics as vp
+from tests.conftest import start_server, stop_server
+
+from .conftest import open_viewer, wait_until
+from .picture import Picture, background_like, project, reddish
+
+CAMERA = ((4, 4, 7), (0, 1, 0))  # the default camera: position, target
+
+
+@pytest.fixture
+def scene(server, scene_name):
+    connected = vp.connect(server.ws, scene=scene_name)
+    yield connected
+    connected.close()
+
+
+def settled(page, motor_id, angle):
+    """Wait until a page draws a motor at ``angle`` and has drawn a picture since."""
+    wait_until(page, "([id, a]) => Math.abs(VP.shownAngle(id) - a) < 1e-9", [motor_id, angle])
+    drawn = page.evaluate("() => VP.rendered")
+    wait_until(page, "(n) => VP.rendered > n + 1", drawn)
+
+
+def test_three_viewers_follow_a_script_and_draw_the_robot_where_the_server_has_it(
+        browser, pages, server, scene, scene_name):
+    robot = vp.Robot()
+    motor = vp.MotorZ(-2, 2)
+    box = vp.Box(0.3, 1, 0.3, "red")
+    robot.attach_chain(motor)
+    box.attach_to_slot(motor)
+    box.set_position(0, 0.5, 0)
+    scene.sync()
+    viewers = [open_viewer(browser, pages, server, f"scene={scene_name}") for _ in range(3)]
+    for page in viewers:
+        wait_until(page, "(id) => VP.objects.has(id)", box.id)
+        settled(page, motor.id, 0.0)
+    upright = Picture(viewers[0].screenshot())
+    standing = project((0, 0.5, 0), *CAMERA, upright.size)
+    assert reddish(upright.at(standing))
+
+    motor.set_angle(-1.0)  # about Z: the box leans towards +X
+    for page in viewers:
+        wait_until(page, "(id) => VP.angle(id) === -1", motor.id)
+    angles = [page.evaluate("(id) => VP.angle(id)", motor.id) for page in viewers]
+    assert angles == [-1.0, -1.0, -1.0]
+    for page in viewers:
+        settled(page, motor.id, -1.0)
+        picture = Picture(page.screenshot())
+        leaning = project((0.5 * math.sin(1), 0.5 * math.cos(1), 0), *CAMERA, picture.size)
+        assert reddish(picture.at(leaning)), picture.at(leaning)
+        assert background_like(picture.at(standing)), picture.at(standing)
+
+
+def test_an_empty_scene_shows_the_spinning_logo_until_something_comes(
+        browser, pages, server, scene, scene_name):
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(page, "() => VP.scene.getObjectByName('logo').visible")
+    picture = Picture(page.screenshot())
+    assert picture.share(lambda c: not background_like(c)) > 0.01  # the logo, not a blank
+    vp.Ball(0.5).set_position(0, 0.5, 0)
+    wait_until(page, "() => !VP.scene.getObjectByName('logo').visible")
+
+
+def test_the_camera_follows_the_script_and_still_orbits(browser, pages, server, scene,
+                                                       scene_name):
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    vp.set_camera_position(1, 2, 10)
+    vp.set_camera_target(0, 0.5, 0)
+    wait_until(page, "() => Math.abs(VP.camera.position.z - 10) < 1e-6")
+    assert page.evaluate("() => VP.camera.position.toArray()") == pytest.approx([1, 2, 10])
+    page.mouse.move(400, 250)
+    page.mouse.down()
+    page.mouse.move(300, 250, steps=5)
+    page.mouse.up()
+    wait_until(page, "() => Math.abs(VP.camera.position.x - 1) > 0.1")  # a person orbited
+
+
+def test_viewers_come_back_after_a_server_restart(browser, pages):
+    own = start_server("--no-demo")
+    try:
+        page = open_viewer(browser, pages, own, "scene=default")
+        with vp.Scene(own.ws) as client:
+            vp.Box(scene=client)
+            client.sync()
+        stop_server(own)
+        wait_until(page, "() => document.getElementById('status').textContent"
+                         ".startsWith('reconnecting')")
+        own = start_server("--no-demo", port=own.port)
+        wait_until(page, "() => VP.snapshots >= 2", timeout=20_000)
+        wait_until(page, "() => document.getElementById('status').textContent"
+                         ".startsWith('connected')")
+        assert page.evaluate("() => VP.objects.size") == 0  # the fresh server's scene
+    finally:
+        stop_server(own)
+
+
+def test_deleted_objects_free_their_gpu_memory(browser, pages, server, scene, scene_name):
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(page, "() => VP.rendered > 2")
+    before = page.evaluate("() => VP.renderer.info.memory.geometries")
+    boxes = [vp.Box(0.2, 0.2, 0.2) for _ in range(20)]
+    for k, box in enumerate(boxes):
+        box.set_position(k * 0.3 - 3, 0.1, 0)
+    scene.sync()
+    wait_until(page, "(n) => VP.objects.size === 20 && VP.renderer.info.memory.geometries > n",
+               before)
+    for box in boxes:
+        box.delete()
+    wait_until(page, "(n) => VP.objects.size === 0 && VP.renderer.info.memory.geometries === n",
+               before)

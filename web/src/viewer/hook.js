@@ -1,0 +1,32 @@
+// window.VP: what tests (and curious people in the console) can read of the viewer.
+
+export function installHook(stage, tree) {
+	const hook = {
+		scene: stage.scene,    // the THREE.Scene
+		camera: stage.camera,
+		renderer: stage.renderer,
+		objects: tree.objects, // object id -> Object3D (userData.node: the server's description)
+		seq: 0,                // the last frame's (or snapshot's) sequence number
+		time: 0,               // and its scene time
+		frames: 0,             // frames and snapshots received
+		snapshots: 0,
+		rendered: 0,           // pictures drawn
+		client: null,
+		role: null,
+		frame(message) {
+			hook.seq = message.seq;
+			hook.time = message.time;
+			if (message.op === 'snapshot') hook.snapshots++; else hook.frames++;
+		},
+		// The angle the server last gave a motor (what the picture moves towards).
+		angle(id) {
+			return tree.objects.get(id)?.userData.node.angle;
+		},
+		// The angle a motor is drawn at now.
+		shownAngle(id) {
+			return tree.objects.get(id)?.userData.shownAngle;
+		},
+	};
+	window.VP = hook;
+	return hook;
+}

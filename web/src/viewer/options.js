@@ -1,0 +1,23 @@
+// The viewer's URL options: /view?scene=NAME&role=viewer|controller&touch-color=red
+//   &debug-physics&show-slots&engine=NAME
+
+export function readOptions(search = window.location.search) {
+	const params = new URLSearchParams(search);
+	const flag = (name) => params.has(name) && params.get(name) !== 'false';
+	return {
+		scene: params.get('scene') || 'default',
+		role: params.get('role') === 'controller' ? 'controller' : 'viewer',
+		touchColor: params.get('touch-color') || null,
+		debugPhysics: flag('debug-physics'),
+		showSlots: flag('show-slots'),
+		engine: params.get('engine') || null,
+	};
+}
+
+// The WebSocket address of a scene, on the server that served this page.
+export function socketUrl(options, location = window.location) {
+	const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
+	const query = new URLSearchParams({ scene: options.scene, role: options.role });
+	if (options.engine) query.set('engine', options.engine);
+	return `${scheme}//${location.host}/ws?${query}`;
+}

@@ -1,0 +1,84 @@
+// Motor panels: a robot whose script called addGUI(title) gets a lil-gui panel with one
+// slider per motor (its name, else its index). A controller's sliders move the motors on
+// the server, so every viewer sees it; a viewer's panel follows the frames, read-only.
+// "Get gesture" shows the setAngles(...) call for the current pose.
+
+import GUI from 'lil-gui';
+
+const UNLIMITED = Math.PI;   // the slider range of an unlimited motor
+
+function limit(value, fallback) {
+	return typeof value === 'number' ? value : fallback;
+}
+
+// The motor objects below a robot, in the server's depth-first order (their index).
+export function motorsOf(robot) {
+	const motors = [];
+	const visit = (object) => {
+		if (object !== robot && object.userData.node.axis) motors.push(object);
+		for (const child of object.children) if (child.userData.node) visit(child);
+	};
+	visit(robot);
+	return motors;
+}
+
+export class MotorPanels {
+	constructor(tree, { editable, setAngle, showGesture }) {
+		this.tree = tree;
+		this.editable = editable;
+		this.setAngle = setAngle;
+		this.showGesture = showGesture;
+		this.panels = new Map();   // robot id -> {gui, sliders: Map motor id -> controller}
+		this.stale = false;
+		const refresh = () => { this.stale = true; };
+		tree.on('added', refresh);
+		tree.on('removed', refresh);
+		tree.on('changed', (object, fields) => { if ('gui' in fields || 'children' in fields || 'name' in fields) refresh(); });
+	}
+
+	// Rebuild panels after structural changes (at most once per rendered frame).
+	step() {
+		if (this.stale) this.rebuild();
+		for (const panel of this.panels.values()) for (const [object, slider] of panel.sliders) {
+			const angle = object.userData.node.angle;
+			if (!slider.dragging && panel.values[object.name] !== angle) {
+				panel.values[object.name] = angle;
+				slider.updateDisplay();
+			}
+		}
+	}
+
+	rebuild() {
+		this.stale = false;
+		for (const panel of this.panels.values()) panel.gui.destroy();
+		this.panels.clear();
+		for (const object of this.tree.objects.values()) {
+			const node = object.userData.node;
+			if (node.type !== 'Slot' && node.gui != null && !node.parent) this.build(object);
+		}
+	}
+
+	build(robot) {
+		const gui = new GUI({ title: robot.userData.node.gui || 'Robot' });
+		const values = {}, sliders = new Map();
+		motorsOf(robot).forEach((motor, index) => {
+			const node = motor.userData.node;
+			values[motor.name] = node.angle;
+			const slider = gui.add(values, motor.name, limit(node.min, -UNLIMITED), limit(node.max, UNLIMITED), 0.01)
+				.name(node.name ?? String(index));
+			if (this.editable) {
+				slider.onChange((angle) => { slider.dragging = true; this.setAngle(motor.name, angle); });
+				slider.onFinishChange(() => { slider.dragging = false; });
+			} else slider.disable();
+			sliders.set(motor, slider);
+		});
+		gui.add({ gesture: () => this.showGesture(gesture(robot)) }, 'gesture').name('Get gesture');
+		this.panels.set(robot.name, { gui, sliders, values });
+	}
+}
+
+// The setAngles(...) call that puts a robot in its current pose.
+export function gesture(robot) {
+	const angles = motorsOf(robot).map((motor) => Number(motor.userData.node.angle.toFixed(2)));
+	return `setAngles( ${angles.join(', ')} );`;
+}

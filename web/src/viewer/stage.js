@@ -1,0 +1,78 @@
+// The picture around the robots (parts.md, "Scene"): background and fog, the ground disc,
+// a shadow-casting directional light and a hemisphere light, the 30° camera with orbit
+// controls, and the render loop at the display's rate.
+
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const BACKGROUND = 'gainsboro';
+
+export class Stage {
+	constructor(container = document.body) {
+		const renderer = this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+		renderer.setPixelRatio(window.devicePixelRatio);
+		renderer.shadowMap.enabled = true;
+		renderer.shadowMap.type = THREE.VSMShadowMap;
+		container.appendChild(renderer.domElement);
+
+		const scene = this.scene = new THREE.Scene();
+		scene.background = new THREE.Color(BACKGROUND);
+		scene.fog = new THREE.Fog(BACKGROUND, 100, 400);
+		scene.add(this.light(), new THREE.HemisphereLight('white', 'cornsilk', 0.6 * Math.PI));
+		scene.add(this.ground());
+
+		this.camera = new THREE.PerspectiveCamera(30, 1, 0.1, 1000);
+		this.camera.position.set(4, 4, 7);
+		this.controls = new OrbitControls(this.camera, renderer.domElement);
+		this.controls.target.set(0, 1, 0);
+		this.controls.update();
+
+		this.beforeRender = [];
+		this.resize();
+		window.addEventListener('resize', () => this.resize());
+		renderer.setAnimationLoop((time) => this.draw(time));
+	}
+
+	light() {
+		// three.js now measures light physically; π × the 1.0 intensities gives 1.0's look
+		const light = new THREE.DirectionalLight('white', 0.4 * Math.PI);
+		light.position.set(5, 18, 3);
+		light.castShadow = true;
+		light.shadow.mapSize.set(1024, 1024);
+		light.shadow.blurSamples = 10;
+		light.shadow.radius = 2;
+		light.shadow.bias = -0.00001;
+		Object.assign(light.shadow.camera, { left: -10, right: 10, top: 10, bottom: -10 });
+		return light;
+	}
+
+	ground() {
+		const ground = new THREE.Mesh(new THREE.CircleGeometry(2000, 64),
+			new THREE.MeshLambertMaterial({ color: 'lightgray' }));
+		ground.rotation.x = -Math.PI / 2;
+		ground.receiveShadow = true;
+		ground.name = 'ground';
+		return ground;
+	}
+
+	resize() {
+		const width = window.innerWidth, height = window.innerHeight;
+		this.camera.aspect = width / height;
+		this.camera.updateProjectionMatrix();
+		this.renderer.setSize(width, height, false);
+	}
+
+	// The scene's camera, as a script set it (setCameraPosition / setCameraTarget).
+	setCamera({ position, target }) {
+		this.controls.target.set(...target);
+		this.camera.position.set(...position);
+		this.camera.lookAt(this.controls.target);
+		this.controls.update();
+	}
+
+	draw(time) {
+		for (const step of this.beforeRender) step(time);
+		this.controls.update();
+		this.renderer.render(this.scene, this.camera);
+	}
+}

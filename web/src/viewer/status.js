@@ -1,0 +1,49 @@
+// The status line: connection state, scene, rendered frames per second and viewer count.
+
+const COUNT_EVERY = 2000;   // ms between asks for the scene's client count
+
+export class StatusLine {
+	constructor(element, scene) {
+		this.element = element;
+		this.scene = scene;
+		this.state = 'connecting';
+		this.fps = 0;
+		this.clients = null;
+		this.frames = 0;
+		this.since = performance.now();
+		setInterval(() => this.countClients(), COUNT_EVERY);
+	}
+
+	setState(state) {
+		this.state = state;
+		this.show();
+	}
+
+	// Called once per rendered frame.
+	step(now) {
+		this.frames++;
+		if (now - this.since >= 1000) {
+			this.fps = Math.round(this.frames * 1000 / (now - this.since));
+			this.frames = 0;
+			this.since = now;
+			this.show();
+		}
+	}
+
+	async countClients() {
+		try {
+			const response = await fetch(`/api/scenes/${encodeURIComponent(this.scene)}`);
+			if (response.ok) this.clients = (await response.json()).clients;
+		} catch {
+			this.clients = null;
+		}
+		this.show();
+	}
+
+	show() {
+		const parts = [this.state, `scene ${this.scene}`, `${this.fps} fps`];
+		if (this.clients != null) parts.push(`${this.clients} connected`);
+		this.element.textContent = parts.join(' · ');
+		this.element.classList.toggle('down', this.state !== 'connected');
+	}
+}

@@ -1,0 +1,122 @@
+// The viewer's copy of the server's transform tree: one Object3D per node (robot, part,
+// slot, motor, sensor), parented as on the server, posed by the snapshot and the frames.
+// A motor's object turns about its axis by its angle on top of its own pose, as on the
+// server; nothing here recomputes physics.
+
+import * as THREE from 'three';
+import { buildShape, dispose } from './shapes.js';
+
+const AXES = { x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) };
+const turn = new THREE.Quaternion();
+
+export class SceneTree {
+	constructor(root) {
+		this.root = root;              // the THREE.Group all nodes hang from
+		this.objects = new Map();      // id -> Object3D (userData.node: the description)
+		this.listeners = { added: [], removed: [], changed: [] };
+	}
+
+	on(event, listener) { this.listeners[event].push(listener); }
+
+	emit(event, ...args) { for (const listener of this.listeners[event]) listener(...args); }
+
+	// Forget everything (a new snapshot follows).
+	clear() {
+		for (const id of [...this.objects.keys()]) this.drop(id);
+	}
+
+	// Add described nodes; parents may come after their children in the list.
+	add(descriptions) {
+		for (const node of descriptions) this.make(node);
+		for (const node of descriptions) this.place(node.id, node.parent, node.children);
+		for (const node of descriptions) this.emit('added', this.objects.get(node.id));
+	}
+
+	make(node) {
+		if (this.objects.has(node.id)) this.drop(node.id);
+		const object = new THREE.Group();
+		object.name = node.id;
+		object.userData.node = { ...node };
+		object.userData.base = new THREE.Quaternion(...node.quaternion);
+		object.position.set(...node.position);
+		const shape = node.geometry ? buildShape(node.geometry, node.physical) : null;
+		if (shape) object.add(shape);
+		object.userData.shape = shape;
+		this.objects.set(node.id, object);
+		this.applyVisibility(object);
+		this.setAngle(object, node.angle ?? 0);
+	}
+
+	place(id, parentId, childIds) {
+		const object = this.objects.get(id);
+		(this.objects.get(parentId) ?? this.root).add(object);
+		this.adopt(object, childIds);
+	}
+
+	adopt(object, childIds) {
+		for (const childId of childIds ?? []) {
+			const child = this.objects.get(childId);
+			if (child) object.add(child);
+		}
+	}
+
+	remove(ids) {
+		for (const id of ids) {
+			const object = this.objects.get(id);
+			if (object) {
+				this.emit('removed', object);
+				this.drop(id);
+			}
+		}
+	}
+
+	// Remove one node's object; its own meshes and overlays (children that are not
+	// nodes) are freed, its child nodes are removed by their own ids.
+	drop(id) {
+		const object = this.objects.get(id);
+		this.objects.delete(id);
+		object.removeFromParent();
+		for (const child of [...object.children]) if (!child.userData.node) dispose(child);
+	}
+
+	// A local pose [px, py, pz, qx, qy, qz, qw] from a frame.
+	setPose(id, pose) {
+		const object = this.objects.get(id);
+		if (!object) return;
+		object.position.set(pose[0], pose[1], pose[2]);
+		object.userData.base.set(pose[3], pose[4], pose[5], pose[6]);
+		this.setAngle(object, object.userData.node.angle ?? 0);
+	}
+
+	// The pose a motor shows: its base pose, turned about its axis (the other way if flipped).
+	setAngle(object, angle) {
+		const node = object.userData.node;
+		object.quaternion.copy(object.userData.base);
+		if (node.axis) {
+			turn.setFromAxisAngle(AXES[node.axis], node.flipped ? -angle : angle);
+			object.quaternion.multiply(turn);
+		}
+		object.userData.shownAngle = angle;
+	}
+
+	// Other fields of a node from a frame's "updates".
+	update(id, fields) {
+		const object = this.objects.get(id);
+		if (!object) return;
+		Object.assign(object.userData.node, fields);
+		if ('children' in fields) this.adopt(object, fields.children);
+		if ('parent' in fields) (this.objects.get(fields.parent) ?? this.root).add(object);
+		if ('visible' in fields) this.applyVisibility(object);
+		if ('flipped' in fields) this.setAngle(object, object.userData.shownAngle ?? 0);
+		this.emit('changed', object, fields);
+	}
+
+	// A robot taken out of the scene hides with all its parts; a hidden sensor hides its pad.
+	applyVisibility(object) {
+		const node = object.userData.node;
+		if (node.visible === undefined) return;
+		const shape = object.userData.shape;
+		if (node.type === 'Sensor') { if (shape) shape.visible = node.visible; }
+		else object.visible = node.visible;
+	}
+}
