@@ -1,7 +1,9 @@
 // What the viewer does with each server message: a map from op to handler.
 
+const QUIET_FRAME = new Set(['op', 'seq', 'time', 'sensors']);  // readings: see lasers
+
 export function makeHandlers(view) {
-	const { tree, motion, overlays, lasers, stage, hook } = view;
+	const { tree, motion, overlays, lasers, stage, hook, status } = view;
 	return {
 		hello(message) {
 			motion.period = 1 / message.tickRate;
@@ -19,19 +21,24 @@ export function makeHandlers(view) {
 		},
 		added(message) {
 			tree.add(message.nodes);
+			stage.invalidate();
 		},
 		removed(message) {
 			tree.remove(message.ids);
+			stage.invalidate();
 		},
 		frame(message) {
+			status.frame();
+			hook.frame(message);
+			if (message.sensors && lasers.readings(message.sensors)) stage.invalidate();
+			if (Object.keys(message).every((key) => QUIET_FRAME.has(key))) return;
+			stage.invalidate();
 			const now = performance.now() / 1000;
 			for (const [id, fields] of Object.entries(message.updates ?? {})) tree.update(id, fields);
 			for (const [id, pose] of Object.entries(message.poses ?? {})) motion.pose(id, pose, now);
 			for (const [id, angle] of Object.entries(message.angles ?? {})) motion.angle(id, angle, now);
 			if (message.contacts) overlays.contacts(message.contacts);
-			if (message.sensors) lasers.readings(message.sensors);
 			if (message.camera) stage.setCamera(message.camera);
-			hook.frame(message);
 		},
 		ok() {},
 		error(message) {

@@ -1,6 +1,6 @@
 // window.VP: what tests (and curious people in the console) can read of the viewer.
 
-export function installHook(stage, tree) {
+export function installHook(stage, tree, motion) {
 	const hook = {
 		scene: stage.scene,    // the THREE.Scene
 		camera: stage.camera,
@@ -21,6 +21,10 @@ export function installHook(stage, tree) {
 		// The angle the server last gave a motor (what the picture moves towards).
 		angle(id) {
 			return tree.objects.get(id)?.userData.node.angle;
+		},
+		// True when the picture shows everything received (nothing left to draw).
+		drawn() {
+			return !stage.needsRender && !motion.busy;
 		},
 		// The angle a motor is drawn at now.
 		shownAngle(id) {

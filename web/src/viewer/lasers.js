@@ -43,12 +43,18 @@ export class Lasers {
 		for (const id of [...this.beams.keys()]) this.drop(id);
 	}
 
-	// A frame's sensor readings.
+	// A frame's sensor readings; true when a beam changed length.
 	readings(sensors) {
+		let changed = false;
 		for (const [id, reading] of Object.entries(sensors)) {
 			const beam = this.beams.get(id);
-			if (beam) beam.distance = reading.distance === 'Infinity' ? Infinity : reading.distance;
+			const distance = reading.distance === 'Infinity' ? Infinity : reading.distance;
+			if (beam && beam.distance !== distance) {
+				beam.distance = distance;
+				changed = true;
+			}
 		}
+		return changed;
 	}
 
 	// Redraw every beam from where its sensor is drawn now.

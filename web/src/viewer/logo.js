@@ -19,8 +19,11 @@ export class Logo {
 		scene.add(this.group);
 	}
 
+	// True when the picture changed.
 	step(now, empty) {
+		const changed = empty || this.group.visible;
 		this.group.visible = empty;
 		if (empty) this.group.rotation.y = now / 1000;
+		return changed;
 	}
 }

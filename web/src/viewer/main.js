@@ -21,19 +21,19 @@ root.name = 'robots';
 stage.scene.add(root);
 
 const tree = new SceneTree(root);
+const motion = new Motion(tree);
 const view = {
-	tree, stage,
-	motion: new Motion(tree),
+	tree, stage, motion,
 	overlays: new Overlays(tree, options),
 	lasers: new Lasers(tree, stage.scene),
-	hook: installHook(stage, tree),
+	hook: installHook(stage, tree, motion),
+	status: new StatusLine(document.getElementById('status'), options.scene),
 };
 const logo = new Logo(stage.scene);
-const status = new StatusLine(document.getElementById('status'), options.scene);
 const handlers = makeHandlers(view);
 const connection = new Connection(socketUrl(options), {
 	onMessage: (message) => dispatch(handlers, message),
-	onState: (state) => status.setState(state),
+	onState: (state) => view.status.setState(state),
 });
 const gestureBox = document.getElementById('gesture');
 const panels = new MotorPanels(tree, {
@@ -44,10 +44,9 @@ const panels = new MotorPanels(tree, {
 });
 
 stage.beforeRender.push((now) => {
-	view.motion.step(now / 1000);
+	if (motion.step(now / 1000)) stage.invalidate();
+	if (logo.step(now, tree.objects.size === 0)) stage.invalidate();
 	view.lasers.step();
 	panels.step();
-	logo.step(now, tree.objects.size === 0);
-	status.step(now);
-	view.hook.rendered++;
 });
+stage.afterRender.push(() => { view.hook.rendered++; });

@@ -27,8 +27,14 @@ export class Motion {
 		this.poses.set(id, { object, from, to, start: now });
 	}
 
-	// Move everything towards its latest state; called before every render.
+	get busy() {
+		return this.angles.size > 0 || this.poses.size > 0;
+	}
+
+	// Move everything towards its latest state; called before every render. True when
+	// something moved.
 	step(now) {
+		const moved = this.busy;
 		for (const [id, move] of this.poses) {
 			const k = this.progress(move, now);
 			move.object.position.lerpVectors(move.from[0], move.to[0], k);
@@ -41,6 +47,7 @@ export class Motion {
 			this.tree.setAngle(move.object, move.from + (move.to - move.from) * k);
 			if (k >= 1) this.angles.delete(id);
 		}
+		return moved;
 	}
 
 	progress(move, now) {

@@ -1,4 +1,5 @@
-// The status line: connection state, scene, rendered frames per second and viewer count.
+// The status line: connection state, scene, frames per second from the server (the scene's
+// tick rate when all is well) and how many clients watch or drive the scene.
 
 const COUNT_EVERY = 2000;   // ms between asks for the scene's client count
 
@@ -19,9 +20,10 @@ export class StatusLine {
 		this.show();
 	}
 
-	// Called once per rendered frame.
-	step(now) {
+	// Called for every frame from the server.
+	frame() {
 		this.frames++;
+		const now = performance.now();
 		if (now - this.since >= 1000) {
 			this.fps = Math.round(this.frames * 1000 / (now - this.since));
 			this.frames = 0;
@@ -41,7 +43,7 @@ export class StatusLine {
 	}
 
 	show() {
-		const parts = [this.state, `scene ${this.scene}`, `${this.fps} fps`];
+		const parts = [this.state, `scene ${this.scene}`, `${this.fps} frames/s`];
 		if (this.clients != null) parts.push(`${this.clients} connected`);
 		this.element.textContent = parts.join(' · ');
 		this.element.classList.toggle('down', this.state !== 'connected');

@@ -1,0 +1,60 @@
+"""Motor panels: addGUI in a script shows sliders in every viewer; a controller's move them."""
+
+from __future__ import annotations
+
+import pytest
+
+import virtual_prosthetics as vp
+
+from .conftest import open_viewer, wait_until
+
+SLIDER_INPUTS = "() => [...document.querySelectorAll('.lil-gui .lil-controller.lil-number input')]"
+
+
+@pytest.fixture
+def arm(server, scene_name):
+    scene = vp.connect(server.ws, scene=scene_name)
+    robot = vp.Robot()
+    robot.attach_chain(vp.MotorZ(-1, 1).set_name("shoulder"), vp.EdgedFinger(),
+                       vp.MotorX(-2, 2), vp.EdgedTip())
+    robot.add_gui("Arm")
+    scene.sync()
+    yield robot
+    scene.close()
+
+
+def test_a_controller_moves_motors_and_every_viewer_follows(browser, pages, server,
+                                                            scene_name, arm):
+    controller = open_viewer(browser, pages, server, f"scene={scene_name}&role=controller")
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    for page in (controller, viewer):
+        wait_until(page, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Arm'")
+        labels = page.evaluate("() => [...document.querySelectorAll('.lil-gui .lil-controller.lil-number "
+                               ".lil-name')].map((e) => e.textContent)")
+        assert labels == ["shoulder", "1"]  # a name when set, else the motor's index
+    assert viewer.evaluate(f"() => ({SLIDER_INPUTS})().every((input) => input.disabled)")
+    assert not controller.evaluate(f"() => ({SLIDER_INPUTS})()[1].disabled")
+
+    field = controller.locator(".lil-gui .lil-controller.lil-number input").nth(1)
+    field.fill("0.5")
+    field.press("Enter")
+    motor_id = arm.get_motors()[1].id
+    wait_until(viewer, "(id) => VP.angle(id) === 0.5", motor_id)
+    assert arm.get_angles() == [0, 0.5]  # the server has it
+    wait_until(viewer, f"() => ({SLIDER_INPUTS})()[1].value === '0.5'")
+
+    viewer.get_by_text("Get gesture").click()
+    wait_until(viewer, "() => !document.getElementById('gesture').hidden")
+    assert viewer.inner_text("#gesture") == "setAngles( 0, 0.5 );"
+
+
+def test_a_robot_without_addgui_has_no_panel(browser, pages, server, scene_name):
+    with vp.Scene(server.ws, scene=scene_name) as client:
+        robot = vp.Robot(scene=client)
+        robot.attach_chain(vp.MotorZ(scene=client))
+        client.sync()
+        page = open_viewer(browser, pages, server, f"scene={scene_name}&role=controller")
+        wait_until(page, "(id) => VP.objects.has(id) && VP.drawn()", robot.id)
+        assert page.evaluate("() => document.querySelectorAll('.lil-gui').length") == 0
+        robot.add_gui("Late")
+        wait_until(page, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Late'")
