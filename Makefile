@@ -22,6 +22,7 @@ test: install $(CHROMIUM)
 bench: install
 	$(BIN)/python bench/tick.py
 	$(BIN)/python bench/sensing.py
+	$(BIN)/python bench/viewer_latency.py
 
 install: $(PY_STAMP) $(WEB_STAMP)
 

@@ -41,6 +41,7 @@ pybullet = _quiet_import()
 
 from .math3d import Pose, Vec3
 
+ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"
 _BODY_MASS = 1.0
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much

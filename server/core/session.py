@@ -13,6 +13,7 @@ from typing import Any
 from ..errors import Forbidden, ForeignId, InternalError, VPError
 from .messages import LIMITS, PROTOCOL_VERSION, check_client_message, decode
 from .operations import Operations
+from .physics import ENGINE
 from .scene import Scene
 
 log = logging.getLogger(__name__)
@@ -36,7 +37,7 @@ class Session:
         """The first message a client receives."""
         return {"op": "hello", "protocol": PROTOCOL_VERSION, "client": self.client_id,
                 "role": self.role, "scene": self.scene.name, "time": self.scene.time,
-                "tickRate": tick_rate, "limits": dict(LIMITS)}
+                "tickRate": tick_rate, "limits": dict(LIMITS), "engine": ENGINE}
 
     def receive(self, text: str | bytes) -> list[dict[str, Any]]:
         """Apply every message in one WebSocket text message; the answers, in order."""

@@ -8,6 +8,7 @@ import logging
 from fastapi import APIRouter, WebSocket
 from starlette.websockets import WebSocketDisconnect
 
+from ..core.physics import ENGINE
 from ..core.session import ROLES, Session
 from ..errors import OutOfRange, VPError
 from .hub import Connection, Hubs
@@ -20,12 +21,15 @@ POLICY_VIOLATION = 1008
 
 @router.websocket("/ws")
 async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
-                             role: str = "controller") -> None:
+                             role: str = "controller", engine: str = ENGINE) -> None:
     hubs: Hubs = websocket.app.state.hubs
     await websocket.accept()
     try:
         if role not in ROLES:
             raise OutOfRange(f"role must be controller or viewer, got {role!r}", role=role)
+        if engine != ENGINE:
+            raise OutOfRange(f"engine {engine!r} is not available; this server runs {ENGINE}",
+                             engine=engine)
         hub = hubs.open(scene)
     except VPError as error:
         await websocket.send_text(Outgoing.of(error.to_wire()).text)

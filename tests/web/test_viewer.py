@@ -9,17 +9,10 @@ import pytest
 import virtual_prosthetics as vp
 from tests.conftest import start_server, stop_server
 
-from .conftest import open_viewer, wait_until
+from .conftest import open_page, open_viewer, wait_until
 from .picture import Picture, background_like, project, reddish
 
 CAMERA = ((4, 4, 7), (0, 1, 0))  # the default camera: position, target
-
-
-@pytest.fixture
-def scene(server, scene_name):
-    connected = vp.connect(server.ws, scene=scene_name)
-    yield connected
-    connected.close()
 
 
 def settled(page, motor_id, angle):
@@ -115,3 +108,9 @@ def test_deleted_objects_free_their_gpu_memory(browser, pages, server, scene, sc
         box.delete()
     wait_until(page, "(n) => VP.objects.size === 0 && VP.renderer.info.memory.geometries === n",
                before)
+
+
+def test_an_unavailable_engine_is_named_in_the_status_line(browser, pages, server):
+    page = open_page(browser, pages, f"{server.http}/view?scene=default&engine=cannon")
+    wait_until(page, "() => document.getElementById('status').textContent.startsWith('refused')")
+    assert "this server runs pybullet" in page.inner_text("#status")

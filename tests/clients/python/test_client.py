@@ -10,13 +10,6 @@ import pytest
 import virtual_prosthetics as vp
 
 
-@pytest.fixture
-def scene(server, scene_name):
-    connected = vp.connect(server.ws, scene=scene_name)
-    yield connected
-    connected.close()
-
-
 def motor_angles(server, scene_name, robot):
     return [m["angle"] for m in server.get(f"/api/scenes/{scene_name}/robots/{robot.id}")["motors"]]
 

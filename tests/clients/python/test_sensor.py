@@ -12,13 +12,6 @@ import virtual_prosthetics as vp
 DOWN = (math.pi, 0, 0)
 
 
-@pytest.fixture
-def scene(server, scene_name):
-    connected = vp.connect(server.ws, scene=scene_name)
-    yield connected
-    connected.close()
-
-
 def eventually(check, timeout=5.0):
     """Wait until ``check()`` is true (frames arrive on their own schedule)."""
     deadline = time.monotonic() + timeout

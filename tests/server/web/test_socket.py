@@ -98,11 +98,16 @@ def test_oversize_and_garbage_get_errors_and_the_connection_lives_on(server, sce
         assert answer["op"] == "ok"
 
 
-def test_bad_role_or_scene_name_is_refused_with_a_reason(server):
-    for query in ("scene=ok&role=admin", "scene=bad%20name"):
+def test_bad_role_scene_name_or_engine_is_refused_with_a_reason(server):
+    for query, word in (("scene=ok&role=admin", "role"), ("scene=bad%20name", "scene"),
+                        ("scene=ok&engine=cannon", "pybullet")):
         with connect(f"{server.ws}/ws?{query}") as ws:
             error = json.loads(ws.recv(timeout=10))
             assert error["op"] == "error" and error["code"] == "out_of_range"
+            assert word in error["message"]
+    ws, hello, _ = open_client(server, "ok")
+    with ws:
+        assert hello["engine"] == "pybullet"
 
 
 def test_a_hundred_watched_sensors_come_with_every_frame(server, scene_name):

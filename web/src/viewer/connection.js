@@ -1,5 +1,7 @@
 // The WebSocket to the server, reopened after every loss (a server restart, a network
-// hiccup) with a growing pause; each new connection starts with a fresh snapshot.
+// hiccup) with a growing pause; each new connection starts with a fresh snapshot. A
+// connection the server refuses (an error before its hello: a bad scene name, role or
+// engine) is not retried: trying again would not help.
 
 const RETRY_FIRST = 250, RETRY_MAX = 4000;
 
@@ -18,8 +20,14 @@ export class Connection {
 	open() {
 		this.onState('connecting');
 		const socket = this.socket = new WebSocket(this.url);
+		socket.welcomed = false;
 		socket.onopen = () => { this.retry = RETRY_FIRST; this.onState('connected'); };
-		socket.onmessage = (event) => this.receive(JSON.parse(event.data));
+		socket.onmessage = (event) => {
+			const message = JSON.parse(event.data);
+			if (message.op === 'hello') socket.welcomed = true;
+			if (message.op === 'error' && !socket.welcomed) socket.refused = message.message;
+			this.receive(message);
+		};
 		socket.onclose = () => this.lost(socket);
 	}
 
@@ -27,6 +35,7 @@ export class Connection {
 		if (socket !== this.socket) return;
 		for (const { reject } of this.pending.values()) reject(new Error('connection lost'));
 		this.pending.clear();
+		if (socket.refused) return this.onState(`refused: ${socket.refused}`);
 		this.onState('reconnecting');
 		setTimeout(() => this.open(), this.retry);
 		this.retry = Math.min(RETRY_MAX, this.retry * 2);

@@ -36,7 +36,10 @@ export function makeHandlers(view) {
 			const now = performance.now() / 1000;
 			for (const [id, fields] of Object.entries(message.updates ?? {})) tree.update(id, fields);
 			for (const [id, pose] of Object.entries(message.poses ?? {})) motion.pose(id, pose, now);
-			for (const [id, angle] of Object.entries(message.angles ?? {})) motion.angle(id, angle, now);
+			for (const [id, angle] of Object.entries(message.angles ?? {})) {
+				motion.angle(id, angle, now);
+				hook.angleTimes.set(id, performance.timeOrigin + performance.now());
+			}
 			if (message.contacts) overlays.contacts(message.contacts);
 			if (message.camera) stage.setCamera(message.camera);
 		},

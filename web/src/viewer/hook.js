@@ -11,6 +11,7 @@ export function installHook(stage, tree, motion) {
 		frames: 0,             // frames and snapshots received
 		snapshots: 0,
 		rendered: 0,           // pictures drawn
+		angleTimes: new Map(), // motor id -> when its last new angle arrived (epoch ms)
 		client: null,
 		role: null,
 		frame(message) {
@@ -21,6 +22,10 @@ export function installHook(stage, tree, motion) {
 		// The angle the server last gave a motor (what the picture moves towards).
 		angle(id) {
 			return tree.objects.get(id)?.userData.node.angle;
+		},
+		// How long the last picture took to draw (ms).
+		get renderMs() {
+			return stage.renderMs;
 		},
 		// True when the picture shows everything received (nothing left to draw).
 		drawn() {

@@ -84,7 +84,9 @@ export class Stage {
 		for (const step of this.beforeRender) step(time);
 		if (!this.needsRender) return;
 		this.needsRender = false;
+		const started = performance.now();
 		this.renderer.render(this.scene, this.camera);
+		this.renderMs = performance.now() - started;
 		for (const step of this.afterRender) step(time);
 	}
 }
