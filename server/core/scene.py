@@ -228,7 +228,8 @@ class Scene:
         """Readings of every watched sensor (frames carry them); forgets deleted ones."""
         ids = self.watches.ids()
         self.watches.forget(i for i in ids if i in self.retired)
-        return self.read_sensors([self.nodes[i] for i in ids if i in self.nodes])  # type: ignore[misc]
+        sensors = [self.nodes[i] for i in ids if i in self.nodes]
+        return self.read_sensors(sensors)  # type: ignore[arg-type]  # only sensors are watched
 
     @staticmethod
     def in_scene(node: Node) -> bool:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 from . import figures
 from .math3d import Vec3
@@ -57,7 +57,7 @@ def _rays(sensors: Sequence[Sensor]) -> tuple[list[Vec3], list[Vec3], list[Vec3]
 
 
 def read_sensors(physics: PhysicsWorld, sensors: Sequence[Sensor],
-                 contacts_of: Any) -> dict[str, Reading]:
+                 contacts_of: Callable[[Sensor], list[str]]) -> dict[str, Reading]:
     """Readings of ``sensors`` (bodies already placed); ``contacts_of(sensor)`` lists ids."""
     if not sensors:
         return {}

@@ -43,7 +43,9 @@ def _hub(request: Request, scene: str) -> SceneHub:
 
 
 def _summary(hub: SceneHub) -> dict[str, Any]:
+    viewers = sum(c.session.role == "viewer" for c in hub.connections)
     return {**reports.scene_summary(hub.scene), "clients": len(hub.connections),
+            "viewers": viewers, "controllers": len(hub.connections) - viewers,
             "tickRate": hub.tick_rate}
 
 

@@ -43,6 +43,8 @@ def test_three_viewers_follow_a_script_and_draw_the_robot_where_the_server_has_i
         wait_until(page, "(id) => VP.angle(id) === -1", motor.id)
     angles = [page.evaluate("(id) => VP.angle(id)", motor.id) for page in viewers]
     assert angles == [-1.0, -1.0, -1.0]
+    wait_until(viewers[0], "() => document.getElementById('status').textContent"
+                           ".endsWith('3 viewers · 1 controller')")
     for page in viewers:
         settled(page, motor.id, -1.0)
         picture = Picture(page.screenshot())

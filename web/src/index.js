@@ -19,7 +19,7 @@ async function refresh() {
 	for (const scene of scenes) {
 		const row = body.insertRow();
 		cell(row, scene.name);
-		for (const key of ['robots', 'objects', 'clients']) cell(row, scene[key], 'number');
+		for (const key of ['robots', 'objects', 'viewers', 'controllers']) cell(row, scene[key], 'number');
 		cell(row, `${scene.time.toFixed(1)} s`, 'number');
 		const links = row.insertCell();
 		const name = encodeURIComponent(scene.name);

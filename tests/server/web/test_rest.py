@@ -34,6 +34,7 @@ def test_robot_report_lists_motors_in_order(server, scene_name):
         assert motors[0]["type"] == "MotorX" and motors[0]["flipped"] is False
         summary = server.get(f"/api/scenes/{scene_name}")
         assert summary["robots"] == 1 and summary["clients"] == 1
+        assert (summary["viewers"], summary["controllers"]) == (0, 1)
         snapshot = server.get(f"/api/scenes/{scene_name}/snapshot")
         assert len(snapshot["nodes"]) == summary["objects"]
 

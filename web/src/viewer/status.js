@@ -35,7 +35,10 @@ export class StatusLine {
 	async countClients() {
 		try {
 			const response = await fetch(`/api/scenes/${encodeURIComponent(this.scene)}`);
-			if (response.ok) this.clients = (await response.json()).clients;
+			if (response.ok) {
+				const { viewers, controllers } = await response.json();
+				this.clients = { viewers, controllers };
+			}
 		} catch {
 			this.clients = null;
 		}
@@ -44,7 +47,11 @@ export class StatusLine {
 
 	show() {
 		const parts = [this.state, `scene ${this.scene}`, `${this.fps} frames/s`];
-		if (this.clients != null) parts.push(`${this.clients} connected`);
+		if (this.clients) {
+			const { viewers, controllers } = this.clients;
+			parts.push(`${viewers} viewer${viewers === 1 ? '' : 's'}`);
+			if (controllers) parts.push(`${controllers} controller${controllers === 1 ? '' : 's'}`);
+		}
 		this.element.textContent = parts.join(' · ');
 		this.element.classList.toggle('down', this.state !== 'connected');
 	}
