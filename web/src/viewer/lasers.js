@@ -19,7 +19,7 @@ export class Lasers {
 	maybeAdd(object) {
 		const node = object.userData.node;
 		if (node.type !== 'Sensor' || node.laserColor == null) return;
-		const color = new THREE.Color(typeof node.laserColor === 'number' ? node.laserColor : node.laserColor);
+		const color = new THREE.Color(node.laserColor);
 		const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints([origin, origin]),
 			new THREE.LineBasicMaterial({ color, transparent: true, opacity: 0.5 }));
 		const dot = new THREE.Mesh(new THREE.SphereGeometry(0.015, 12, 6), new THREE.MeshBasicMaterial({ color }));
