@@ -40,10 +40,6 @@ class ContactBook:
         self.current = now
         return began, ended
 
-    def of(self, node_id: str) -> list[str]:
-        """What ``node_id`` touched at the last update, sorted."""
-        return self.current.of(node_id)
-
     def wire(self) -> list[list[str]]:
         """The pairs as they travel: sorted lists of two ids."""
         return [list(pair) for pair in sorted(self.current.pairs)]

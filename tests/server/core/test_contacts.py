@@ -9,7 +9,8 @@ def test_update_reports_each_change_once():
     assert book.update(Overlaps([("a", "b"), ("b", "c")])) == ([], [])
     assert book.update(Overlaps([("b", "c"), ("a", "ground")])) == ([("a", "ground")],
                                                                     [("a", "b")])
-    assert book.of("b") == ["c"] and book.of("a") == ["ground"] and book.of("x") == []
+    assert book.current.of("b") == ["c"] and book.current.of("a") == ["ground"]
+    assert book.current.of("x") == []
     assert book.wire() == [["a", "ground"], ["b", "c"]]
 
 
