@@ -8,10 +8,10 @@ export class StatusLine {
 		this.element = element;
 		this.scene = scene;
 		this.state = 'connecting';
-		this.fps = 0;
+		this.fps = null;   // until a second of frames has been counted
 		this.clients = null;
 		this.frames = 0;
-		this.since = performance.now();
+		this.since = null;   // counting starts with the first frame
 		setInterval(() => this.countClients(), COUNT_EVERY);
 	}
 
@@ -22,8 +22,9 @@ export class StatusLine {
 
 	// Called for every frame from the server.
 	frame() {
-		this.frames++;
 		const now = performance.now();
+		if (this.since === null) this.since = now;
+		this.frames++;
 		if (now - this.since >= 1000) {
 			this.fps = Math.round(this.frames * 1000 / (now - this.since));
 			this.frames = 0;
@@ -46,7 +47,7 @@ export class StatusLine {
 	}
 
 	show() {
-		const parts = [this.state, `scene ${this.scene}`, `${this.fps} frames/s`];
+		const parts = [this.state, `scene ${this.scene}`, `${this.fps ?? '…'} frames/s`];
 		if (this.clients) {
 			const { viewers, controllers } = this.clients;
 			parts.push(`${viewers} viewer${viewers === 1 ? '' : 's'}`);
