@@ -1,4 +1,4 @@
-"""The pages the server serves: the index, the viewer's files and its npm dependencies."""
+"""The pages' routes: the viewer's files and its npm dependencies, and nothing else."""
 
 from __future__ import annotations
 
@@ -6,7 +6,6 @@ import http.client
 
 import pytest
 
-from .conftest import open_page, wait_until
 
 
 def raw_get(server, path):
@@ -33,12 +32,3 @@ def test_the_viewer_and_its_dependencies_are_served(server, path, kind):
 def test_nothing_outside_the_served_folders_is_reachable(server, path):
     status, _, body = raw_get(server, path)
     assert status == 404 and b"vp-server" not in body
-
-
-def test_the_index_lists_the_scenes_with_links_to_watch(browser, pages, server, scene_name):
-    server.get(f"/api/scenes")  # the default scene is there from the start
-    page = open_page(browser, pages, f"{server.http}/")
-    wait_until(page, "() => document.querySelectorAll('#scenes tbody tr').length > 0")
-    row = page.locator("#scenes tbody tr", has_text="default").first
-    assert row.locator("a", has_text="watch").get_attribute("href") == "/view?scene=default"
-    assert "control" in row.inner_text()

@@ -1,0 +1,13 @@
+"""The index page in a real browser: the scenes the server runs, with links to watch them."""
+
+from __future__ import annotations
+
+from .conftest import open_page, wait_until
+
+
+def test_the_index_lists_the_scenes_with_links_to_watch(browser, pages, server):
+    page = open_page(browser, pages, f"{server.http}/")
+    wait_until(page, "() => document.querySelectorAll('#scenes tbody tr').length > 0")
+    row = page.locator("#scenes tbody tr", has_text="default").first
+    assert row.locator("a", has_text="watch").get_attribute("href") == "/view?scene=default"
+    assert "control" in row.inner_text()
