@@ -81,9 +81,12 @@ def test_viewers_come_back_after_a_server_restart(browser, pages):
     own = start_server("--no-demo")
     try:
         page = open_viewer(browser, pages, own, "scene=default")
-        with vp.Scene(own.ws) as client:
-            vp.Box(scene=client)
-            client.sync()
+        client = vp.Scene(own.ws)
+        robot = vp.Robot(scene=client)
+        robot.attach_chain(vp.MotorZ(scene=client), vp.Box(scene=client))
+        robot.add_gui("Before")
+        client.sync()
+        wait_until(page, "() => document.querySelectorAll('.lil-gui').length === 1")
         stop_server(own)
         wait_until(page, "() => document.getElementById('status').textContent"
                          ".startsWith('reconnecting')")
@@ -92,6 +95,8 @@ def test_viewers_come_back_after_a_server_restart(browser, pages):
         wait_until(page, "() => document.getElementById('status').textContent"
                          ".startsWith('connected')")
         assert page.evaluate("() => VP.objects.size") == 0  # the fresh server's scene
+        assert page.evaluate("() => document.querySelectorAll('.lil-gui').length") == 0
+        client.close()
     finally:
         stop_server(own)
 

@@ -12,7 +12,6 @@ export function makeHandlers(view) {
 		},
 		snapshot(message) {
 			motion.clear();
-			lasers.clear();
 			tree.clear();
 			tree.add(message.nodes);
 			overlays.reset(message.contacts);

@@ -39,10 +39,6 @@ export class Lasers {
 		this.beams.delete(id);
 	}
 
-	clear() {
-		for (const id of [...this.beams.keys()]) this.drop(id);
-	}
-
 	// A frame's sensor readings; true when a beam changed length.
 	readings(sensors) {
 		let changed = false;

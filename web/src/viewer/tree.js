@@ -20,9 +20,9 @@ export class SceneTree {
 
 	emit(event, ...args) { for (const listener of this.listeners[event]) listener(...args); }
 
-	// Forget everything (a new snapshot follows).
+	// Forget everything (a new snapshot follows); listeners hear of every removal.
 	clear() {
-		for (const id of [...this.objects.keys()]) this.drop(id);
+		this.remove([...this.objects.keys()]);
 	}
 
 	// Add described nodes; parents may come after their children in the list.
