@@ -37,7 +37,8 @@ def main(minutes: float) -> list[dict[str, float]]:
         scene = vp.connect(server.ws, scene="soak")
         with sync_playwright() as playwright:
             browser = playwright.chromium.launch(executable_path=CHROMIUM,
-                                                 args=[*FLAGS, "--enable-precise-memory-info"])
+                                                 args=[*FLAGS, "--enable-precise-memory-info",
+                                                       "--js-flags=--expose-gc"])
             page = browser.new_context(viewport={"width": 480, "height": 320}).new_page()
             page.goto(f"{server.http}/view?scene=soak&touch-color=red")
             page.wait_for_function("() => window.VP && VP.snapshots > 0")
