@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import time
 from collections import deque
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 NodeState = dict[str, Any]
 ContactEvent = tuple[str, str, str]  # "begin" or "end", then the pair's two ids
@@ -15,14 +15,16 @@ _NON_FINITE = {"Infinity": math.inf, "-Infinity": -math.inf, "NaN": math.nan}
 class Mirror:
     """Nodes by id (as the server describes them), camera, clock, contacts and readings.
 
-    Contact changes are also queued in ``events`` until the client's own thread takes
-    them, so that callbacks never run on the thread that reads the socket.
+    Contact changes that ``wants(id)`` says someone listens to (for either id) are also
+    queued in ``events`` until the client's own thread takes them, so that callbacks never
+    run on the thread that reads the socket.
 
     Not thread-safe on its own: the :class:`~virtual_prosthetics.scene.Scene` holds a
     lock around every use.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, wants: Callable[[str], bool] = lambda node_id: True) -> None:
+        self.wants = wants
         self.nodes: dict[str, NodeState] = {}
         self.camera: dict[str, list[float]] = {}
         self.time = 0.0
@@ -73,7 +75,8 @@ class Mirror:
             return
         for kind in ("begin", "end"):
             for a, b in changes[kind]:
-                self.events.append((kind, a, b))
+                if self.wants(a) or self.wants(b):
+                    self.events.append((kind, a, b))
         self.contacts.difference_update(tuple(p) for p in changes["end"])
         self.contacts.update(tuple(p) for p in changes["begin"])  # type: ignore[misc]
 

@@ -80,6 +80,13 @@ class Part(Posed):
         self._call("attachToSlot", parent, slot)
         return self
 
+    @property
+    def hears_contacts(self) -> bool:
+        """True when a subclass overrides ``begin_contact`` or ``end_contact`` (only then
+        does the client keep this part's contact changes for them)."""
+        cls = type(self)
+        return cls.begin_contact is not Part.begin_contact or cls.end_contact is not Part.end_contact
+
     def begin_contact(self, other: Node) -> None:
         """Manual ``beginContact(otherPart)``: override to react to a new contact."""
 

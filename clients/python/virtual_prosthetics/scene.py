@@ -55,7 +55,7 @@ class Scene:
 
     def __init__(self, url: str = "ws://127.0.0.1:8000", scene: str = "default",
                  role: str = "controller", timeout: float = 10.0) -> None:
-        self.mirror = Mirror()
+        self.mirror = Mirror(self._listens)
         self.lock = threading.RLock()
         self.objects: dict[str, Node] = {}
         self.hello: dict[str, Any] = {}
@@ -158,6 +158,10 @@ class Scene:
         if known and node_id.startswith(f"{self.client_id}."):
             return self.proxy(node_id)
         return node_id
+
+    def _listens(self, node_id: str) -> bool:
+        """Whether this client's object ``node_id`` overrides a contact callback."""
+        return getattr(self.objects.get(node_id), "hears_contacts", False)
 
     def dispatch_contacts(self) -> None:
         """Call ``begin_contact``/``end_contact`` of this client's parts for every contact

@@ -116,3 +116,14 @@ def test_reading_a_deleted_sensor_raises_a_clear_error(scene):
     assert caught.value.code == "unknown_object" and "was deleted" in caught.value.message
     with pytest.raises(TypeError, match="needs a part or 'ground'"):
         vp.Sensor().sense_object(vp.Robot())
+
+
+def test_only_parts_with_callbacks_keep_contact_changes(scene):
+    plain, listening = vp.Box(0.5, 0.5, 0.5), Recorder(0.5, 0.5, 0.5)
+    plain.set_position(-2, 0, 0)
+    listening.set_position(2, 0, 0)
+    scene.sync()
+    eventually(lambda: (plain.id, "ground") in scene.mirror.contacts
+               and (listening.id, "ground") in scene.mirror.contacts)
+    assert [event[1] for event in scene.mirror.events] == [listening.id]  # nothing piles up
+    assert not plain.hears_contacts and listening.hears_contacts
