@@ -45,7 +45,10 @@ def robot_report(robot: Robot) -> dict[str, Any]:
     return {**robot_summary(robot), "quaternion": list(robot.quaternion),
             "rotation": list(rotation), "gui": robot.gui,
             "parts": [{"id": p.id, "type": p.type_name,
-                       "parent": p.parent.id if p.parent else None} for p in robot.get_parts()],
+                       "parent": p.parent.id if p.parent else None,
+                       "world": {"position": list(p.world_pose()[0]),
+                                 "quaternion": list(p.world_pose()[1])}}
+                      for p in robot.get_parts()],
             "motors": [motor_report(m, i) for i, m in enumerate(robot.get_motors())],
             "sensors": [s.id for s in robot.get_sensors()]}
 

@@ -41,6 +41,9 @@ def test_three_viewers_follow_a_script_and_draw_the_robot_where_the_server_has_i
     motor.set_angle(-1.0)  # about Z: the box leans towards +X
     for page in viewers:
         wait_until(page, "(id) => VP.angle(id) === -1", motor.id)
+    report = server.get(f"/api/scenes/{scene_name}/robots/{robot.id}")
+    [box_now] = [part["world"]["position"] for part in report["parts"] if part["id"] == box.id]
+    assert box_now == pytest.approx([0.5 * math.sin(1), 0.5 * math.cos(1), 0])
     angles = [page.evaluate("(id) => VP.angle(id)", motor.id) for page in viewers]
     assert angles == [-1.0, -1.0, -1.0]
     wait_until(viewers[0], "() => document.getElementById('status').textContent"
@@ -48,7 +51,7 @@ def test_three_viewers_follow_a_script_and_draw_the_robot_where_the_server_has_i
     for page in viewers:
         settled(page, motor.id, -1.0)
         picture = Picture(page.screenshot())
-        leaning = project((0.5 * math.sin(1), 0.5 * math.cos(1), 0), *CAMERA, picture.size)
+        leaning = project(box_now, *CAMERA, picture.size)  # where the server has the box
         assert reddish(picture.at(leaning)), picture.at(leaning)
         assert background_like(picture.at(standing)), picture.at(standing)
 

@@ -32,6 +32,8 @@ def test_robot_report_lists_motors_in_order(server, scene_name):
         assert {"id", "index", "type", "axis", "min", "max", "angle", "name", "flipped"} <= set(motors[0])
         assert [m["angle"] for m in motors[9:12]] == [-0.4] * 3
         assert motors[0]["type"] == "MotorX" and motors[0]["flipped"] is False
+        palm = report["parts"][0]
+        assert palm["type"] == "EdgedPalm" and palm["world"]["position"] == [1, 2, 3]
         summary = server.get(f"/api/scenes/{scene_name}")
         assert summary["robots"] == 1 and summary["clients"] == 1
         assert (summary["viewers"], summary["controllers"]) == (0, 1)
