@@ -25,7 +25,7 @@ export class Overlays {
 			lines.renderOrder = 1;
 			lines.name = 'envelope';
 			shape.add(lines);
-			if (!object.userData.shape.children.some((mesh) => mesh.geometry === envelope)) envelope.dispose();
+			if (!shape.children.some((mesh) => mesh.geometry === envelope)) envelope.dispose();  // made for this
 		}
 		if (this.options.showSlots && node.type === 'Slot') object.add(slotMarker());
 		if (this.touching.has(node.id)) this.paint(object, true);

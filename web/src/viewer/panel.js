@@ -28,7 +28,7 @@ export class MotorPanels {
 		this.editable = editable;
 		this.setAngle = setAngle;
 		this.showGesture = showGesture;
-		this.panels = new Map();   // robot id -> {gui, sliders: Map motor id -> controller}
+		this.panels = new Map();   // robot id -> {gui, sliders: Map motor object -> slider, values}
 		this.stale = false;
 		const refresh = () => { this.stale = true; };
 		tree.on('added', refresh);
