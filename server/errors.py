@@ -26,12 +26,38 @@ Hierarchy::
     └── InternalError            internal       a server fault (a bug): reported, not hidden
 
 The wire form (``{"op": "error", "id", "code", "message", "details"}``) is defined in
-``protocol/schema/messages.json``; :meth:`VPError.to_wire` produces it.
+``protocol/schema/protocol.json``; :meth:`VPError.to_wire` produces it. Whatever a client
+sent, an error stays small: messages are cut at ``MAX_MESSAGE`` characters, detail strings
+at ``MAX_DETAIL``, and values a client sent are shown through :func:`show`.
 """
 
 from __future__ import annotations
 
 from typing import Any
+
+MAX_MESSAGE = 500
+MAX_DETAIL = 120
+
+
+def show(value: Any) -> str:
+    """A short, safe rendering of a value a client sent (never deep, never long)."""
+    if isinstance(value, bool) or value is None:
+        return "true" if value is True else "false" if value is False else "null"
+    if isinstance(value, int) and abs(value) >= 10 ** 15:
+        return f"a {len(str(abs(value))) if abs(value) < 10 ** 4000 else 'huge'}-digit integer"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return repr(value) if len(value) <= 40 else repr(value[:37]) + f"... ({len(value)} characters)"
+    if isinstance(value, dict):
+        return f"an object with {len(value)} key{'s' * (len(value) != 1)}"
+    if isinstance(value, list):
+        return f"an array of {len(value)} item{'s' * (len(value) != 1)}"
+    return type(value).__name__
+
+
+def _cut(text: str, limit: int) -> str:
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 class VPError(Exception):
@@ -47,12 +73,19 @@ class VPError(Exception):
     def to_wire(self, request_id: int | None = None, op: str | None = None) -> dict[str, Any]:
         """The error message that answers a request (``request_id`` None: fire-and-forget)."""
         wire: dict[str, Any] = {"op": "error", "id": request_id, "code": self.code,
-                                "message": self.message}
+                                "message": _cut(self.message, MAX_MESSAGE)}
         if op is not None:
             wire["request"] = op
         if self.details:
-            wire["details"] = self.details
+            wire["details"] = self.wire_details()
         return wire
+
+    def wire_details(self) -> dict[str, Any]:
+        """The details, each a short string, a number, a boolean or null."""
+        return {k: _cut(v, MAX_DETAIL) if isinstance(v, str)
+                else v if isinstance(v, (bool, float)) or v is None
+                else v if isinstance(v, int) and abs(v) < 2 ** 53 else show(v)
+                for k, v in self.details.items()}
 
 
 class ProtocolError(VPError):
@@ -132,6 +165,8 @@ class Forbidden(VPError):
 
 
 class LimitExceeded(VPError):
+    """A limit of :mod:`server.core.limits` was reached: ``details.limit`` names it."""
+
     code = "limit_exceeded"
 
 

@@ -6,10 +6,11 @@ table exported for the clients (``python -m server.core.api_export``); a test fa
 it drifts.
 
 Parameter kinds (how each argument is checked, see :mod:`server.core.arguments`):
-``number`` finite number · ``size`` finite number ≥ 0 · ``integer`` whole number ·
+``number`` finite number · ``size`` 0.001 to 1000 (metres) · ``integer`` whole number ·
 ``limit`` number or ±Infinity · ``angle`` number, ±Infinity (clamped), null or NaN
 (ignored) · ``bool`` · ``string`` · ``color`` CSS colour name, #hex or 0xRRGGBB number ·
-``axis`` 'x', 'y' or 'z' · ``order`` an Euler order · ``point`` [x, y, z] or x, y, z ·
+``axis`` 'x', 'y' or 'z' · ``order`` an Euler order · ``point`` [x, y, z] or x, y, z, each
+within ±100 000 ·
 ``node`` a robot or part reference · ``part`` a part reference · ``slot`` slot index or
 Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) ·
 ``contact`` a part reference or "ground".

@@ -11,8 +11,9 @@ import math
 import re
 from typing import Any, Callable, Sequence
 
-from ..errors import BadArguments, OutOfRange, WrongType
+from ..errors import BadArguments, OutOfRange, WrongType, show
 from .api import REQUIRED, Param
+from .limits import MAX_COORDINATE, MAX_SIZE, MIN_SIZE
 from .math3d import EULER_ORDERS, Vec3
 from .node import Node, Slot
 from .parts import Part
@@ -23,7 +24,7 @@ from .wire import NON_FINITE
 Resolver = Callable[[str], Node]
 
 MAX_STRING = 200
-_COLOR = re.compile(r"^(#[0-9a-fA-F]{3,8}|[a-zA-Z]{3,40})$")
+_COLOR = re.compile(r"#[0-9a-fA-F]{3,8}|[a-zA-Z]{3,40}")
 
 
 def bind(params: Sequence[Param], raw: Sequence[Any], resolve: Resolver, where: str) -> list[Any]:
@@ -76,14 +77,20 @@ def _point(param: Param, raw: Sequence[Any], position: int, where: str) -> tuple
 def _vector(items: list[Any], label: str) -> Vec3:
     if len(items) != 3:
         raise BadArguments(f"{label}: a point needs 3 numbers, got {len(items)}")
-    return tuple(_number(item, label) for item in items)  # type: ignore[return-value]
+    point = tuple(_number(item, label) for item in items)
+    if any(abs(c) > MAX_COORDINATE for c in point):
+        raise OutOfRange(f"{label}: coordinates lie within ±{MAX_COORDINATE:g} m, got "
+                         f"{', '.join(show(c) for c in point)}")
+    return point  # type: ignore[return-value]
 
 
 def _number(value: Any, label: str, allow: tuple[str, ...] = ()) -> float:
     if isinstance(value, str) and value in allow:
         return NON_FINITE[value]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise WrongType(f"{label}: expected a number, got {_show(value)}")
+        raise WrongType(f"{label}: expected a number, got {show(value)}")
+    if isinstance(value, int) and abs(value) > 2 ** 53:
+        raise OutOfRange(f"{label}: {show(value)} is too large")
     if not math.isfinite(value):
         raise OutOfRange(f"{label}: {value} is not a finite number")
     return float(value)
@@ -95,8 +102,9 @@ def _coerce(param: Param, value: Any, resolve: Resolver, label: str) -> Any:
 
 def _size(value: Any, resolve: Resolver, label: str) -> float:
     number = _number(value, label)
-    if number < 0:
-        raise OutOfRange(f"{label}: a size cannot be negative, got {number}")
+    if not MIN_SIZE <= number <= MAX_SIZE:
+        raise OutOfRange(f"{label}: a size lies between {MIN_SIZE:g} and {MAX_SIZE:g} m, "
+                         f"got {number:g}")
     return number
 
 
@@ -109,13 +117,13 @@ def _integer(value: Any, resolve: Resolver, label: str) -> int:
 
 def _bool(value: Any, resolve: Resolver, label: str) -> bool:
     if not isinstance(value, bool):
-        raise WrongType(f"{label}: expected true or false, got {_show(value)}")
+        raise WrongType(f"{label}: expected true or false, got {show(value)}")
     return value
 
 
 def _string(value: Any, resolve: Resolver, label: str) -> str:
     if not isinstance(value, str):
-        raise WrongType(f"{label}: expected a string, got {_show(value)}")
+        raise WrongType(f"{label}: expected a string, got {show(value)}")
     if len(value) > MAX_STRING:
         raise OutOfRange(f"{label}: at most {MAX_STRING} characters, got {len(value)}")
     return value
@@ -124,15 +132,15 @@ def _string(value: Any, resolve: Resolver, label: str) -> str:
 def _color(value: Any, resolve: Resolver, label: str) -> str | int:
     if isinstance(value, int) and not isinstance(value, bool) and 0 <= value <= 0xFFFFFF:
         return value
-    if isinstance(value, str) and _COLOR.match(value):
+    if isinstance(value, str) and _COLOR.fullmatch(value):
         return value
-    raise WrongType(f"{label}: expected a CSS colour name, #hex or 0xRRGGBB, got {_show(value)}")
+    raise WrongType(f"{label}: expected a CSS colour name, #hex or 0xRRGGBB, got {show(value)}")
 
 
 def _choice(options: Sequence[str]) -> Callable[[Any, Resolver, str], str]:
     def check(value: Any, resolve: Resolver, label: str) -> str:
         if value not in options:
-            raise OutOfRange(f"{label}: expected one of {', '.join(options)}, got {_show(value)}")
+            raise OutOfRange(f"{label}: expected one of {', '.join(options)}, got {show(value)}")
         return value
     return check
 
@@ -143,7 +151,7 @@ def _reference(*types: type[Node]) -> Callable[[Any, Resolver, str], Node]:
     def check(value: Any, resolve: Resolver, label: str) -> Node:
         if not (isinstance(value, dict) and set(value) == {"ref"} and isinstance(value["ref"], str)):
             raise WrongType(f"{label}: expected a {names} reference {{\"ref\": id}}, "
-                            f"got {_show(value)}")
+                            f"got {show(value)}")
         node = resolve(value["ref"])
         if not isinstance(node, types):
             raise WrongType(f"{label}: {node.id} is a {node.type_name}, not a {names}")
@@ -187,11 +195,6 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "laser": _laser,
     "contact": _contact,
 }
-
-
-def _show(value: Any) -> str:
-    text = repr(value)
-    return text if len(text) <= 40 else text[:37] + "..."
 
 
 KINDS: frozenset[str] = frozenset(_KINDS) | {"point"}

@@ -1,14 +1,37 @@
 """Contacts: which pairs of physical parts (and the ground) touch, and how that changes.
 
-A pair is two ids in sorted order; the ground's id is ``"ground"``. The book holds the
-pairs announced at the last tick, so clients see every change exactly once, in order.
+A pair is two ids in sorted order; the ground's id is ``"ground"``. The
+:class:`ContactTracker` keeps the touching pairs up to date as bodies move: only pairs
+with a moved body are measured, only when their boxes overlap, and at most
+``contact_tests`` of them per tick; moved bodies beyond that wait for the next tick
+(frames say how many under ``limited``). However crowded a scene is, a tick's work is
+bounded. The :class:`ContactBook` holds the pairs announced at the last tick, so clients
+see every change exactly once, in order.
 """
 
 from __future__ import annotations
 
-from typing import Iterable
+from typing import Iterable, Protocol
+
+import numpy as np
+
+from .physics import GROUND, TOUCH_TOLERANCE, Vec3
 
 Pair = tuple[str, str]
+_BLOCK = 256  # bodies whose candidates are found in one array operation
+
+
+class Bodies(Protocol):
+    """What the tracker needs of the physics world."""
+
+    def aabb(self, key: str) -> tuple[Vec3, Vec3]: ...
+
+    def touching(self, key_a: str, key_b: str) -> bool: ...
+
+
+def pair(a: str, b: str) -> Pair:
+    """Two ids as a pair (sorted)."""
+    return (a, b) if a < b else (b, a)
 
 
 class Overlaps:
@@ -25,6 +48,131 @@ class Overlaps:
     def of(self, node_id: str) -> list[str]:
         """What ``node_id`` touches, sorted."""
         return self._partners.get(node_id, [])
+
+
+class ContactTracker:
+    """The touching pairs, kept current within a budget of pair tests per update."""
+
+    def __init__(self, bodies: Bodies, tests_per_update: int, max_pairs: int) -> None:
+        self._bodies = bodies
+        self._budget = tests_per_update
+        self._max_pairs = max_pairs
+        self._rows: dict[str, int] = {}
+        self._keys: list[str] = []
+        self._low = np.empty((0, 3))
+        self._high = np.empty((0, 3))
+        self._partners: dict[str, set[str]] = {}
+        self._count = 0
+        self._dirty: dict[str, None] = {}  # moved bodies, in the order they moved
+        self.unrecorded = 0  # touching pairs left out at the last update (max_pairs)
+        self.tests = 0       # pair tests of the last update
+        self._snapshot: Overlaps | None = Overlaps(())
+
+    # --- bodies --------------------------------------------------------------------------
+
+    def placed(self, key: str) -> None:
+        """A body was added or moved: its contacts must be measured again."""
+        low, high = self._bodies.aabb(key)
+        row = self._rows.get(key)
+        if row is None:
+            row = self._rows[key] = len(self._keys)
+            self._keys.append(key)
+            self._low = np.vstack([self._low, low]) if row else np.array([low], dtype=float)
+            self._high = np.vstack([self._high, high]) if row else np.array([high], dtype=float)
+        else:
+            self._low[row], self._high[row] = low, high
+        self._dirty[key] = None
+
+    def removed(self, key: str) -> None:
+        """A body left the world: its pairs end now."""
+        row = self._rows.pop(key)
+        last = len(self._keys) - 1
+        if row != last:  # the last row takes the freed place
+            moved = self._keys[last]
+            self._keys[row], self._rows[moved] = moved, row
+            self._low[row], self._high[row] = self._low[last], self._high[last]
+        self._keys.pop()
+        self._low, self._high = self._low[:last], self._high[:last]
+        for other in list(self._partners.get(key, ())):
+            self._set(key, other, False)
+        self._dirty.pop(key, None)
+
+    # --- measuring -----------------------------------------------------------------------
+
+    @property
+    def deferred(self) -> int:
+        """Moved bodies whose contacts are not measured yet."""
+        return len(self._dirty)
+
+    def update(self) -> None:
+        """Measure the pairs of moved bodies, in the order they moved, within the budget."""
+        self.tests = self.unrecorded = 0
+        while self._dirty and (self.tests == 0 or self.tests < self._budget):
+            keys = list(self._dirty)[:_BLOCK]
+            for key, candidates in zip(keys, self._candidates(keys)):
+                waiting = [c for c in candidates if c in self._dirty and c != key]
+                tests = len(candidates) - len(waiting)
+                if self.tests and self.tests + tests > self._budget:
+                    return
+                del self._dirty[key]
+                self._measure(key, candidates, skip=set(waiting))
+
+    def settle(self, key: str) -> None:
+        """Measure every pair of one body now (an exact read of its contacts)."""
+        if key in self._rows:
+            [candidates] = self._candidates([key])
+            self._dirty.pop(key, None)
+            self._measure(key, candidates, skip=set())
+
+    def _measure(self, key: str, candidates: list[str], skip: set[str]) -> None:
+        near = set(candidates)
+        for other in list(self._partners.get(key, ())):
+            if other not in near and other not in skip:
+                self._set(key, other, False)
+        for other in candidates:
+            if other not in skip:
+                self.tests += 1
+                self._set(key, other, self._bodies.touching(key, other))
+
+    def _candidates(self, keys: list[str]) -> list[list[str]]:
+        """For each body, the bodies whose boxes overlap its box, and the ground if near."""
+        rows = np.array([self._rows[k] for k in keys])
+        low, high = self._low[rows], self._high[rows]
+        tolerance = TOUCH_TOLERANCE
+        overlap = np.all(self._low[None, :, :] <= high[:, None, :] + tolerance, axis=2) & \
+            np.all(self._high[None, :, :] >= low[:, None, :] - tolerance, axis=2)
+        overlap[np.arange(len(keys)), rows] = False
+        found = [[self._keys[j] for j in np.flatnonzero(line)] for line in overlap]
+        for i, bottom in enumerate(low[:, 1]):
+            if bottom <= tolerance:
+                found[i].append(GROUND)
+        return found
+
+    def _set(self, a: str, b: str, touching: bool) -> None:
+        partners = self._partners
+        if touching == (b in partners.get(a, ())):
+            return
+        if touching:
+            if self._count >= self._max_pairs:
+                self.unrecorded += 1
+                return
+            partners.setdefault(a, set()).add(b)
+            partners.setdefault(b, set()).add(a)
+            self._count += 1
+        else:
+            for x, y in ((a, b), (b, a)):
+                partners[x].discard(y)
+                if not partners[x]:
+                    del partners[x]
+            self._count -= 1
+        self._snapshot = None
+
+    def overlaps(self) -> Overlaps:
+        """The pairs touching as far as measured."""
+        if self._snapshot is None:
+            self._snapshot = Overlaps(pair(a, b) for a, others in self._partners.items()
+                                      for b in others if a < b)
+        return self._snapshot
 
 
 class ContactBook:

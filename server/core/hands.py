@@ -21,7 +21,9 @@ class Hand(Robot):
     """A robot with five fingers (thumb first) and finger-level motor groups.
 
     Subclasses say which motor indices spread and flex each finger; the parts inside
-    get ids ``<hand>/<k>`` so that every client can address them.
+    get ids ``<hand>/<k>`` so that every client can address them. The motors are those
+    the hand was built with: a motor deleted or moved to another robot is skipped, so a
+    hand method never turns a motor of another finger (or of another robot).
     """
 
     spread_thumb: Callable[[float], float] = staticmethod(lambda a: a)
@@ -30,6 +32,7 @@ class Hand(Robot):
         super().__init__(scene, node_id)
         self.is_left = is_left
         self._parts_made = 0
+        self._built: list[Motor] = []
 
     def make(self, cls: type[Node], *args: Any) -> Any:
         """A new part of this hand with the next inner id."""
@@ -45,8 +48,13 @@ class Hand(Robot):
         """Indices of the motors that flex ``finger``."""
         return range(4 * finger + 1, 4 * finger + 4)
 
-    def _motor(self, index: int) -> Motor:
-        return self.get_motors()[index]
+    def built(self) -> None:
+        """Subclasses call this once their parts are in place: these are the hand's motors."""
+        self._built = list(self.get_motors())
+
+    def _motor(self, index: int) -> Motor | None:
+        motor = self._built[index]
+        return motor if motor.id in self.scene.nodes and motor.root() is self else None
 
     @staticmethod
     def _check_finger(index: int) -> None:
@@ -58,7 +66,7 @@ class Hand(Robot):
         """Manual ``flexFinger(index, angle)``: every flexing motor of the finger to -angle."""
         self._check_finger(index)
         for i in self.flex_indices(index):
-            self._motor(i).set_angle(None if angle is None else -angle)
+            self._turn(i, angle)
 
     def flex_fingers(self, angle: float | None) -> None:
         """Manual ``flexFingers(angle)``."""
@@ -68,7 +76,13 @@ class Hand(Robot):
     def spread_finger(self, index: int, angle: float | None) -> None:
         """Manual ``spreadFinger(index, angle)``: the finger's base motor to -angle."""
         self._check_finger(index)
-        self._motor(self.spread_index(index)).set_angle(None if angle is None else -angle)
+        self._turn(self.spread_index(index), angle)
+
+    def _turn(self, index: int, angle: float | None) -> None:
+        """Motor ``index`` of the hand to -angle, if the hand still has it."""
+        motor = self._motor(index)
+        if motor is not None:
+            motor.set_angle(None if angle is None else -angle)
 
     def spread_fingers(self, angle: float, include_thumb: bool = False) -> None:
         """Manual ``spreadFingers(angle, includeThumb=false)``."""
@@ -100,3 +114,4 @@ class EdgedHand(Hand):
                 self.make(MotorZ, *figures.EDGED_FLEX_MOTOR),
                 self.make(EdgedTip, 0.5),
             )
+        self.built()

@@ -34,6 +34,9 @@ class Motor(Part):
         super().__init__(scene, node_id)
         self.axis = axis
         self.min, self.max = (min, max) if min <= max else (max, min)
+        if self.min == math.inf or self.max == -math.inf:
+            raise OutOfRange(f"the limits of motor {node_id} leave no finite angle: "
+                             f"[{self.min}, {self.max}]", object=node_id)
         self.default = clamp(default, self.min, self.max)
         self.angle = self.default
         self.flipped = False

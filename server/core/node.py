@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, ClassVar, Iterator
 
-from ..errors import Cycle, OutOfRange
+from ..errors import Cycle, LimitExceeded, OutOfRange
 from . import math3d
 from .math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
 
@@ -49,13 +49,24 @@ class Node:
 
     def _link(self, parent: Node | None, index: int | None = None) -> None:
         """Move this node under ``parent`` (at ``index``, default last), journaled."""
-        if parent is not None and (parent is self or self.is_ancestor_of(parent)):
-            raise Cycle(f"cannot attach {self.id} below itself (to {parent.id})",
-                        object=self.id, parent=parent.id)
+        if parent is not None:
+            self._check_place(parent)
         old_parent = self.parent
         old_index = old_parent.children.index(self) if old_parent is not None else None
         self.scene.journal.record(lambda: self._relink(old_parent, old_index))
         self._relink(parent, index)
+
+    def _check_place(self, parent: Node) -> None:
+        """Refuse a parent that lies below this node, or one that makes the tree too deep."""
+        if parent is self or self.is_ancestor_of(parent):
+            raise Cycle(f"cannot attach {self.id} below itself (to {parent.id})",
+                        object=self.id, parent=parent.id)
+        limit = self.scene.limits.tree_depth
+        depth = parent.tree_depth() + self.tree_height()
+        if depth > limit:
+            raise LimitExceeded(f"attaching {self.id} to {parent.id} makes a tree {depth} "
+                                f"nodes deep; at most {limit}", limit="treeDepth", value=limit,
+                                object=self.id)
 
     def _relink(self, parent: Node | None, index: int | None) -> None:
         old_parent = self.parent
@@ -84,6 +95,20 @@ class Node:
             node = stack.pop()
             yield node
             stack.extend(reversed(node.children))
+
+    def tree_depth(self) -> int:
+        """Nodes from the root down to this one (a root is 1 deep)."""
+        depth, node = 1, self
+        while node.parent is not None:
+            depth, node = depth + 1, node.parent
+        return depth
+
+    def tree_height(self) -> int:
+        """Nodes from this one down to its deepest descendant (a leaf is 1 high)."""
+        height, level = 0, [self]
+        while level:
+            height, level = height + 1, [c for n in level for c in n.children]
+        return height
 
     def root(self) -> Node:
         """The topmost ancestor (the node itself when it has no parent)."""
@@ -124,9 +149,14 @@ class Node:
     def world_pose(self) -> Pose:
         """Pose in the scene, cached until this node or an ancestor changes."""
         if self._world is None:
-            local = self.local_pose()
-            self._world = local if self.parent is None else math3d.compose(
-                self.parent.world_pose(), local)
+            stale, node = [], self  # this node and its ancestors without a cached pose
+            while node is not None and node._world is None:
+                stale.append(node)
+                node = node.parent
+            for node in reversed(stale):
+                local = node.local_pose()
+                node._world = local if node.parent is None else math3d.compose(
+                    node.parent._world, local)  # type: ignore[arg-type]  # set just above
         return self._world
 
     def invalidate(self) -> Iterator[Node]:

@@ -4,10 +4,11 @@ Kinematic mode, as in 1.0: bodies are placed from the transform tree and never s
 Bullet skips pairs of mass-0 bodies, so every part body has mass 1; since the world is
 never stepped, nothing falls or gets pushed.
 
-Two Bullet habits are undone here so that contacts are those of the exact shapes:
-convex hulls are padded by a collision margin (``CONVEX_MARGIN``, subtracted again), and
-contact manifolds keep points from earlier poses after a body is teleported (so a pair
-that looks touching is measured afresh with ``getClosestPoints``).
+Contacts are those of the exact shapes: a pair is measured with ``getClosestPoints``
+(never through Bullet's contact manifolds, which keep points from earlier poses after a
+body is teleported, and whose pair cache grows with the square of overlapping bodies),
+and the collision margin that pads convex hulls (``CONVEX_MARGIN``) is subtracted again.
+Which pairs to measure is decided by :mod:`server.core.contacts`.
 """
 
 from __future__ import annotations
@@ -47,20 +48,44 @@ _BODY_MASS = 1.0
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
 TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
 _THREADED_RAYS = 256
+# Bodies are in group 2 and collide with group 1 only: Bullet's broadphase then never
+# pairs two bodies (no pair cache, no manifolds, whatever overlaps), while rays, whose
+# filter group is 1, still hit every body. Contacts are tested pair by pair instead.
+_BODY_GROUP, _BODY_MASK = 2, 1
+# PyBullet keeps about 1 kB for every body ever removed and never frees a shape; a fresh
+# client after this many removals gives the memory back.
+REBUILD_AFTER_REMOVALS = 10_000
 
 
 class PhysicsWorld:
-    """Collision bodies keyed by node id, plus the ground plane y = 0."""
+    """Collision bodies keyed by node id, plus the ground plane y = 0.
+
+    Bodies of equal geometry share one collision shape.
+    """
 
     def __init__(self) -> None:
-        self._client = pybullet.connect(pybullet.DIRECT)
+        self._client: int | None = None
         self._bodies: dict[str, int] = {}
+        self._placed: dict[str, tuple[dict[str, Any], Pose]] = {}
+        self.removals = 0
+        self.rebuilds = 0
+        self._connect()
+
+    def _connect(self) -> None:
+        self._client = pybullet.connect(pybullet.DIRECT)
         self._keys: dict[int, str] = {}
         self._padding: dict[int, float] = {}
+        self._shapes: dict[tuple, int] = {}
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, planeNormal=[0, 1, 0],
                                               physicsClientId=self._client)
-        ground = pybullet.createMultiBody(0, plane, physicsClientId=self._client)
-        self._keys[ground] = GROUND
+        self._ground = pybullet.createMultiBody(0, plane, physicsClientId=self._client)
+        self._filter(self._ground)
+        self._keys[self._ground] = GROUND
+        self._padding[self._ground] = 0.0
+
+    def _filter(self, body: int) -> None:
+        pybullet.setCollisionFilterGroupMask(body, -1, _BODY_GROUP, _BODY_MASK,
+                                             physicsClientId=self._client)
 
     def close(self) -> None:
         """Release the PyBullet client."""
@@ -76,30 +101,63 @@ class PhysicsWorld:
 
     def add(self, key: str, geometry: dict[str, Any], pose: Pose) -> None:
         """A new body for ``key`` shaped by a part geometry (sphere, box or convex)."""
-        shape = pybullet.createCollisionShape(physicsClientId=self._client,
-                                              **_shape_arguments(geometry))
-        body = pybullet.createMultiBody(_BODY_MASS, shape, basePosition=pose[0],
+        body = pybullet.createMultiBody(_BODY_MASS, self._shape(geometry), basePosition=pose[0],
                                         baseOrientation=pose[1], physicsClientId=self._client)
+        self._filter(body)
         self._bodies[key] = body
         self._keys[body] = key
         self._padding[body] = CONVEX_MARGIN if geometry["kind"] == "convex" else 0.0
+        self._placed[key] = (geometry, pose)
+
+    def _shape(self, geometry: dict[str, Any]) -> int:
+        arguments = _shape_arguments(geometry)
+        key = tuple((name, tuple(map(tuple, v)) if name == "vertices" else
+                     tuple(v) if isinstance(v, list) else v) for name, v in arguments.items())
+        shape = self._shapes.get(key)
+        if shape is None:
+            shape = self._shapes[key] = pybullet.createCollisionShape(
+                physicsClientId=self._client, **arguments)
+        return shape
 
     def remove(self, key: str) -> None:
         """Take the body of ``key`` out of the world."""
         body = self._bodies.pop(key)
-        del self._keys[body], self._padding[body]
+        del self._keys[body], self._padding[body], self._placed[key]
         pybullet.removeBody(body, physicsClientId=self._client)
+        self.removals += 1
 
     def move(self, key: str, pose: Pose) -> None:
         """Place the body of ``key`` at a world pose."""
         pybullet.resetBasePositionAndOrientation(self._bodies[key], pose[0], pose[1],
                                                  physicsClientId=self._client)
+        self._placed[key] = (self._placed[key][0], pose)
+
+    def needs_rebuild(self) -> bool:
+        """True when enough bodies were removed that a fresh client would free memory."""
+        return self.removals >= REBUILD_AFTER_REMOVALS or \
+            len(self._shapes) > 2 * len(self._bodies) + REBUILD_AFTER_REMOVALS // 10
+
+    def rebuild(self) -> None:
+        """Move every body into a fresh PyBullet client and release the old one."""
+        placed = self._placed
+        self.close()
+        self._bodies, self._placed = {}, {}
+        self._connect()
+        for key, (geometry, pose) in placed.items():
+            self.add(key, geometry, pose)
+        self.removals = 0
+        self.rebuilds += 1
 
     def pose(self, key: str) -> Pose:
         """The world pose PyBullet holds for ``key``."""
         position, orientation = pybullet.getBasePositionAndOrientation(
             self._bodies[key], physicsClientId=self._client)
         return tuple(position), tuple(orientation)
+
+    def aabb(self, key: str) -> tuple[Vec3, Vec3]:
+        """The world box around the body of ``key`` (its shape's margin included)."""
+        low, high = pybullet.getAABB(self._bodies[key], physicsClientId=self._client)
+        return tuple(low), tuple(high)
 
     def cast_rays(self, starts: Sequence[Vec3], ends: Sequence[Vec3]) -> list[tuple[str, float]]:
         """For each ray, the key hit first and the hit fraction ('' and 1.0 for a miss).
@@ -112,25 +170,14 @@ class PhysicsWorld:
                                      physicsClientId=self._client)
         return [(self._keys.get(hit[0], ""), hit[2]) for hit in hits]
 
-    def overlaps(self) -> set[tuple[str, str]]:
-        """Pairs of keys (sorted) whose exact shapes touch or intersect."""
-        client = self._client
-        pybullet.performCollisionDetection(physicsClientId=client)
-        nearest: dict[tuple[int, int], float] = {}
-        for point in pybullet.getContactPoints(physicsClientId=client):
-            pair = (point[1], point[2])
-            nearest[pair] = min(point[8], nearest.get(pair, point[8]))
-        pairs = set()
-        for (a, b), distance in nearest.items():
-            padding = self._padding.get(a, 0.0) + self._padding.get(b, 0.0)
-            if distance <= TOUCH_TOLERANCE - padding and self._touch(a, b, padding):
-                key_a, key_b = self._keys.get(a), self._keys.get(b)
-                if key_a and key_b and key_a != key_b:
-                    pairs.add((key_a, key_b) if key_a < key_b else (key_b, key_a))
-        return pairs
+    def touching(self, key_a: str, key_b: str) -> bool:
+        """True when the exact shapes of two bodies (or a body and the ground) touch.
 
-    def _touch(self, a: int, b: int, padding: float) -> bool:
-        """A fresh measure of a pair that looks touching (manifolds can hold stale points)."""
+        Convex shapes are padded by ``CONVEX_MARGIN``, which the distance is measured against.
+        """
+        a = self._ground if key_a == GROUND else self._bodies[key_a]
+        b = self._ground if key_b == GROUND else self._bodies[key_b]
+        padding = self._padding[a] + self._padding[b]
         points = pybullet.getClosestPoints(a, b, TOUCH_TOLERANCE, physicsClientId=self._client)
         return any(point[8] <= TOUCH_TOLERANCE - padding for point in points)
 

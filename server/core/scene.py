@@ -6,16 +6,19 @@ messages it returns; nothing here knows about sockets or event loops.
 
 from __future__ import annotations
 
+import logging
+from collections import Counter
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, Iterator
 
 from ..errors import DuplicateId, LimitExceeded, UnknownObject
 from . import figures
 from .changes import ChangeSet
-from .contacts import ContactBook, Overlaps
+from .contacts import ContactBook, ContactTracker, Overlaps
+from .ids import IdBook
 from .journal import Journal
+from .limits import DEFAULT, Limits
 from .math3d import Vec3
-from .messages import LIMITS
 from .node import Node
 from .physics import PhysicsWorld
 from .robot import Robot
@@ -26,19 +29,29 @@ from .wire import encode_numbers
 if TYPE_CHECKING:
     from .sensor import Sensor
 
-MAX_NODES = LIMITS["sceneObjects"]
+log = logging.getLogger(__name__)
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped")
+
+
+def owner_of(node_id: str) -> str:
+    """Who made an object: the part of its id before the first dot (``c7`` of ``c7.3/1``)."""
+    return node_id.partition(".")[0]
 
 
 class Scene:
     """Robots and parts in one PyBullet world, with time, sequence number and camera."""
 
-    def __init__(self, name: str = "default") -> None:
+    def __init__(self, name: str = "default", limits: Limits = DEFAULT) -> None:
         self.name = name
+        self.limits = limits
         self.nodes: dict[str, Node] = {}
-        self.retired: set[str] = set()
         self.journal = Journal()
+        self.ids = IdBook(self.journal, limits.client_names)
+        self.owned: Counter[str] = Counter()  # objects per owner
+        self.physical = 0  # physical parts, in the scene or not
         self.physics = PhysicsWorld()
+        self.tracker = ContactTracker(self.physics, limits.contact_tests,
+                                      limits.contact_pairs)
         self.time = 0.0
         self.seq = 0
         self.tree_version = 0
@@ -47,9 +60,9 @@ class Scene:
         self._pending = ChangeSet()
         self._recorders: list[ChangeSet] = [self._pending]
         self._physics_dirty: set[str] = set()
-        self.watches = Watches(self.journal, LIMITS["watchedSensors"])
+        self.watches = Watches(self.journal, limits.watched_sensors)
         self.contacts = ContactBook()  # as announced by the last tick
-        self._overlaps: Overlaps | None = None  # as the bodies are now
+        self.failures = 0  # ticks whose contacts or sensing failed (a bug; logged)
 
     def close(self) -> None:
         """Release the physics world."""
@@ -59,27 +72,53 @@ class Scene:
 
     def register(self, node: Node) -> None:
         """Add a newly made node (journaled): its id must be new to this scene."""
-        if node.id in self.nodes or node.id in self.retired:
+        if node.id in self.nodes:
             raise DuplicateId(f"id {node.id} is already in use in scene {self.name}",
                               object=node.id)
-        if len(self.nodes) >= MAX_NODES:
-            raise LimitExceeded(f"scene {self.name} holds the maximum of {MAX_NODES} objects")
+        self._check_room(node)
+        if "/" not in node.id:
+            self.ids.claim(node.id, self.name)
         self.nodes[node.id] = node
-        self.journal.record(lambda: self._drop(node.id))
+        self._count(node, 1)
+        self.journal.record(lambda: self._drop(node))
         for changes in self._recorders:
             changes.born[node.id] = None
         self._physics_dirty.add(node.id)
 
-    def _drop(self, node_id: str) -> None:
-        del self.nodes[node_id]
-        self._physics_dirty.add(node_id)
+    def _check_room(self, node: Node) -> None:
+        limits, owner = self.limits, owner_of(node.id)
+        if len(self.nodes) >= limits.scene_objects:
+            raise LimitExceeded(f"scene {self.name} holds the maximum of "
+                                f"{limits.scene_objects} objects", limit="sceneObjects",
+                                value=limits.scene_objects, object=node.id)
+        if self.owned[owner] >= limits.client_objects:
+            raise LimitExceeded(f"{owner} has the maximum of {limits.client_objects} objects "
+                                f"in scene {self.name}", limit="clientObjects",
+                                value=limits.client_objects, object=node.id)
+        if node.physical and self.physical >= limits.scene_bodies:
+            raise LimitExceeded(f"scene {self.name} holds the maximum of {limits.scene_bodies} "
+                                f"physical parts", limit="sceneBodies",
+                                value=limits.scene_bodies, object=node.id)
+
+    def _count(self, node: Node, step: int) -> None:
+        owner = owner_of(node.id)
+        self.owned[owner] += step
+        if not self.owned[owner]:
+            del self.owned[owner]
+        self.physical += step if node.physical else 0
+
+    def _drop(self, node: Node) -> None:
+        del self.nodes[node.id]
+        self._count(node, -1)
+        self._physics_dirty.add(node.id)
 
     def get(self, node_id: str) -> Node:
         """The node with this id, or :class:`UnknownObject`."""
         try:
             return self.nodes[node_id]
         except KeyError:
-            fate = "was deleted from" if node_id in self.retired else "is not in"
+            fate = "was deleted from" if self.ids.used(node_id) and node_id.split("/")[0] \
+            not in self.nodes else "is not in"
             raise UnknownObject(f"object {node_id} {fate} scene {self.name}",
                                 object=node_id) from None
 
@@ -89,17 +128,19 @@ class Scene:
             node.parent._drop_slot(node)
         node._link(None)
         for gone in list(node.walk()):
-            del self.nodes[gone.id]
-            self.retired.add(gone.id)
-            self._physics_dirty.add(gone.id)
+            self._drop(gone)
             for changes in self._recorders:
                 changes.died.add(gone.id)
             self.journal.record(lambda gone=gone: self._revive(gone))
 
     def _revive(self, node: Node) -> None:
         self.nodes[node.id] = node
-        self.retired.discard(node.id)
+        self._count(node, 1)
         self._physics_dirty.add(node.id)
+
+    def forget_owner(self, owner: str) -> None:
+        """An owner (a client that left) will never make objects again: drop its id records."""
+        self.ids.forget(owner)
 
     def roots(self) -> list[Node]:
         """Nodes without a parent, in the order they were made."""
@@ -167,19 +208,19 @@ class Scene:
         """Advance the clock, place the collision bodies and return this tick's messages.
 
         The messages are ``added`` (new nodes), ``frame`` (always: time, sequence number
-        and what changed) and ``removed``, in that order.
+        and what changed) and ``removed``, in that order. If reading the changes fails,
+        the tick raises with nothing lost: the next tick sends them. If contacts or
+        sensing fail, the frame goes out without them (and the failure is logged).
         """
-        self.time += dt
-        self.seq += 1
         delta = self.delta(self._pending)
         self._pending.clear()
-        began, ended = self.contacts.update(self.overlaps())
-        if began or ended:
-            delta["contacts"] = {"begin": [list(p) for p in began],
-                                 "end": [list(p) for p in ended]}
-        readings = self.watched_readings()
-        if readings:
-            delta["sensors"] = {i: reading.wire() for i, reading in readings.items()}
+        self.time += dt
+        self.seq += 1
+        try:
+            delta.update(self._sense())
+        except Exception:  # a bug: the scene keeps running, the log tells
+            self.failures += 1
+            log.exception("contacts or sensing of scene %s failed", self.name)
         messages = []
         if "added" in delta:
             messages.append({"op": "added", "seq": self.seq, "nodes": delta.pop("added")})
@@ -189,9 +230,23 @@ class Scene:
             messages.append({"op": "removed", "seq": self.seq, "ids": removed})
         return messages
 
+    def _sense(self) -> dict[str, Any]:
+        """This tick's contact changes, watched readings and the limits that held work back."""
+        out: dict[str, Any] = {}
+        began, ended = self.contacts.update(self.overlaps())
+        if began or ended:
+            out["contacts"] = {"begin": [list(p) for p in began], "end": [list(p) for p in ended]}
+        readings = self.watched_readings()
+        if readings:
+            out["sensors"] = {i: reading.wire() for i, reading in readings.items()}
+        limited = {"contactTests": self.tracker.deferred, "contactPairs": self.tracker.unrecorded}
+        if any(limited.values()):
+            out["limited"] = {k: v for k, v in limited.items() if v}
+        return out
+
     def sync_physics(self) -> None:
         """Create, move or remove collision bodies for every part that changed."""
-        physics = self.physics
+        physics, tracker = self.physics, self.tracker
         for node_id in self._physics_dirty:
             node = self.nodes.get(node_id)
             wanted = node is not None and node.physical and self.in_scene(node)
@@ -201,35 +256,47 @@ class Scene:
                 physics.add(node_id, node.geometry(), node.world_pose())
             elif node_id in physics:
                 physics.remove(node_id)
+                tracker.removed(node_id)
+                continue
             else:
                 continue
-            self._overlaps = None
+            tracker.placed(node_id)
         self._physics_dirty.clear()
+        if physics.needs_rebuild():
+            physics.rebuild()
 
     # --- contacts and sensors ------------------------------------------------------------
 
     def overlaps(self) -> Overlaps:
-        """The bodies that touch now (after placing every changed body)."""
+        """The pairs touching now, as far as one update's budget of tests measures."""
         self.sync_physics()
-        if self._overlaps is None:
-            self._overlaps = Overlaps(self.physics.overlaps())
-        return self._overlaps
+        self.tracker.update()
+        return self.tracker.overlaps()
 
-    def touching(self, part: Node | None) -> list[str]:
-        """Ids of what ``part`` touches now, sorted ("ground" for the ground)."""
-        return [] if part is None else list(self.overlaps().of(part.id))
+    def touching(self, part: Node | None, exact: bool = True) -> list[str]:
+        """Ids of what ``part`` touches, sorted ("ground" for the ground).
 
-    def read_sensors(self, sensors: list[Sensor]) -> dict[str, Reading]:
-        """Exact readings of ``sensors`` for the scene as it is now."""
+        Exact: measured now. Otherwise as of the last tick (watched readings use that).
+        """
+        if part is None:
+            return []
+        if exact:
+            self.sync_physics()
+            self.tracker.settle(part.id)
+        return list(self.tracker.overlaps().of(part.id))
+
+    def read_sensors(self, sensors: list[Sensor], exact: bool = True) -> dict[str, Reading]:
+        """Readings of ``sensors`` for the scene as it is now."""
         self.sync_physics()
-        return read_sensors(self.physics, sensors, lambda sensor: self.touching(sensor.host()))
+        return read_sensors(self.physics, sensors,
+                            lambda sensor: self.touching(sensor.host(), exact))
 
     def watched_readings(self) -> dict[str, Reading]:
         """Readings of every watched sensor (frames carry them); forgets deleted ones."""
         ids = self.watches.ids()
-        self.watches.forget(i for i in ids if i in self.retired)
+        self.watches.forget(i for i in ids if i not in self.nodes)
         sensors = [self.nodes[i] for i in ids if i in self.nodes]
-        return self.read_sensors(sensors)  # type: ignore[arg-type]  # only sensors are watched
+        return self.read_sensors(sensors, exact=False)  # type: ignore[arg-type]
 
     @staticmethod
     def in_scene(node: Node) -> bool:

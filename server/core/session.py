@@ -10,11 +10,11 @@ import logging
 import re
 from typing import Any
 
-from ..errors import Forbidden, ForeignId, InternalError, VPError
-from .messages import LIMITS, PROTOCOL_VERSION, check_client_message, decode
+from ..errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
+from .messages import PROTOCOL_VERSION, check_client_message, decode, encode, request_id
 from .operations import Operations
 from .physics import ENGINE
-from .scene import Scene
+from .scene import Scene, owner_of
 
 log = logging.getLogger(__name__)
 ROLES = ("controller", "viewer")
@@ -30,48 +30,59 @@ class Session:
         self.client_id = client_id
         self.role = role
         self.operations = Operations(scene, client_id)
-        self.owned: list[str] = []
-        self._own_id = re.compile(rf"^{re.escape(client_id)}\.[A-Za-z0-9_.:-]+$")
+        self._own_id = re.compile(rf"{re.escape(client_id)}\.[A-Za-z0-9_.:-]+")
 
     def hello(self, tick_rate: float) -> dict[str, Any]:
         """The first message a client receives."""
         return {"op": "hello", "protocol": PROTOCOL_VERSION, "client": self.client_id,
                 "role": self.role, "scene": self.scene.name, "time": self.scene.time,
-                "tickRate": tick_rate, "limits": dict(LIMITS), "engine": ENGINE}
+                "tickRate": tick_rate, "limits": self.scene.limits.wire(), "engine": ENGINE}
 
     def receive(self, text: str | bytes) -> list[dict[str, Any]]:
         """Apply every message in one WebSocket text message; the answers, in order."""
         try:
-            messages = decode(text)
+            messages = decode(text, self.scene.limits)
         except VPError as error:
             return [error.to_wire()]
         answers = (self.handle(message) for message in messages)
         return [answer for answer in answers if answer is not None]
 
+    def refuse(self, text: str | bytes, error: LimitExceeded) -> list[dict[str, Any]]:
+        """Answer every request in a text with ``error``, applying none (a rate limit)."""
+        try:
+            messages = decode(text, self.scene.limits)
+        except VPError as decode_error:
+            return [decode_error.to_wire()]
+        return [error.to_wire(request_id(m), _op_name(m)) for m in messages] or [error.to_wire()]
+
     def handle(self, message: Any) -> dict[str, Any] | None:
         """Apply one message; its answer (None for a fire-and-forget success)."""
-        request_id = _request_id(message)
-        op = message.get("op") if isinstance(message, dict) else None
+        answer_id, op = request_id(message), _op_name(message)
         try:
             check_client_message(message)
             self._authorize(message)
             with self.scene.recording() as changes, self.scene.journal.transaction():
                 result = self.operations.apply(message)
+                answer = self._answer(answer_id, result, changes)
         except VPError as error:
-            return error.to_wire(request_id, op if isinstance(op, str) else None)
+            return error.to_wire(answer_id, op)
         except Exception:  # a bug: the transaction was undone, the client is told
-            log.exception("internal error applying %r", message)
+            log.exception("internal error applying a %s request of %s", op, self.client_id)
             return InternalError("internal server error; nothing was changed").to_wire(
-                request_id, op)
-        self._own(message)
-        if request_id is None:
+                answer_id, op)
+        return answer
+
+    def _answer(self, answer_id: int | None, result: Any, changes: Any) -> dict[str, Any] | None:
+        """The ok answer, checked to be sendable (a failure undoes the request)."""
+        if answer_id is None:
             return None
-        answer: dict[str, Any] = {"op": "ok", "id": request_id}
+        answer: dict[str, Any] = {"op": "ok", "id": answer_id}
         if result is not None:
             answer["result"] = result
         delta = self.scene.delta(changes)
         if delta:
             answer["changes"] = delta
+        encode(answer)  # raises on a value JSON cannot carry, inside the transaction
         return answer
 
     def _authorize(self, message: dict[str, Any]) -> None:
@@ -80,30 +91,27 @@ class Session:
             if self.role == "viewer" and self.operations.mutates(op):
                 raise Forbidden(f"a viewer cannot {op['op']}; connect with role=controller",
                                 role=self.role)
-            if op["op"] == "create" and not self._own_id.match(op["object"]):
+            if op["op"] == "create" and not self._own_id.fullmatch(op["object"]):
                 raise ForeignId(f"new ids of this client look like {self.client_id}.<name>, "
                                 f"got {op['object']}", object=op["object"])
 
-    def _own(self, message: dict[str, Any]) -> None:
-        inner = message["ops"] if message["op"] == "batch" else [message]
-        self.owned.extend(op["object"] for op in inner if op["op"] == "create")
-
     def close(self) -> list[str]:
-        """The client left: delete what it created; the ids deleted at the top."""
-        self.scene.watches.drop_watcher(self.client_id)
+        """The client left: delete what it created (newest first); the ids deleted at the top."""
+        scene = self.scene
+        scene.watches.drop_watcher(self.client_id)
+        mine = [node_id for node_id in scene.nodes
+                if "/" not in node_id and owner_of(node_id) == self.client_id]
         deleted = []
-        for object_id in reversed(self.owned):
-            node = self.scene.nodes.get(object_id)
+        for object_id in reversed(mine):
+            node = scene.nodes.get(object_id)
             if node is not None:
-                self.scene.delete(node)
+                scene.delete(node)
                 deleted.append(object_id)
-        self.owned.clear()
+        scene.forget_owner(self.client_id)
         return deleted
 
 
-def _request_id(message: Any) -> int | None:
-    if isinstance(message, dict):
-        request_id = message.get("id")
-        if isinstance(request_id, int) and not isinstance(request_id, bool) and request_id >= 0:
-            return request_id
-    return None
+def _op_name(message: Any) -> str | None:
+    """The op a message names, when it is one of the protocol's (echoed in errors)."""
+    op = message.get("op") if isinstance(message, dict) else None
+    return op if isinstance(op, str) and len(op) <= 16 and op.isidentifier() else None

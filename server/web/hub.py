@@ -17,7 +17,7 @@ from .outbox import Outbox, Outgoing, SlowConsumer
 log = logging.getLogger(__name__)
 
 Animator = Callable[[Scene, float], None]
-SCENE_NAME = re.compile(r"^[A-Za-z0-9_-]{1,64}$")
+SCENE_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
 MAX_SCENES = 100
 
 
@@ -130,7 +130,7 @@ class Hubs:
         """The hub of a scene, made and started if it does not exist yet."""
         hub = self.scenes.get(name)
         if hub is None:
-            if not SCENE_NAME.match(name):
+            if not SCENE_NAME.fullmatch(name):
                 raise OutOfRange(f"scene names are 1-64 letters, digits, _ or -; got {name!r}")
             if len(self.scenes) >= MAX_SCENES:
                 raise LimitExceeded(f"the server runs the maximum of {MAX_SCENES} scenes")

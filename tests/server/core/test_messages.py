@@ -13,12 +13,12 @@ def test_decode_accepts_an_object_or_an_array():
 
 def test_oversize_text_is_refused_before_parsing():
     with pytest.raises(TooLarge):
-        messages.decode(" " * (messages.LIMITS["messageBytes"] + 1))
+        messages.decode(" " * (messages.DEFAULT.message_bytes + 1))
 
 
 def test_too_many_messages_in_one_text():
     with pytest.raises(LimitExceeded):
-        messages.decode("[" + ",".join(["{}"] * (messages.LIMITS["messagesPerText"] + 1)) + "]")
+        messages.decode("[" + ",".join(["{}"] * (messages.DEFAULT.messages_per_text + 1)) + "]")
 
 
 @pytest.mark.parametrize("text", ["NaN", "[Infinity]", '{"a": -Infinity}', "{", ""])

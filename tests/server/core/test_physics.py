@@ -1,4 +1,4 @@
-"""The collision world: exact contacts between padded Bullet shapes, batched rays."""
+"""The collision world: exact pair measures between padded Bullet shapes, batched rays."""
 
 import pytest
 
@@ -23,20 +23,25 @@ def world():
 def test_contacts_are_those_of_the_exact_shapes(world, shape, gap, touching):
     world.add("a", HULL, ((0, 5, 0), IDENTITY))
     world.add("b", shape, ((1 + gap, 5, 0), IDENTITY))
-    assert (("a", "b") in world.overlaps()) is touching
+    assert world.touching("a", "b") is touching and world.touching("b", "a") is touching
 
 
-def test_ground_takes_part(world):
+def test_the_ground_is_measured_like_a_body(world):
     world.add("hull", HULL, ((0, 0.5005, 0), IDENTITY))
     world.add("ball", {"kind": "sphere", "radius": 0.5}, ((3, 0.4995, 0), IDENTITY))
-    assert world.overlaps() == {("ball", GROUND)}
+    assert not world.touching("hull", GROUND) and world.touching("ball", GROUND)
 
 
-def test_removed_bodies_stop_touching(world):
-    world.add("a", CUBE, ((0, 0.4, 0), IDENTITY))
-    assert world.overlaps() == {("a", GROUND)}
-    world.remove("a")
-    assert world.overlaps() == set() and "a" not in world
+def test_bodies_of_one_geometry_share_a_shape_and_a_rebuild_keeps_them(world):
+    for k in range(50):
+        world.add(f"b{k}", CUBE, ((3 * k, 0.4, 0), IDENTITY))
+    world.add("h", HULL, ((0, 5, 0), IDENTITY))
+    assert len(world._shapes) == 2
+    world.remove("b0")
+    world.rebuild()
+    assert len(world) == 50 and "b0" not in world and world.rebuilds == 1
+    assert world.touching("b7", GROUND) and world.pose("h")[0] == (0, 5, 0)
+    assert world.cast_rays([(21, 10, 0)], [(21, 0, 0)])[0][0] == "b7"
 
 
 def test_rays_in_one_batch(world):

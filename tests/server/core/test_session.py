@@ -2,7 +2,7 @@
 
 import json
 
-from server.core.messages import LIMITS
+from server.core.limits import DEFAULT as LIMITS
 from server.core.session import Session
 
 
@@ -107,7 +107,7 @@ def test_viewers_may_watch_and_a_closed_client_stops_watching(scene):
 
 def test_watching_past_the_limit_fails_and_watches_nothing(scene):
     session = Session(scene, "c1")
-    count = LIMITS["watchedSensors"] + 1
+    count = LIMITS.watched_sensors + 1
     send(session, {"op": "batch", "ops": [{"op": "create", "object": f"c1.{k}",
                                            "type": "Sensor"} for k in range(count)]})
     [error] = send(session, {"op": "batch", "id": 1, "ops": [
