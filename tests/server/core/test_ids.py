@@ -39,7 +39,8 @@ def test_claims_are_journaled_and_forgotten_per_owner():
     assert book.used("c1.5/3") and book.used("c1.05")
     with pytest.raises(DuplicateId):
         book.claim("c1.5", "s")
+    book.claim("c1.leg", "s")
     with pytest.raises(LimitExceeded):
-        book.claim("c1.leg", "s")
+        book.claim("c1.hip", "s")
     book.forget("c1")
     assert book.cost() == 0 and not book.used("c1.5")
