@@ -4,13 +4,18 @@ from __future__ import annotations
 
 import argparse
 import logging
+import resource
 
 import uvicorn
 
+from .core.limits import DEFAULT, Limits
 from .demo import setup_diggers
 from .web.app import create_app
+from .web.guard import ConnectionCount, guarded_protocol
 
 WS_MAX_BYTES = 16 << 20  # beyond the protocol's 1 MiB: those get an answer, not a hang-up
+PING_SECONDS = 20.0  # a WebSocket whose peer does not answer a ping this long is closed
+log = logging.getLogger("vp-server")
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -22,15 +27,41 @@ def main(argv: list[str] | None = None) -> None:
                         help="start with an empty default scene (no Diggers)")
     parser.add_argument("--tick-rate", type=float, default=60.0,
                         help="scene ticks (frames) per second")
+    parser.add_argument("--limit", action="append", default=[], metavar="NAME=N",
+                        help=f"change a limit (repeatable); the limits and defaults: "
+                             f"{', '.join(f'{k}={v}' for k, v in DEFAULT.wire().items())}")
+    parser.add_argument("--ping-seconds", type=float, default=PING_SECONDS,
+                        help="ping WebSockets this often; close those that stay silent as long")
     parser.add_argument("--log-level", default="info",
                         choices=["critical", "error", "warning", "info", "debug"])
     args = parser.parse_args(argv)
     if not 1 <= args.tick_rate <= 1000:
         parser.error("--tick-rate must be between 1 and 1000")
+    try:
+        limits = DEFAULT.with_values(args.limit)
+    except ValueError as error:
+        parser.error(str(error))
     logging.basicConfig(level=args.log_level.upper())
-    app = create_app(tick_rate=args.tick_rate, setup=None if args.no_demo else setup_diggers)
-    uvicorn.run(app, host=args.host, port=args.port, ws_max_size=WS_MAX_BYTES,
-                log_level=args.log_level)
+    _raise_file_limit(limits)
+    app = create_app(tick_rate=args.tick_rate, setup=None if args.no_demo else setup_diggers,
+                     limits=limits)
+    uvicorn.run(app, host=args.host, port=args.port, log_level=args.log_level,
+                http=guarded_protocol(limits, ConnectionCount()), ws="websockets-sansio",
+                ws_max_size=WS_MAX_BYTES, ws_ping_interval=args.ping_seconds,
+                ws_ping_timeout=args.ping_seconds,
+                h11_max_incomplete_event_size=limits.header_bytes)
+
+
+def _raise_file_limit(limits: Limits) -> None:
+    """Open files enough for every allowed connection, or a warning that there are not."""
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    wanted = limits.connections + 256  # scenes, logs, the listening socket
+    if soft < wanted:
+        new = wanted if hard == resource.RLIM_INFINITY else min(wanted, hard)
+        resource.setrlimit(resource.RLIMIT_NOFILE, (new, hard))
+        if new < wanted:
+            log.warning("only %d open files allowed; fewer than %d connections will fit",
+                        new, limits.connections)
 
 
 if __name__ == "__main__":

@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import logging
 import re
+import time
 from typing import Any
 
 from ..errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
 from .messages import PROTOCOL_VERSION, check_client_message, decode, encode, request_id
 from .operations import Operations
 from .physics import ENGINE
+from .rates import TokenBucket
 from .scene import Scene, owner_of
 
 log = logging.getLogger(__name__)
@@ -30,6 +32,9 @@ class Session:
         self.client_id = client_id
         self.role = role
         self.operations = Operations(scene, client_id)
+        now = time.monotonic()
+        self._ops = TokenBucket(scene.limits.ops_per_second, now)
+        self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
         self._own_id = re.compile(rf"{re.escape(client_id)}\.[A-Za-z0-9_.:-]+")
 
     def hello(self, tick_rate: float) -> dict[str, Any]:
@@ -38,22 +43,36 @@ class Session:
                 "role": self.role, "scene": self.scene.name, "time": self.scene.time,
                 "tickRate": tick_rate, "limits": self.scene.limits.wire(), "engine": ENGINE}
 
-    def receive(self, text: str | bytes) -> list[dict[str, Any]]:
-        """Apply every message in one WebSocket text message; the answers, in order."""
+    def receive(self, text: str | bytes, now: float | None = None) -> list[dict[str, Any]]:
+        """Apply every message in one WebSocket text message; the answers, in order.
+
+        ``now`` (monotonic seconds) keeps the connection's rates; a text over a rate is
+        answered with ``limit_exceeded`` for each request in it, and nothing is applied.
+        """
+        now = time.monotonic() if now is None else now
         try:
             messages = decode(text, self.scene.limits)
         except VPError as error:
             return [error.to_wire()]
+        refusal = self._over_rate(text, messages, now)
+        if refusal is not None:
+            return [refusal.to_wire(request_id(m), _op_name(m)) for m in messages]
         answers = (self.handle(message) for message in messages)
         return [answer for answer in answers if answer is not None]
 
-    def refuse(self, text: str | bytes, error: LimitExceeded) -> list[dict[str, Any]]:
-        """Answer every request in a text with ``error``, applying none (a rate limit)."""
-        try:
-            messages = decode(text, self.scene.limits)
-        except VPError as decode_error:
-            return [decode_error.to_wire()]
-        return [error.to_wire(request_id(m), _op_name(m)) for m in messages] or [error.to_wire()]
+    def _over_rate(self, text: str | bytes, messages: list[Any], now: float) -> VPError | None:
+        limits = self.scene.limits
+        if not self._bytes.take(len(text), now):
+            return LimitExceeded(f"more than {limits.bytes_per_second} bytes a second from "
+                                 f"this connection; slow down", limit="bytesPerSecond",
+                                 value=limits.bytes_per_second)
+        ops = sum(len(m["ops"]) if isinstance(m, dict) and isinstance(m.get("ops"), list) else 1
+                  for m in messages)
+        if not self._ops.take(ops, now):
+            return LimitExceeded(f"more than {limits.ops_per_second} operations a second from "
+                                 f"this connection; slow down", limit="opsPerSecond",
+                                 value=limits.ops_per_second)
+        return None
 
     def handle(self, message: Any) -> dict[str, Any] | None:
         """Apply one message; its answer (None for a fire-and-forget success)."""

@@ -2,33 +2,33 @@
 
 from __future__ import annotations
 
+import asyncio
 import time
 from contextlib import asynccontextmanager
-from typing import AsyncIterator, Callable
+from typing import AsyncIterator
 
 from fastapi import FastAPI, Request
 from fastapi.responses import JSONResponse
 
-from ..core.scene import Scene
+from ..core.limits import DEFAULT, Limits
 from ..errors import LookupFailure, VPError
 from . import rest, socket
-from .hub import Hubs
+from .guard import LoopErrorLog
+from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
 
-SceneSetup = Callable[[Scene], Callable[[Scene, float], None] | None]
-
-def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None) -> FastAPI:
+def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None,
+               limits: Limits = DEFAULT) -> FastAPI:
     """The server: the ``default`` scene exists from the start (prepared by ``setup``)."""
-    hubs = Hubs(tick_rate)
+    hubs = Hubs(tick_rate, limits)
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        hub = hubs.open("default")
-        if setup is not None:
-            animator = setup(hub.scene)
-            if animator is not None:
-                hub.animators.append(animator)
+        asyncio.get_running_loop().set_exception_handler(LoopErrorLog().handle)
+        hubs.open(DEFAULT_SCENE, setup)
+        sweeper = asyncio.create_task(hubs.sweep())
         yield
+        sweeper.cancel()
         await hubs.stop()
 
     app = FastAPI(title="Virtual Prosthetics", version=rest.VERSION, lifespan=lifespan)

@@ -31,13 +31,15 @@ class Outbox:
     """A queue of messages in order, where a frame behind a waiting frame merges into it.
 
     Answers, ``added`` and ``removed`` are never dropped; frames are folded, so a slow
-    viewer gets the latest state, not a growing backlog.
+    viewer gets the latest state, not a growing backlog. A connection whose waiting
+    messages pass ``limit`` bytes is not reading them: it is closed.
     """
 
-    def __init__(self, limit: int = 10_000) -> None:
+    def __init__(self, limit: int = 32 << 20) -> None:
         self._queue: deque[Outgoing] = deque()
         self._ready = asyncio.Event()
         self._limit = limit
+        self.bytes = 0
         self.merged = 0
 
     def __len__(self) -> int:
@@ -47,12 +49,14 @@ class Outbox:
         """Queue a message; raises :class:`SlowConsumer` past the limit."""
         queue = self._queue
         if item.message["op"] == "frame" and queue and queue[-1].message["op"] == "frame":
-            queue[-1] = Outgoing.of(merge_frames(queue[-1].message, item.message))
+            older = queue.pop()
+            self.bytes -= len(older.text)
+            item = Outgoing.of(merge_frames(older.message, item.message))
             self.merged += 1
-        else:
-            if len(queue) >= self._limit:
-                raise SlowConsumer(f"more than {self._limit} messages waiting")
-            queue.append(item)
+        if self.bytes + len(item.text) > self._limit:
+            raise SlowConsumer(f"more than {self._limit} bytes waiting to be sent")
+        queue.append(item)
+        self.bytes += len(item.text)
         self._ready.set()
 
     async def get(self) -> Outgoing:
@@ -60,4 +64,6 @@ class Outbox:
         while not self._queue:
             self._ready.clear()
             await self._ready.wait()
-        return self._queue.popleft()
+        item = self._queue.popleft()
+        self.bytes -= len(item.text)
+        return item

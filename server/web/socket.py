@@ -1,4 +1,9 @@
-"""The /ws endpoint: moves text between a WebSocket and a sans-I/O :class:`Session`."""
+"""The /ws endpoint: moves text between a WebSocket and its scene's thread.
+
+The reader hands each text to the scene (:meth:`SceneHub.receive`) and waits while too
+much of this connection's text is still unapplied, so a flooding client is slowed by
+TCP itself; the writer drains the connection's outbox.
+"""
 
 from __future__ import annotations
 
@@ -10,13 +15,14 @@ from starlette.websockets import WebSocketDisconnect
 
 from ..core.physics import ENGINE
 from ..core.session import ROLES, Session
-from ..errors import OutOfRange, VPError
-from .hub import Connection, Hubs
-from .outbox import Outgoing
+from ..errors import LimitExceeded, OutOfRange, VPError
+from .hub import Connection, Hubs, SceneHub
+from .outbox import Outbox, Outgoing
 
 log = logging.getLogger(__name__)
 router = APIRouter()
 POLICY_VIOLATION = 1008
+TRY_AGAIN_LATER = 1013
 
 
 @router.websocket("/ws")
@@ -26,40 +32,40 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
     await websocket.accept()
     try:
         if role not in ROLES:
-            raise OutOfRange(f"role must be controller or viewer, got {role!r}", role=role)
+            raise OutOfRange(f"role must be controller or viewer, got {role[:40]!r}", role=role)
         if engine != ENGINE:
-            raise OutOfRange(f"engine {engine!r} is not available; this server runs {ENGINE}",
-                             engine=engine)
+            raise OutOfRange(f"engine {engine[:40]!r} is not available; this server runs "
+                             f"{ENGINE}", engine=engine)
         hub = hubs.open(scene)
     except VPError as error:
+        code = TRY_AGAIN_LATER if isinstance(error, LimitExceeded) else POLICY_VIOLATION
         await websocket.send_text(Outgoing.of(error.to_wire()).text)
-        await websocket.close(POLICY_VIOLATION, error.message[:120])
+        await websocket.close(code, error.message[:120])
         return
-    connection = Connection(Session(hub.scene, hubs.new_client_id(), role))
-    hub.join(connection)
-    writer = asyncio.create_task(_write(websocket, connection))
-    reader = asyncio.create_task(_read(websocket, connection))
-    closed = asyncio.create_task(connection.closed.wait())
+    connection = Connection(Session(hub.scene, hubs.new_client_id(), role),
+                            Outbox(hubs.limits.outbox_bytes))
+    await hub.join(connection)
+    tasks = [asyncio.create_task(_write(websocket, connection)),
+             asyncio.create_task(_read(websocket, connection, hub)),
+             asyncio.create_task(connection.closed.wait())]
     try:
-        await asyncio.wait({writer, reader, closed}, return_when=asyncio.FIRST_COMPLETED)
+        await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
     finally:
-        for task in (writer, reader, closed):
+        for task in tasks:
             task.cancel()
         hub.leave(connection)
         await _close_quietly(websocket)
 
 
-async def _read(websocket: WebSocket, connection: Connection) -> None:
-    session = connection.session
+async def _read(websocket: WebSocket, connection: Connection, hub: SceneHub) -> None:
     while True:
         event = await websocket.receive()
         if event["type"] == "websocket.disconnect":
             return
         text = event.get("text")
-        if text is None:
-            text = (event.get("bytes") or b"").decode("utf-8", errors="replace")
-        for answer in session.receive(text):
-            connection.send(Outgoing.of(answer))
+        hub.receive(connection, text if text is not None else event.get("bytes") or b"")
+        if not connection.drained.is_set():
+            await connection.drained.wait()
 
 
 async def _write(websocket: WebSocket, connection: Connection) -> None:

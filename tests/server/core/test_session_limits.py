@@ -111,7 +111,7 @@ def test_a_tree_deeper_than_the_limit_is_refused(scene, session):
 
 
 def test_world_poses_of_deep_trees_need_no_recursion():
-    scene = Scene("deep", replace(DEFAULT, tree_depth=20_000))
+    scene = Scene("deep", replace(DEFAULT, tree_depth=20_000, ops_per_second=10_000))
     try:
         session = Session(scene, "c1")
         send(session, create("c1.r", "Robot"),
@@ -228,3 +228,21 @@ def test_failed_sensing_still_sends_the_frame(scene, session, monkeypatch):
     added, frame = scene.tick(1 / 60)
     assert added["nodes"][0]["id"] == "c1.m" and frame["op"] == "frame"
     assert scene.failures == 1
+
+
+def test_rates_refuse_every_request_of_a_text_over_them():
+    scene = Scene("rates", replace(DEFAULT, ops_per_second=100, bytes_per_second=10_000))
+    try:
+        session = Session(scene, "c1")
+        pings = [{"op": "ping", "id": k} for k in range(150)]
+        answers = session.receive(json.dumps(pings), now=1e6)
+        assert [a["op"] for a in answers] == ["ok"] * 150  # a burst of two seconds' worth
+        refused = session.receive(json.dumps(pings[:60]), now=1e6)
+        assert [a["id"] for a in refused] == list(range(60))
+        assert {a["details"]["limit"] for a in refused} == {"opsPerSecond"}
+        assert session.receive(json.dumps(pings[:60]), now=1e6 + 0.6)[0]["op"] == "ok"
+        [big] = session.receive(json.dumps({"op": "ping", "id": 9, "pad": "x" * 30_000}),
+                                now=1e6 + 1)
+        assert big["details"]["limit"] == "bytesPerSecond" and big["id"] == 9
+    finally:
+        scene.close()

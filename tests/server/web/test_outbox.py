@@ -26,9 +26,13 @@ def test_waiting_frames_fold_but_answers_keep_their_place():
     assert last["seq"] == 3 and outbox.merged == 1
 
 
-def test_a_reader_that_never_reads_is_cut_off():
-    outbox = Outbox(limit=3)
-    for i in range(3):
-        outbox.put(Outgoing.of({"op": "ok", "id": i}))
-    with pytest.raises(SlowConsumer):
-        outbox.put(Outgoing.of({"op": "ok", "id": 3}))
+def test_a_reader_that_never_reads_is_cut_off_by_bytes_waiting():
+    answer = Outgoing.of({"op": "ok", "id": 1, "result": "x" * 1000})
+    outbox = Outbox(limit=3 * len(answer.text) + 100)
+    for _ in range(3):
+        outbox.put(answer)
+    outbox.put(frame(1, a=1.0))  # small: still room
+    with pytest.raises(SlowConsumer, match="bytes waiting"):
+        outbox.put(answer)
+    assert asyncio.run(outbox.get()) is answer and outbox.bytes == 2 * len(answer.text) + len(
+        frame(1, a=1.0).text)

@@ -92,7 +92,10 @@ def test_oversize_and_garbage_get_errors_and_the_connection_lives_on(server, sce
     with ws:
         ws.send("x" * (2 << 20))
         assert next_message(ws, "error")["code"] == "too_large"
-        ws.send(b"\xff\xfe binary")
+        ws.send(b'{"op": "ping", "id": 1}')  # binary: not taken as text
+        binary = next_message(ws, "error")
+        assert binary["code"] == "bad_message" and "binary" in binary["message"]
+        ws.send("{nope")
         assert next_message(ws, "error")["code"] == "bad_json"
         [answer] = request_all(ws, [{"op": "ping"}])
         assert answer["op"] == "ok"
