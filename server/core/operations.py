@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from ..errors import BadMessage, UnknownMethod, UnknownType, VPError
+from ..errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
 from . import api
 from .arguments import bind
 from .hands import EdgedHand
@@ -76,6 +76,10 @@ class Operations:
             self.scene.delete(self.scene.get(op["object"]))
             return None
         if kind == "batch":
+            limit = self.scene.limits.batch_ops
+            if len(op["ops"]) > limit:
+                raise LimitExceeded(f"{len(op['ops'])} operations in one batch; at most {limit}",
+                                    limit="batchOps", value=limit)
             return [self._apply_inner(index, inner) for index, inner in enumerate(op["ops"])]
         if kind == "ping":
             return {"time": self.scene.time, "seq": self.scene.seq}

@@ -1,8 +1,8 @@
 """The collision world: a narrow interface over one PyBullet ``DIRECT`` client.
 
-Kinematic mode, as in 1.0: bodies are placed from the transform tree and never stepped.
-Bullet skips pairs of mass-0 bodies, so every part body has mass 1; since the world is
-never stepped, nothing falls or gets pushed.
+Kinematic mode, as in 1.0: bodies are placed from the transform tree and never stepped,
+so nothing falls or gets pushed. Part bodies have mass 1 (Bullet keeps the world boxes of
+moved non-static bodies current, which rays rely on).
 
 Contacts are those of the exact shapes: a pair is measured with ``getClosestPoints``
 (never through Bullet's contact manifolds, which keep points from earlier poses after a

@@ -54,6 +54,8 @@ def guarded_protocol(limits: Limits, count: ConnectionCount) -> type[H11Protocol
             self._counted = True
             count.open(self._address)
             self._head_timer: asyncio.TimerHandle | None = None
+            self._head = bytearray()  # the request head so far, until it is complete
+            self._head_open = True
             if count.total > limits.connections:
                 self._refuse(503, "the server has the maximum of connections open")
             elif count.by_address[self._address] > limits.connections_per_address:
@@ -74,10 +76,24 @@ def guarded_protocol(limits: Limits, count: ConnectionCount) -> type[H11Protocol
                 self._head_timer = None
 
         def data_received(self, data: bytes) -> None:
+            if self._head_open and not self._head_fits(data):
+                self._refuse(431, f"request heads are limited to {limits.header_bytes} bytes")
+                return
             super().data_received(data)
             if self._head_timer is not None and self.conn.their_state is not h11.IDLE:
                 self._head_timer.cancel()
                 self._head_timer = None
+
+        def _head_fits(self, data: bytes) -> bool:
+            self._head += data[:limits.header_bytes + 4]
+            end = self._head.find(b"\r\n\r\n")
+            if end >= 0:
+                self._head_open, self._head = False, bytearray()
+            return (end if end >= 0 else len(self._head)) <= limits.header_bytes
+
+        def on_response_complete(self) -> None:
+            super().on_response_complete()
+            self._head_open, self._head = True, bytearray()  # the next request's head
 
         def _head_late(self) -> None:
             self._head_timer = None

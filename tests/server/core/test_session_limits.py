@@ -246,3 +246,13 @@ def test_rates_refuse_every_request_of_a_text_over_them():
         assert big["details"]["limit"] == "bytesPerSecond" and big["id"] == 9
     finally:
         scene.close()
+
+
+def test_batches_are_bounded_by_the_batch_limit():
+    scene = Scene("batches", replace(DEFAULT, batch_ops=5))
+    try:
+        [error] = send(Session(scene, "c1"), {"op": "batch", "id": 1, "ops": [
+            create(f"c1.{k}", "Box") for k in range(6)]})
+        assert error["details"] == {"limit": "batchOps", "value": 5} and scene.nodes == {}
+    finally:
+        scene.close()

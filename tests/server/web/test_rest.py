@@ -107,3 +107,25 @@ def test_metrics_report_ticks(server):
     first = server.get("/api/metrics")["scenes"]["default"]["ticks"]
     time.sleep(0.2)
     assert server.get("/api/metrics")["scenes"]["default"]["ticks"] > first
+
+
+def test_robots_with_unlimited_motors_report_and_impossible_limits_are_refused(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
+        me = json.loads(ws.recv(timeout=10))["client"]
+        request_all(ws, [
+            {"op": "create", "object": f"{me}.1", "type": "Robot"},
+            {"op": "create", "object": f"{me}.2", "type": "MotorZ"},
+            {"op": "call", "object": f"{me}.2", "method": "attachToSlot",
+             "args": [{"ref": f"{me}.1"}]},
+            {"op": "call", "object": f"{me}.2", "method": "setAngle", "args": [1e9]},
+        ])
+        ws.send(json.dumps({"op": "create", "id": 5, "object": f"{me}.3", "type": "MotorZ",
+                            "args": ["Infinity", "Infinity"]}))
+        while (answer := json.loads(ws.recv(timeout=10)))["op"] not in ("ok", "error"):
+            pass
+        assert answer["code"] == "out_of_range" and "no finite angle" in answer["message"]
+        [motor] = server.get(f"/api/scenes/{scene_name}/robots/{me}.1")["motors"]
+        assert (motor["min"], motor["max"], motor["angle"]) == ("-Infinity", "Infinity", 1e9)
+        with pytest.raises(urllib.error.HTTPError) as missing:
+            server.get(f"/api/scenes/{scene_name}/robots/{me}.3")
+        assert missing.value.code == 404

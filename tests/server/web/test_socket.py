@@ -11,7 +11,7 @@ from .ws_requests import next_message, request_all, wait_ticks
 
 
 def open_client(server, scene, role="controller"):
-    ws = connect(f"{server.ws}/ws?scene={scene}&role={role}").__enter__()
+    ws = connect(f"{server.ws}/ws?scene={scene}&role={role}", max_size=None).__enter__()
     hello = json.loads(ws.recv(timeout=10))
     snapshot = json.loads(ws.recv(timeout=10))
     check_server_message(hello)

@@ -1,0 +1,39 @@
+"""Scenes on their own threads: one scene's flood never stops another scene's frames."""
+
+import json
+import threading
+
+from .test_socket import open_client
+from .ws_requests import next_message
+
+
+def test_a_flooded_scene_does_not_stop_another_scenes_frames(server, scene_name):
+    watcher, _, _ = open_client(server, scene_name + "w", "viewer")
+    flooder, hello, _ = open_client(server, scene_name + "f")
+    me = hello["client"]
+    seen: list[tuple[int, bool]] = []  # (frame seq, whether the flood was answered yet)
+    answered = threading.Event()
+
+    def watch():
+        while len(seen) < 10_000:
+            try:
+                message = json.loads(watcher.recv(timeout=5))
+            except Exception:
+                return
+            if message["op"] == "frame":
+                seen.append((message["seq"], answered.is_set()))
+            if answered.is_set() and sum(done for _, done in seen) >= 3:
+                return
+    with watcher, flooder:
+        next_message(watcher, "frame")
+        reader = threading.Thread(target=watch)
+        reader.start()
+        flooder.send(json.dumps({"op": "batch", "id": 1, "ops": [
+            {"op": "create", "object": f"{me}.{k}", "type": "EdgedHand"} for k in range(100)]}))
+        answer = next_message(flooder, "ok", timeout=60)
+        answered.set()
+        reader.join(timeout=30)
+        assert answer["id"] == 1 and len(server.get(f"/api/scenes/{scene_name}f/robots")) == 100
+    during = [seq for seq, done in seen if not done]
+    # while the flooded scene applied 7 300 objects, the other scene kept sending frames
+    assert len(during) >= 5 and during == sorted(set(during))
