@@ -138,10 +138,6 @@ class Scene:
         self._count(node, 1)
         self._physics_dirty.add(node.id)
 
-    def forget_owner(self, owner: str) -> None:
-        """An owner (a client that left) will never make objects again: drop its id records."""
-        self.ids.forget(owner)
-
     def roots(self) -> list[Node]:
         """Nodes without a parent, in the order they were made."""
         return [n for n in self.nodes.values() if n.parent is None]

@@ -126,7 +126,7 @@ class Session:
             if node is not None:
                 scene.delete(node)
                 deleted.append(object_id)
-        scene.forget_owner(self.client_id)
+        scene.ids.forget(self.client_id)  # client ids are never handed out again
         return deleted
 
 
