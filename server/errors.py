@@ -70,6 +70,10 @@ class VPError(Exception):
         self.message = message
         self.details = {k: v for k, v in details.items() if v is not None}
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        # the details travel too when an error crosses from a scene's process
+        return _rebuild, (type(self), self.message, self.details)
+
     def to_wire(self, request_id: int | None = None, op: str | None = None) -> dict[str, Any]:
         """The error message that answers a request (``request_id`` None: fire-and-forget)."""
         wire: dict[str, Any] = {"op": "error", "id": request_id, "code": self.code,
@@ -86,6 +90,10 @@ class VPError(Exception):
                 else v if isinstance(v, (bool, float)) or v is None
                 else v if isinstance(v, int) and abs(v) < 2 ** 53 else show(v)
                 for k, v in self.details.items()}
+
+
+def _rebuild(cls: type[VPError], message: str, details: dict[str, Any]) -> VPError:
+    return cls(message, **details)
 
 
 class ProtocolError(VPError):

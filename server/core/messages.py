@@ -45,6 +45,13 @@ def utf8_size(text: str, limit: int) -> int:
     return len(text.encode("utf-8", "surrogatepass"))
 
 
+def byte_size(data: str | bytes) -> int:
+    """The size of a WebSocket message in bytes, as it travelled (UTF-8)."""
+    if isinstance(data, bytes) or data.isascii():
+        return len(data)
+    return len(data.encode("utf-8", "surrogatepass"))
+
+
 def decode(data: str | bytes, limits: Limits = DEFAULT) -> list[Any]:
     """The messages in one WebSocket text message (an object, or an array of them)."""
     if not isinstance(data, str):

@@ -12,7 +12,8 @@ import time
 from typing import Any
 
 from ..errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
-from .messages import PROTOCOL_VERSION, check_client_message, decode, encode, request_id
+from .messages import (PROTOCOL_VERSION, byte_size, check_client_message, decode, encode,
+                       request_id)
 from .operations import Operations
 from .physics import ENGINE
 from .rates import TokenBucket
@@ -49,20 +50,25 @@ class Session:
         ``now`` (monotonic seconds) keeps the connection's rates; a text over a rate is
         answered with ``limit_exceeded`` for each request in it, and nothing is applied.
         """
+        return [answer for answer, _ in self.receive_encoded(text, now)]
+
+    def receive_encoded(self, text: str | bytes,
+                        now: float | None = None) -> list[tuple[dict[str, Any], str]]:
+        """:meth:`receive`, each answer with its JSON text (encoded once, here)."""
         now = time.monotonic() if now is None else now
         try:
             messages = decode(text, self.scene.limits)
         except VPError as error:
-            return [error.to_wire()]
+            return [_encoded(error.to_wire())]
         refusal = self._over_rate(text, messages, now)
         if refusal is not None:
-            return [refusal.to_wire(request_id(m), _op_name(m)) for m in messages]
-        answers = (self.handle(message) for message in messages)
+            return [_encoded(refusal.to_wire(request_id(m), _op_name(m))) for m in messages]
+        answers = (self._handle(message) for message in messages)
         return [answer for answer in answers if answer is not None]
 
     def _over_rate(self, text: str | bytes, messages: list[Any], now: float) -> VPError | None:
         limits = self.scene.limits
-        if not self._bytes.take(len(text), now):
+        if not self._bytes.take(byte_size(text), now):
             return LimitExceeded(f"more than {limits.bytes_per_second} bytes a second from "
                                  f"this connection; slow down", limit="bytesPerSecond",
                                  value=limits.bytes_per_second)
@@ -76,23 +82,28 @@ class Session:
 
     def handle(self, message: Any) -> dict[str, Any] | None:
         """Apply one message; its answer (None for a fire-and-forget success)."""
+        answer = self._handle(message)
+        return None if answer is None else answer[0]
+
+    def _handle(self, message: Any) -> tuple[dict[str, Any], str] | None:
         answer_id, op = request_id(message), _op_name(message)
         try:
             check_client_message(message)
             self._authorize(message)
             with self.scene.recording() as changes, self.scene.journal.transaction():
                 result = self.operations.apply(message)
-                answer = self._answer(answer_id, result, changes)
+                return self._answer(answer_id, result, changes)
         except VPError as error:
-            return error.to_wire(answer_id, op)
+            return _encoded(error.to_wire(answer_id, op))
         except Exception:  # a bug: the transaction was undone, the client is told
             log.exception("internal error applying a %s request of %s", op, self.client_id)
-            return InternalError("internal server error; nothing was changed").to_wire(
-                answer_id, op)
-        return answer
+            return _encoded(InternalError("internal server error; nothing was changed")
+                            .to_wire(answer_id, op))
 
-    def _answer(self, answer_id: int | None, result: Any, changes: Any) -> dict[str, Any] | None:
-        """The ok answer, checked to be sendable (a failure undoes the request)."""
+    def _answer(self, answer_id: int | None, result: Any,
+                changes: Any) -> tuple[dict[str, Any], str] | None:
+        """The ok answer and its text; encoding inside the transaction means a value JSON
+        cannot carry undoes the request."""
         if answer_id is None:
             return None
         answer: dict[str, Any] = {"op": "ok", "id": answer_id}
@@ -101,8 +112,7 @@ class Session:
         delta = self.scene.delta(changes)
         if delta:
             answer["changes"] = delta
-        encode(answer)  # raises on a value JSON cannot carry, inside the transaction
-        return answer
+        return _encoded(answer)
 
     def _authorize(self, message: dict[str, Any]) -> None:
         inner = message["ops"] if message["op"] == "batch" else [message]
@@ -128,6 +138,10 @@ class Session:
                 deleted.append(object_id)
         scene.ids.forget(self.client_id)  # client ids are never handed out again
         return deleted
+
+
+def _encoded(answer: dict[str, Any]) -> tuple[dict[str, Any], str]:
+    return answer, encode(answer)
 
 
 def _op_name(message: Any) -> str | None:

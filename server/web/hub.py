@@ -1,42 +1,47 @@
 """The scenes a server runs, and the fan-out of each scene's messages to its connections.
 
-Every method here runs on the event loop; the scenes themselves live on their runners'
-threads (:mod:`server.web.runner`), which hand their messages back with
-``call_soon_threadsafe``, so the loop sees them in the order they were made.
+Every method here runs on the event loop; the scenes themselves live in processes of
+their own (:mod:`server.web.worker`), whose events arrive here in the order they were
+made (:mod:`server.web.runner`).
 """
 
 from __future__ import annotations
 
 import asyncio
+import itertools
 import logging
 import re
 import time
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Any
 
 from ..core.limits import DEFAULT, Limits
-from ..core.scene import Scene
-from ..core.session import Session
-from ..errors import LimitExceeded, OutOfRange
+from ..errors import LimitExceeded, OutOfRange, UnknownScene
 from .outbox import Outbox, Outgoing, SlowConsumer
-from .runner import Animator, SceneRunner
+from .runner import SceneRunner
+from .worker import SceneSetup
 
 log = logging.getLogger(__name__)
 
 SCENE_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
 DEFAULT_SCENE = "default"
-INFLIGHT_BYTES = 4 << 20  # text a connection may have waiting on its scene's thread
+INFLIGHT_BYTES = 4 << 20  # text a connection may have waiting on its scene's process
+_numbers = itertools.count(1)
 
 
 @dataclass(eq=False)
 class Connection:
-    """A client as the loop sees it: its session, outbox, and text not yet applied."""
+    """A client as the loop sees it: its id and role, outbox, and text not yet applied."""
 
-    session: Session
+    client_id: str
+    role: str
     outbox: Outbox
+    number: int = field(default_factory=lambda: next(_numbers))
     closed: asyncio.Event = field(default_factory=asyncio.Event)
+    admitted: asyncio.Event = field(default_factory=asyncio.Event)
     inflight: int = 0
     drained: asyncio.Event = field(default_factory=asyncio.Event)
+    farewell: Outgoing | None = None  # the last message, sent as the connection closes
 
     def __post_init__(self) -> None:
         self.drained.set()
@@ -48,35 +53,46 @@ class Connection:
                 self.outbox.put(item)
         except SlowConsumer as reason:
             if not self.closed.is_set():
-                log.warning("closing %s: %s", self.session.client_id, reason)
+                log.warning("closing %s: %s", self.client_id, reason)
             self.closed.set()
 
     def applied(self, size: int) -> None:
-        """``size`` bytes of this connection's text were applied on the scene's thread."""
+        """``size`` bytes of this connection's text were applied by its scene."""
         self.inflight -= size
         if self.inflight <= INFLIGHT_BYTES:
             self.drained.set()
 
 
 class SceneHub:
-    """One scene: its runner (thread) and the connections that receive its messages."""
+    """One scene: its process and the connections that receive its messages."""
 
-    def __init__(self, scene: Scene, tick_rate: float, loop: asyncio.AbstractEventLoop) -> None:
-        self.scene = scene
-        self.connections: set[Connection] = set()
+    def __init__(self, name: str, limits: Limits, tick_rate: float,
+                 setup: SceneSetup | None = None) -> None:
+        self.name = name
+        self.members: dict[int, Connection] = {}  # joined, admitted or not yet
+        self.connections: set[Connection] = set()  # admitted: they get every frame
         self.idle_since: float | None = time.monotonic()
-        self._loop = loop
-        self.runner = SceneRunner(scene, tick_rate, self._from_thread)
+        self.runner = SceneRunner(name, limits, tick_rate, setup, self._events)
 
     @property
     def tick_rate(self) -> float:
         return self.runner.tick_rate
 
-    def _from_thread(self, items: list[Outgoing]) -> None:
-        try:
-            self._loop.call_soon_threadsafe(self.broadcast, items)
-        except RuntimeError:  # the loop closed while the scene was stopping
-            pass
+    @property
+    def ended(self) -> bool:
+        return self.runner.ended
+
+    def _events(self, events: list[tuple[Any, ...]]) -> None:
+        for event in events:
+            kind = event[0]
+            if kind == "frame":
+                self.broadcast(event[1])
+            elif kind == "answers":
+                self._answered(*event[1:])
+            elif kind == "admit":
+                self._admit(*event[1:])
+            elif kind == "ended":
+                self._ended(event[1])
 
     def broadcast(self, items: list[Outgoing]) -> None:
         """Queue a tick's messages for every connection."""
@@ -85,46 +101,54 @@ class SceneHub:
 
     async def join(self, connection: Connection) -> None:
         """Send a connection its hello and snapshot; it gets every later tick."""
-        session = connection.session
-
-        def greet() -> None:
-            items = [Outgoing.of(session.hello(self.tick_rate)), Outgoing.of(self.scene.snapshot())]
-            self._loop.call_soon_threadsafe(self._admit, connection, items)
+        if self.ended:
+            raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
+        self.members[connection.number] = connection
         self.idle_since = None
-        await self.runner.call(greet)
+        self.runner.post("join", connection.number, connection.client_id, connection.role)
+        await connection.admitted.wait()
 
-    def _admit(self, connection: Connection, items: list[Outgoing]) -> None:
-        # runs on the loop in order with the ticks: after every frame older than the snapshot
+    def _admit(self, number: int, items: list[Outgoing]) -> None:
+        # in order with the frames: the snapshot is newer than every frame sent before it
+        connection = self.members.get(number)
+        if connection is None:
+            return
         connection.send(items)
         if not connection.closed.is_set():
             self.connections.add(connection)
+        connection.admitted.set()
 
     def leave(self, connection: Connection) -> None:
-        """Forget a connection and, on the scene's thread, delete what its client made."""
+        """Forget a connection; its scene deletes what its client made."""
         self.connections.discard(connection)
-        self.runner.post(connection.session.close)
-        if not self.connections:
+        if self.members.pop(connection.number, None) is not None:
+            self.runner.post("leave", connection.number)
+        if not self.members:
             self.idle_since = time.monotonic()
 
     def receive(self, connection: Connection, text: str | bytes) -> None:
-        """Apply a client's text on the scene's thread; its answers go back to it."""
-        size = len(text)
-        connection.inflight += size
+        """Hand a client's text to the scene; its answers come back to it alone."""
+        connection.inflight += len(text)
         if connection.inflight > INFLIGHT_BYTES:
             connection.drained.clear()
+        self.runner.post("text", connection.number, text)
 
-        def apply() -> None:
-            answers = [Outgoing.of(a) for a in connection.session.receive(text, time.monotonic())]
-            self._loop.call_soon_threadsafe(self._answered, connection, answers, size)
-        self.runner.post(apply)
+    def _answered(self, number: int, answers: list[Outgoing], size: int) -> None:
+        connection = self.members.get(number)
+        if connection is not None:
+            connection.send(answers)
+            connection.applied(size)
 
-    @staticmethod
-    def _answered(connection: Connection, answers: list[Outgoing], size: int) -> None:
-        connection.send(answers)
-        connection.applied(size)
-
-
-SceneSetup = Callable[[Scene], Animator | None]
+    def _ended(self, exitcode: int | None) -> None:
+        """The scene's process is gone: its clients are disconnected (they may rejoin)."""
+        for connection in self.members.values():
+            if exitcode:
+                connection.farewell = Outgoing.of(UnknownScene(
+                    f"scene {self.name} failed and was closed; reconnect to start it "
+                    f"again", scene=self.name).to_wire())
+            connection.closed.set()
+            connection.admitted.set()
+        self.connections.clear()
 
 
 class Hubs:
@@ -137,14 +161,21 @@ class Hubs:
         self.scenes: dict[str, SceneHub] = {}
         self.removed = 0
         self._clients = 0
+        self._setups: dict[str, SceneSetup] = {}
 
     def get(self, name: str) -> SceneHub | None:
         """The hub of an existing scene."""
         return self.scenes.get(name)
 
     def open(self, name: str, setup: SceneSetup | None = None) -> SceneHub:
-        """The hub of a scene, made and started if it does not exist yet."""
+        """The hub of a scene, made and started if it does not exist (or its process ended);
+        ``setup`` prepares it, then and whenever it starts again."""
+        if setup is not None:
+            self._setups[name] = setup
         hub = self.scenes.get(name)
+        if hub is not None and hub.ended:
+            del self.scenes[name]
+            hub = None
         if hub is None:
             if not SCENE_NAME.fullmatch(name):
                 raise OutOfRange(f"scene names are 1-64 letters, digits, _ or -; got {name!r}"
@@ -153,12 +184,8 @@ class Hubs:
             if len(self.scenes) >= self.limits.scenes:
                 raise LimitExceeded(f"the server runs the maximum of {self.limits.scenes} scenes",
                                     limit="scenes", value=self.limits.scenes)
-            scene = Scene(name, self.limits)
-            hub = self.scenes[name] = SceneHub(scene, self.tick_rate, asyncio.get_running_loop())
-            if setup is not None:
-                animator = setup(scene)
-                if animator is not None:
-                    hub.runner.animators.append(animator)
+            hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
+                                               self._setups.get(name))
             hub.runner.start()
         return hub
 
@@ -171,7 +198,7 @@ class Hubs:
         """Stop the scenes that have had no client for the grace period; their names."""
         grace = self.limits.scene_idle_seconds
         idle = [name for name, hub in self.scenes.items() if name != DEFAULT_SCENE
-                and not hub.connections and hub.idle_since is not None
+                and not hub.members and hub.idle_since is not None
                 and now - hub.idle_since >= grace]
         for name in idle:
             self.scenes.pop(name).runner.stop()
@@ -187,7 +214,9 @@ class Hubs:
                          self.limits.scene_idle_seconds)
 
     async def stop(self) -> None:
-        """Stop every scene."""
-        for hub in self.scenes.values():
-            hub.runner.stop()
+        """Stop every scene and wait for their processes to end."""
+        runners = [hub.runner for hub in self.scenes.values()]
         self.scenes.clear()
+        for runner in runners:
+            runner.stop()
+        await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])

@@ -3,24 +3,40 @@
 from __future__ import annotations
 
 import asyncio
+import json
 from collections import deque
-from dataclasses import dataclass
 from typing import Any
 
 from ..core.frames import merge_frames
 from ..core.messages import encode
 
 
-@dataclass
 class Outgoing:
-    """A message with its JSON text, encoded once however many connections get it."""
+    """A message's JSON text and op, encoded once however many connections get it.
 
-    message: dict[str, Any]
-    text: str
+    Made in a scene's process and sent to the server's as text; the message itself is
+    decoded again only where it is needed (folding frames for a slow reader).
+    """
+
+    __slots__ = ("op", "text", "_message")
+
+    def __init__(self, op: str, text: str, message: dict[str, Any] | None = None) -> None:
+        self.op = op
+        self.text = text
+        self._message = message
 
     @classmethod
     def of(cls, message: dict[str, Any]) -> Outgoing:
-        return cls(message, encode(message))
+        return cls(message["op"], encode(message), message)
+
+    @property
+    def message(self) -> dict[str, Any]:
+        if self._message is None:
+            self._message = json.loads(self.text)
+        return self._message
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return Outgoing, (self.op, self.text)  # the text travels, not the decoded message
 
 
 class SlowConsumer(Exception):
@@ -48,7 +64,7 @@ class Outbox:
     def put(self, item: Outgoing) -> None:
         """Queue a message; raises :class:`SlowConsumer` past the limit."""
         queue = self._queue
-        if item.message["op"] == "frame" and queue and queue[-1].message["op"] == "frame":
+        if item.op == "frame" and queue and queue[-1].op == "frame":
             older = queue.pop()
             self.bytes -= len(older.text)
             item = Outgoing.of(merge_frames(older.message, item.message))

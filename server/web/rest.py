@@ -1,11 +1,13 @@
 """REST routes: read-only inspection of the running scenes (documented at /docs).
 
-Whatever reads a scene runs on that scene's thread, between its ticks, and is encoded
-there too (:func:`_read`): a large scene costs the event loop nothing.
+Whatever reads a scene runs in that scene's process, between its ticks, and is encoded
+there too (:func:`_read`): a large scene costs the event loop nothing. The functions
+that read travel to the process by name, so they are defined at the top level here.
 """
 
 from __future__ import annotations
 
+import json
 import time
 from typing import Any, Callable
 
@@ -13,11 +15,10 @@ from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
 
 from ..core import reports
-from ..core.messages import PROTOCOL_VERSION, encode
+from ..core.messages import PROTOCOL_VERSION
 from ..core.robot import Robot
 from ..core.scene import Scene
 from ..core.sensor import Sensor
-from ..core.wire import encode_numbers
 from ..errors import UnknownObject, UnknownScene, VPError
 from .hub import Hubs, SceneHub
 
@@ -45,16 +46,16 @@ def _hub(request: Request, scene: str) -> SceneHub:
     return hub
 
 
-async def _read(request: Request, scene: str, report: Callable[[Scene], Any]) -> Response:
-    """``report`` of a scene, computed and encoded as JSON on the scene's thread."""
-    hub = _hub(request, scene)
-    body = await hub.runner.call(lambda: encode(encode_numbers(report(hub.scene))))
+async def _read(request: Request, scene: str, report: Callable[..., Any],
+                *args: Any) -> Response:
+    """``report(scene, *args)``, computed and encoded as JSON in the scene's process."""
+    body = await _hub(request, scene).runner.call("read", report, args)
     return Response(body, media_type="application/json")
 
 
 async def _summary(hub: SceneHub) -> dict[str, Any]:
-    viewers = sum(c.session.role == "viewer" for c in hub.connections)
-    summary = await hub.runner.call(lambda: reports.scene_summary(hub.scene))
+    viewers = sum(c.role == "viewer" for c in hub.connections)
+    summary = json.loads(await hub.runner.call("read", reports.scene_summary, ()))
     return {**summary, "clients": len(hub.connections), "viewers": viewers,
             "controllers": len(hub.connections) - viewers, "tickRate": hub.tick_rate}
 
@@ -84,20 +85,13 @@ async def snapshot(request: Request, scene: str) -> Response:
 
 @router.get("/scenes/{scene}/robots", summary="The robots of a scene", response_class=Response)
 async def robot_list(request: Request, scene: str) -> Response:
-    return await _read(request, scene,
-                       lambda s: [reports.robot_summary(r) for r in reports.robots(s)])
+    return await _read(request, scene, _robots)
 
 
 @router.get("/scenes/{scene}/robots/{robot_id}", response_class=Response,
             summary="A robot: position, rotation, parts and motors in motor order")
 async def robot_detail(request: Request, scene: str, robot_id: str) -> Response:
-    def report(s: Scene) -> dict[str, Any]:
-        node = s.nodes.get(robot_id)
-        if not isinstance(node, Robot):
-            raise UnknownObject(f"no robot {robot_id[:80]!r} in scene {scene!r}",
-                                object=robot_id)
-        return reports.robot_report(node)
-    return await _read(request, scene, report)
+    return await _read(request, scene, _robot, robot_id)
 
 
 @router.get("/scenes/{scene}/sensors/{sensor_id:path}", response_class=Response,
@@ -105,13 +99,7 @@ async def robot_detail(request: Request, scene: str, robot_id: str) -> Response:
                     "(and object, with ?other=<id>)")
 async def sensor_detail(request: Request, scene: str, sensor_id: str,
                         other: str | None = None) -> Response:
-    def report(s: Scene) -> dict[str, Any]:
-        node = s.nodes.get(sensor_id)
-        if not isinstance(node, Sensor):
-            raise UnknownObject(f"no sensor {sensor_id[:80]!r} in scene {scene!r}",
-                                object=sensor_id)
-        return reports.sensor_report(node, other)
-    return await _read(request, scene, report)
+    return await _read(request, scene, _sensor, sensor_id, other)
 
 
 @router.get("/scenes/{scene}/contacts", summary="The pairs of parts (and ground) touching now",
@@ -120,15 +108,37 @@ async def contacts(request: Request, scene: str) -> Response:
     return await _read(request, scene, reports.contacts_report)
 
 
-@router.get("/metrics", summary="Tick timing, connections and queue lengths per scene")
+@router.get("/metrics", summary="Tick timing, CPU, connections and queue lengths per scene")
 async def metrics(request: Request) -> dict[str, Any]:
     hubs = _hubs(request)
     return {"scenesRemoved": hubs.removed,
-            "scenes": {name: {"tickRate": hub.tick_rate, "ticks": hub.runner.stats.count,
-                              "tickFailures": hub.runner.stats.failures,
-                              **hub.runner.stats.summary(),
-                              "clients": len(hub.connections),
-                              "queued": sum(len(c.outbox) for c in hub.connections),
-                              "queuedBytes": sum(c.outbox.bytes for c in hub.connections),
-                              "framesMerged": sum(c.outbox.merged for c in hub.connections)}
-                       for name, hub in hubs.scenes.items()}}
+            "scenes": {name: await _scene_metrics(hub) for name, hub in list(hubs.scenes.items())}}
+
+
+async def _scene_metrics(hub: SceneHub) -> dict[str, Any]:
+    stats = await hub.runner.call("metrics")
+    return {"tickRate": hub.tick_rate, **stats, "pid": hub.runner.pid,
+            "clients": len(hub.connections),
+            "queued": sum(len(c.outbox) for c in hub.connections),
+            "queuedBytes": sum(c.outbox.bytes for c in hub.connections),
+            "framesMerged": sum(c.outbox.merged for c in hub.connections)}
+
+
+def _robots(scene: Scene) -> list[dict[str, Any]]:
+    return [reports.robot_summary(robot) for robot in reports.robots(scene)]
+
+
+def _robot(scene: Scene, robot_id: str) -> dict[str, Any]:
+    node = scene.nodes.get(robot_id)
+    if not isinstance(node, Robot):
+        raise UnknownObject(f"no robot {robot_id[:80]!r} in scene {scene.name!r}",
+                            object=robot_id)
+    return reports.robot_report(node)
+
+
+def _sensor(scene: Scene, sensor_id: str, other: str | None) -> dict[str, Any]:
+    node = scene.nodes.get(sensor_id)
+    if not isinstance(node, Sensor):
+        raise UnknownObject(f"no sensor {sensor_id[:80]!r} in scene {scene.name!r}",
+                            object=sensor_id)
+    return reports.sensor_report(node, other)

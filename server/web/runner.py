@@ -1,145 +1,151 @@
-"""One scene on a thread of its own: its requests, ticks and reads happen there, in order.
+"""The server's handle on one scene's process (:mod:`server.web.worker`).
 
-The event loop only moves bytes. Everything that touches a scene (decoding and applying
-messages, ticking, encoding frames, REST reads) runs on the scene's thread, so a scene
-flooded with work delays its own frames but never the event loop or another scene.
-PyBullet holds the GIL while it works, which is why its calls are bounded elsewhere
-(:mod:`server.core.contacts`); between them Python switches threads every millisecond.
+Commands go out through a writer thread and events come back through a reader thread,
+so the event loop never blocks on a pipe: a scene busy with a flood fills its own pipe
+and slows only its own clients. Processes start from a fork server that has already
+imported the scene code, so a new scene is ready in milliseconds.
 """
 
 from __future__ import annotations
 
 import asyncio
-import concurrent.futures
+import itertools
 import logging
+import multiprocessing
 import queue
 import sys
 import threading
-import time
-from collections import deque
-from dataclasses import dataclass, field
-from typing import Any, Callable, TypeVar
+from typing import Any, Callable
 
-from ..core.scene import Scene
+from ..core.limits import Limits
 from ..errors import UnknownScene
-from .outbox import Outgoing
+from . import worker
 
 log = logging.getLogger(__name__)
-T = TypeVar("T")
-Animator = Callable[[Scene, float], None]
-Broadcast = Callable[[list[Outgoing]], None]
-_STOP = object()
-SWITCH_INTERVAL = 0.001  # seconds a thread may hold the GIL while another waits
+Deliver = Callable[[list[tuple[Any, ...]]], None]
+COMMANDS_PER_SEND = 512  # commands pickled together: fewer, larger writes in a flood
+_STOP = ("stop",)
 
-sys.setswitchinterval(SWITCH_INTERVAL)
-
-
-@dataclass
-class TickStats:
-    """How long recent ticks took (a window of the last 600), for /api/metrics."""
-
-    count: int = 0
-    failures: int = 0
-    recent: deque[float] = field(default_factory=lambda: deque(maxlen=600))
-
-    def add(self, ms: float) -> None:
-        self.count += 1
-        self.recent.append(ms)
-
-    def summary(self) -> dict[str, float]:
-        """Last, mean and max tick duration over the window, in milliseconds."""
-        recent = list(self.recent) or [0.0]
-        return {"tickMsLast": recent[-1], "tickMsMean": sum(recent) / len(recent),
-                "tickMsMax": max(recent)}
+_CONTEXT = multiprocessing.get_context("forkserver")
+_CONTEXT.set_forkserver_preload([worker.__name__])
+sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 
 class SceneRunner:
-    """The thread of one scene: jobs in arrival order, and a tick whenever one is due."""
+    """Starts a scene's process, sends it commands, and hands its events to ``deliver``
+    on the event loop (a final ``("ended", exitcode)`` when the process is gone)."""
 
-    def __init__(self, scene: Scene, tick_rate: float, broadcast: Broadcast) -> None:
-        self.scene = scene
+    def __init__(self, name: str, limits: Limits, tick_rate: float,
+                 setup: worker.SceneSetup | None, deliver: Deliver) -> None:
+        self.name = name
         self.tick_rate = tick_rate
-        self.animators: list[Animator] = []
-        self.stats = TickStats()
-        self._broadcast = broadcast
-        self._jobs: queue.SimpleQueue[Any] = queue.SimpleQueue()
-        self._resync = False
-        self._thread = threading.Thread(target=self._run, name=f"scene-{scene.name}",
-                                        daemon=True)
+        self._deliver = deliver
+        self._loop = asyncio.get_running_loop()
+        self._pipe, child = _CONTEXT.Pipe()
+        self._process = _CONTEXT.Process(
+            target=worker.serve, name=f"scene-{name}", daemon=True,
+            args=(child, name, limits, tick_rate, setup, logging.getLogger().level))
+        self._child = child
+        self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
+        self._replies: dict[int, asyncio.Future[Any]] = {}
+        self._numbers = itertools.count(1)
+        self.ended = False
+
+    @property
+    def pid(self) -> int | None:
+        return self._process.pid
 
     def start(self) -> None:
-        """Start the scene's thread."""
-        self._thread.start()
+        """Start the process and the two threads that talk to it."""
+        self._process.start()
+        self._child.close()  # the child's end lives in the child now: EOF when it dies
+        threading.Thread(target=self._write, name=f"to-{self.name}", daemon=True).start()
+        threading.Thread(target=self._read, name=f"from-{self.name}", daemon=True).start()
+
+    def post(self, *command: Any) -> None:
+        """Send a command; the scene applies commands in the order they were posted."""
+        self._commands.put(command)
+
+    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
+        """Send a command that is answered (``read``, ``metrics``); its reply, awaitable."""
+        future = self._loop.create_future()
+        if self.ended:
+            future.set_exception(UnknownScene(f"scene {self.name} was removed", scene=self.name))
+            return future
+        number = next(self._numbers)
+        self._replies[number] = future
+        self.post(verb, number, *args)
+        return future
 
     def stop(self) -> None:
-        """Finish the jobs queued so far, stop, and release the scene."""
-        self._jobs.put(_STOP)
-        self._thread.join(timeout=10)
+        """Ask the process to finish the commands sent so far, then end."""
+        self._commands.put(_STOP)
 
-    def post(self, job: Callable[[], None]) -> None:
-        """Run ``job`` on the scene's thread after every job posted before it."""
-        self._jobs.put(job)
+    def join(self, timeout: float) -> None:
+        """Wait for the process to end (killed after ``timeout`` seconds)."""
+        self._process.join(timeout)
+        if self._process.is_alive():
+            self._process.kill()
+            self._process.join(1)
 
-    def call(self, job: Callable[[], T]) -> asyncio.Future[T]:
-        """Run ``job`` on the scene's thread; its result (or exception) for the event loop."""
-        future: concurrent.futures.Future[T] = concurrent.futures.Future()
-        if not self._thread.is_alive():
-            future.set_exception(UnknownScene(f"scene {self.scene.name} was removed",
-                                              scene=self.scene.name))
-            return asyncio.wrap_future(future)
-
-        def run() -> None:
-            if future.set_running_or_notify_cancel():
+    def _write(self) -> None:
+        while True:
+            commands = [self._commands.get()]
+            while len(commands) < COMMANDS_PER_SEND:
                 try:
-                    future.set_result(job())
-                except BaseException as error:  # handed to whoever awaits it
-                    future.set_exception(error)
-        self._jobs.put(run)
-        return asyncio.wrap_future(future)
-
-    def _run(self) -> None:
-        period = 1.0 / self.tick_rate
-        last = deadline = time.monotonic()
-        try:
-            while True:
-                wait = deadline - time.monotonic()
-                if wait <= 0:
-                    now = time.monotonic()
-                    self._tick(now - last)
-                    last, deadline = now, max(deadline + period, now - 5 * period)
-                    continue
-                try:
-                    job = self._jobs.get(timeout=wait)
+                    commands.append(self._commands.get_nowait())
                 except queue.Empty:
-                    continue
-                if job is _STOP:
-                    return
-                try:
-                    job()
-                except Exception:  # a bug in a job must not stop the scene
-                    log.exception("job of scene %s failed", self.scene.name)
-        finally:
-            self.scene.close()
+                    break
+            try:
+                self._pipe.send(commands)
+            except (OSError, ValueError):  # the process is gone; the reader reports it
+                return
+            if commands[-1] is _STOP:
+                return
 
-    def _tick(self, dt: float) -> None:
-        """Run the animators, advance the scene and hand its encoded messages out."""
-        started = time.perf_counter()
+    def _read(self) -> None:
+        while True:
+            try:
+                events = self._pipe.recv()
+            except (EOFError, OSError):
+                break
+            self._hand_over(self._receive, events)
+        self._process.join(5)
+        self._hand_over(self._end, self._process.exitcode)
+
+    def _hand_over(self, function: Callable[[Any], None], argument: Any) -> None:
         try:
-            for animate in self.animators:
-                animate(self.scene, self.scene.time + dt)
-            items = self._resynced() + [Outgoing.of(m) for m in self.scene.tick(dt)]
-        except Exception:  # the scene kept what it had not sent; viewers resync later
-            self.stats.failures += 1
-            self._resync = True
-            log.exception("tick of scene %s failed", self.scene.name)
-            return
-        self._broadcast(items)
-        self.stats.add((time.perf_counter() - started) * 1000)
+            self._loop.call_soon_threadsafe(function, argument)
+        except RuntimeError:  # the loop closed while the server stopped
+            pass
 
-    def _resynced(self) -> list[Outgoing]:
-        """After a failed tick, a fresh snapshot first: every client rebuilds from it."""
-        if not self._resync:
-            return []
-        snapshot = Outgoing.of(self.scene.snapshot())
-        self._resync = False
-        return [snapshot]
+    def _receive(self, events: list[tuple[Any, ...]]) -> None:
+        rest = []
+        for event in events:
+            if event[0] == "reply":
+                self._reply(*event[1:])
+            else:
+                rest.append(event)
+        if rest:
+            self._deliver(rest)
+
+    def _reply(self, number: int, ok: bool, value: Any) -> None:
+        future = self._replies.pop(number, None)
+        if future is None or future.done():
+            return
+        if ok:
+            future.set_result(value)
+        else:
+            future.set_exception(value)
+
+    def _end(self, exitcode: int | None) -> None:
+        self.ended = True
+        self._pipe.close()
+        if exitcode:
+            log.error("the process of scene %s ended with exit code %s", self.name, exitcode)
+        for future in self._replies.values():
+            if not future.done():
+                future.set_exception(UnknownScene(f"scene {self.name} has ended",
+                                                  scene=self.name))
+        self._replies.clear()
+        self._deliver([("ended", exitcode)])

@@ -2,7 +2,8 @@
 
 The reader hands each text to the scene (:meth:`SceneHub.receive`) and waits while too
 much of this connection's text is still unapplied, so a flooding client is slowed by
-TCP itself; the writer drains the connection's outbox.
+TCP itself; it yields to the loop after every message, so texts already queued never
+hold up other connections. The writer drains the connection's outbox.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from fastapi import APIRouter, WebSocket
 from starlette.websockets import WebSocketDisconnect
 
 from ..core.physics import ENGINE
-from ..core.session import ROLES, Session
+from ..core.session import ROLES
 from ..errors import LimitExceeded, OutOfRange, VPError
 from .hub import Connection, Hubs, SceneHub
 from .outbox import Outbox, Outgoing
@@ -42,18 +43,21 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
         await websocket.send_text(Outgoing.of(error.to_wire()).text)
         await websocket.close(code, error.message[:120])
         return
-    connection = Connection(Session(hub.scene, hubs.new_client_id(), role),
-                            Outbox(hubs.limits.outbox_bytes))
-    await hub.join(connection)
-    tasks = [asyncio.create_task(_write(websocket, connection)),
-             asyncio.create_task(_read(websocket, connection, hub)),
-             asyncio.create_task(connection.closed.wait())]
+    connection = Connection(hubs.new_client_id(), role, Outbox(hubs.limits.outbox_bytes))
+    tasks: list[asyncio.Task[object]] = []
     try:
+        await hub.join(connection)
+        tasks = [asyncio.create_task(_write(websocket, connection)),
+                 asyncio.create_task(_read(websocket, connection, hub)),
+                 asyncio.create_task(connection.closed.wait())]
         await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
+    except VPError as error:
+        await websocket.send_text(Outgoing.of(error.to_wire()).text)
     finally:
         for task in tasks:
             task.cancel()
         hub.leave(connection)
+        await _say_farewell(websocket, connection)
         await _close_quietly(websocket)
 
 
@@ -64,7 +68,9 @@ async def _read(websocket: WebSocket, connection: Connection, hub: SceneHub) -> 
             return
         text = event.get("text")
         hub.receive(connection, text if text is not None else event.get("bytes") or b"")
-        if not connection.drained.is_set():
+        if connection.drained.is_set():
+            await asyncio.sleep(0)  # messages already received must not monopolise the loop
+        else:
             await connection.drained.wait()
 
 
@@ -75,6 +81,14 @@ async def _write(websocket: WebSocket, connection: Connection) -> None:
             await websocket.send_text(item.text)
     except (WebSocketDisconnect, RuntimeError):
         return
+
+
+async def _say_farewell(websocket: WebSocket, connection: Connection) -> None:
+    if connection.farewell is not None:
+        try:
+            await asyncio.wait_for(websocket.send_text(connection.farewell.text), 2)
+        except (asyncio.TimeoutError, RuntimeError, WebSocketDisconnect):
+            pass
 
 
 async def _close_quietly(websocket: WebSocket) -> None:

@@ -1,7 +1,12 @@
-"""Scenes on their own threads: one scene's flood never stops another scene's frames."""
+"""Scenes in their own processes: one scene's flood or crash never stops another scene."""
 
 import json
+import os
+import signal
 import threading
+
+import pytest
+from websockets.exceptions import ConnectionClosed
 
 from .test_socket import open_client
 from .ws_requests import next_message
@@ -37,3 +42,25 @@ def test_a_flooded_scene_does_not_stop_another_scenes_frames(server, scene_name)
     during = [seq for seq, done in seen if not done]
     # while the flooded scene applied 7 300 objects, the other scene kept sending frames
     assert len(during) >= 5 and during == sorted(set(during))
+
+
+def test_a_scene_whose_process_dies_takes_no_other_scene_with_it(server, scene_name):
+    doomed, hello, _ = open_client(server, scene_name + "d")
+    other, other_hello, _ = open_client(server, scene_name + "o")
+    with doomed, other:
+        other.send(json.dumps({"op": "create", "object": f"{other_hello['client']}.b",
+                               "type": "Box", "id": 1}))
+        assert next_message(other, "ok")["id"] == 1
+        pid = server.get("/api/metrics")["scenes"][scene_name + "d"]["pid"]
+        os.kill(pid, signal.SIGKILL)  # as a crash inside PyBullet would end it
+        farewell = next_message(doomed, "error")
+        assert farewell["code"] == "unknown_scene" and "failed" in farewell["message"]
+        with pytest.raises(ConnectionClosed):
+            doomed.recv(timeout=10)
+        seqs = [next_message(other, "frame")["seq"] for _ in range(5)]
+        assert seqs == sorted(set(seqs))
+        assert [n["id"] for n in server.get(f"/api/scenes/{scene_name}o/snapshot")["nodes"]] == [
+            f"{other_hello['client']}.b"]
+    again, _, snapshot = open_client(server, scene_name + "d")  # the scene starts afresh
+    with again:
+        assert snapshot["nodes"] == [] and next_message(again, "frame")

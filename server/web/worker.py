@@ -1,0 +1,195 @@
+"""One scene in a process of its own: its sessions, requests, ticks, reads and encoding.
+
+PyBullet holds the GIL for every call it makes, so scenes on threads of one process take
+turns: a flooded scene once delayed every other scene's frames by up to a second. Here
+each scene owns a process (and a core when it needs one); the event loop's process only
+moves text. This module is the process's side: :func:`serve` runs until told to stop or
+until the pipe to the server closes. No asyncio here.
+
+Commands (tuples) come from the server in lists; events go back in lists:
+
+========================================  =============================================
+command                                   events it causes
+========================================  =============================================
+``("join", cid, client_id, role)``        ``("admit", cid, [hello, snapshot])``
+``("text", cid, text)``                   ``("answers", cid, [answers], bytes_applied)``
+``("leave", cid)``                        the client's objects deleted (seen in frames)
+``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)``
+``("metrics", n)``                        ``("reply", n, True, tick statistics)``
+``("stop",)``                             the process ends
+each tick                                 ``("frame", [messages])`` for every client
+========================================  =============================================
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import logging
+import signal
+import time
+from collections import deque
+from dataclasses import dataclass, field
+from multiprocessing.connection import Connection as Pipe
+from typing import Any, Callable
+
+from ..core.limits import Limits
+from ..core.messages import encode
+from ..core.scene import Scene
+from ..core.session import Session
+from ..core.wire import encode_numbers
+from ..errors import InternalError, VPError
+from .outbox import Outgoing
+
+log = logging.getLogger(__name__)
+Animator = Callable[[Scene, float], None]
+SceneSetup = Callable[[Scene], Animator | None]
+FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
+_LIBC = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+
+
+@dataclass
+class TickStats:
+    """How long recent ticks took (a window of the last 600), for /api/metrics."""
+
+    count: int = 0
+    failures: int = 0
+    recent: deque[float] = field(default_factory=lambda: deque(maxlen=600))
+
+    def add(self, ms: float) -> None:
+        self.count += 1
+        self.recent.append(ms)
+
+    def summary(self) -> dict[str, float]:
+        """Counts, and last, mean and max tick duration over the window (milliseconds)."""
+        recent = list(self.recent) or [0.0]
+        return {"ticks": self.count, "tickFailures": self.failures, "tickMsLast": recent[-1],
+                "tickMsMean": sum(recent) / len(recent), "tickMsMax": max(recent),
+                "cpuSeconds": time.process_time()}
+
+
+def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float,
+          setup: SceneSetup | None, log_level: int) -> None:
+    """The process's main function: make the scene, then serve it."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
+    logging.basicConfig(level=log_level)
+    scene = Scene(name, limits)
+    animator = setup(scene) if setup is not None else None
+    try:
+        SceneWorker(pipe, scene, tick_rate, animator).run()
+    finally:
+        scene.close()
+
+
+class SceneWorker:
+    """The loop of a scene's process: commands in arrival order, a tick whenever due."""
+
+    def __init__(self, pipe: Pipe, scene: Scene, tick_rate: float,
+                 animator: Animator | None) -> None:
+        self.scene = scene
+        self.tick_rate = tick_rate
+        self.stats = TickStats()
+        self._pipe = pipe
+        self._animator = animator
+        self._sessions: dict[int, Session] = {}
+        self._commands: deque[tuple[Any, ...]] = deque()
+        self._events: list[tuple[Any, ...]] = []
+        self._resync = False
+        self._stopping = False
+
+    def run(self) -> None:
+        """Serve until ``stop`` or until the server's end of the pipe closes."""
+        period = 1.0 / self.tick_rate
+        last = deadline = time.monotonic()
+        while not self._stopping:
+            now = time.monotonic()
+            if now >= deadline:
+                self._tick(now - last)
+                last, deadline = now, max(deadline + period, now - 5 * period)
+            elif self._commands:
+                self._command(self._commands.popleft())
+                if not self._commands or len(self._events) >= FLUSH_EVENTS:
+                    self._flush()
+            elif not self._receive(deadline - now):
+                return
+
+    def _receive(self, wait: float) -> bool:
+        """Wait up to ``wait`` seconds for commands; False once the server is gone."""
+        try:
+            if self._pipe.poll(wait):
+                self._commands.extend(self._pipe.recv())
+        except (EOFError, OSError):
+            return False
+        return True
+
+    def _flush(self) -> None:
+        if self._events:
+            events, self._events = self._events, []
+            try:
+                self._pipe.send(events)
+            except (BrokenPipeError, OSError):
+                self._stopping = True
+
+    def _command(self, command: tuple[Any, ...]) -> None:
+        try:
+            getattr(self, "_" + command[0])(*command[1:])
+        except Exception:  # a bug in one command must not stop the scene
+            log.exception("command %s of scene %s failed", command[0], self.scene.name)
+
+    def _join(self, cid: int, client_id: str, role: str) -> None:
+        session = self._sessions[cid] = Session(self.scene, client_id, role)
+        self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
+                                            Outgoing.of(self.scene.snapshot())]))
+
+    def _text(self, cid: int, text: str | bytes) -> None:
+        session = self._sessions.get(cid)
+        answers = [] if session is None else [
+            Outgoing(answer["op"], encoded)
+            for answer, encoded in session.receive_encoded(text, time.monotonic())]
+        self._events.append(("answers", cid, answers, len(text)))
+
+    def _leave(self, cid: int) -> None:
+        session = self._sessions.pop(cid, None)
+        if session is not None and session.close():
+            _LIBC.malloc_trim(0)  # what the client's objects used goes back to the system
+
+    def _read(self, number: int, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
+        try:
+            result = function(self.scene, *args)
+            reply: tuple[Any, ...] = ("reply", number, True, encode(encode_numbers(result)))
+        except VPError as error:
+            reply = ("reply", number, False, error)
+        except Exception:
+            log.exception("read %s of scene %s failed", function.__name__, self.scene.name)
+            reply = ("reply", number, False, InternalError("internal server error"))
+        self._events.append(reply)
+
+    def _metrics(self, number: int) -> None:
+        self._events.append(("reply", number, True, self.stats.summary()))
+
+    def _stop(self) -> None:
+        self._stopping = True
+
+    def _tick(self, dt: float) -> None:
+        """Run the animator, advance the scene and send its messages to every client."""
+        started = time.perf_counter()
+        try:
+            if self._animator is not None:
+                self._animator(self.scene, self.scene.time + dt)
+            messages = self._resynced() + [Outgoing.of(m) for m in self.scene.tick(dt)]
+        except Exception:  # the scene kept what it had not sent; clients resync later
+            self.stats.failures += 1
+            self._resync = True
+            log.exception("tick of scene %s failed", self.scene.name)
+            return
+        if messages:
+            self._events.append(("frame", messages))
+        self._flush()
+        self.stats.add((time.perf_counter() - started) * 1000)
+
+    def _resynced(self) -> list[Outgoing]:
+        """After a failed tick, a fresh snapshot first: every client rebuilds from it."""
+        if not self._resync:
+            return []
+        self._resync = False
+        return [Outgoing.of(self.scene.snapshot())]

@@ -1,0 +1,71 @@
+"""A scene's process loop, driven through a real pipe (the loop runs on a thread here)."""
+
+import json
+import multiprocessing
+import threading
+
+import pytest
+
+from server.core.limits import DEFAULT
+from server.core.scene import Scene
+from server.errors import UnknownObject
+from server.web.rest import _robot
+from server.web.worker import SceneWorker
+
+
+@pytest.fixture
+def worker():
+    server_end, scene_end = multiprocessing.Pipe()
+    scene = Scene("w", DEFAULT)
+    loop = SceneWorker(scene_end, scene, 60.0, None)
+    thread = threading.Thread(target=loop.run)
+    thread.start()
+    yield server_end
+    server_end.send([("stop",)])
+    thread.join(timeout=10)
+    assert not thread.is_alive()
+    scene.close()
+
+
+def events_until(pipe, kind, count=1):
+    """Events received until ``count`` of ``kind`` came; those of that kind."""
+    found = []
+    while len(found) < count:
+        assert pipe.poll(10), f"no {kind} event"
+        found += [event for event in pipe.recv() if event[0] == kind]
+    return found
+
+
+def test_a_client_joins_sends_and_gets_its_answers_in_order(worker):
+    worker.send([("join", 7, "c7", "controller")])
+    (_, number, (hello, snapshot)), = events_until(worker, "admit")
+    assert number == 7 and hello.message["client"] == "c7" and snapshot.op == "snapshot"
+    texts = [json.dumps({"op": "create", "object": f"c7.{k}", "type": "Box", "id": k})
+             for k in range(1, 4)]
+    worker.send([("text", 7, text) for text in texts])
+    answers = events_until(worker, "answers", 3)
+    assert [(a[1], a[2][0].message["id"], a[3]) for a in answers] == [
+        (7, k, len(texts[k - 1])) for k in range(1, 4)]
+    frame, = events_until(worker, "frame")
+    assert frame[1][0].op in ("added", "frame")
+
+
+def test_reads_reply_with_json_or_the_error_with_its_details(worker):
+    worker.send([("join", 1, "c1", "controller"),
+                 ("text", 1, json.dumps({"op": "create", "object": "c1.r", "type": "Robot"})),
+                 ("read", 5, _robot, ("c1.r",)), ("read", 6, _robot, ("c1.nope",))])
+    ok, refused = events_until(worker, "reply", 2)
+    assert ok[:3] == ("reply", 5, True) and json.loads(ok[3])["id"] == "c1.r"
+    assert refused[:3] == ("reply", 6, False) and isinstance(refused[3], UnknownObject)
+    assert refused[3].details == {"object": "c1.nope"}
+
+
+def test_a_leaving_client_takes_its_objects_along(worker):
+    worker.send([("join", 1, "c1", "controller"),
+                 ("text", 1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
+                 ("leave", 1), ("metrics", 2)])
+    (_, _, _, stats), = events_until(worker, "reply")
+    assert stats["ticks"] >= 0
+    worker.send([("read", 3, Scene.snapshot, ())])
+    (_, _, ok, body), = events_until(worker, "reply")
+    assert ok and json.loads(body)["nodes"] == []
