@@ -8,7 +8,8 @@ from contextlib import asynccontextmanager
 from typing import AsyncIterator
 
 from fastapi import FastAPI, Request
-from fastapi.responses import JSONResponse
+from fastapi.responses import JSONResponse, Response
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.limits import DEFAULT, Limits
 from ..errors import LookupFailure, VPError
@@ -16,6 +17,9 @@ from . import rest, socket
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
+
+HTTP_CODES = {404: "not_found", 405: "method_not_allowed"}
+
 
 def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None,
                limits: Limits = DEFAULT) -> FastAPI:
@@ -40,6 +44,13 @@ def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None,
     @app.exception_handler(VPError)
     async def vp_error(request: Request, error: VPError) -> JSONResponse:
         return rest.error_response(error, 404 if isinstance(error, LookupFailure) else 400)
+
+    @app.exception_handler(StarletteHTTPException)
+    async def http_error(request: Request, error: StarletteHTTPException) -> Response:
+        # every error body has the documented form, unmatched paths included
+        code = HTTP_CODES.get(error.status_code, "http_error")
+        return JSONResponse({"code": code, "message": str(error.detail)},
+                            status_code=error.status_code, headers=error.headers)
 
     mount_pages(app)
     return app

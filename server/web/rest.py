@@ -13,6 +13,7 @@ from typing import Any, Callable
 
 from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
+from pydantic import BaseModel
 
 from ..core import reports
 from ..core.messages import PROTOCOL_VERSION
@@ -24,6 +25,18 @@ from .hub import Hubs, SceneHub
 
 router = APIRouter(prefix="/api")
 VERSION = "0.1.0"
+
+
+class ErrorBody(BaseModel):
+    """What a refused REST request gets: the same code and message as on the WebSocket."""
+
+    code: str
+    message: str
+    details: dict[str, Any] | None = None
+
+
+NOT_FOUND: dict[int | str, dict[str, Any]] = {
+    404: {"model": ErrorBody, "description": "No such scene (or robot, sensor, object)"}}
 
 
 def error_response(error: VPError, status: int) -> JSONResponse:
@@ -72,29 +85,29 @@ async def scenes(request: Request) -> list[dict[str, Any]]:
     return [await _summary(hub) for hub in list(_hubs(request).scenes.values())]
 
 
-@router.get("/scenes/{scene}", summary="One scene: clock, counts, camera")
+@router.get("/scenes/{scene}", responses=NOT_FOUND, summary="One scene: clock, counts, camera")
 async def scene_detail(request: Request, scene: str) -> dict[str, Any]:
     return await _summary(_hub(request, scene))
 
 
-@router.get("/scenes/{scene}/snapshot", summary="The whole scene, as the WebSocket snapshot",
+@router.get("/scenes/{scene}/snapshot", responses=NOT_FOUND, summary="The whole scene, as the WebSocket snapshot",
             response_class=Response)
 async def snapshot(request: Request, scene: str) -> Response:
     return await _read(request, scene, Scene.snapshot)
 
 
-@router.get("/scenes/{scene}/robots", summary="The robots of a scene", response_class=Response)
+@router.get("/scenes/{scene}/robots", responses=NOT_FOUND, summary="The robots of a scene", response_class=Response)
 async def robot_list(request: Request, scene: str) -> Response:
     return await _read(request, scene, _robots)
 
 
-@router.get("/scenes/{scene}/robots/{robot_id}", response_class=Response,
+@router.get("/scenes/{scene}/robots/{robot_id}", responses=NOT_FOUND, response_class=Response,
             summary="A robot: position, rotation, parts and motors in motor order")
 async def robot_detail(request: Request, scene: str, robot_id: str) -> Response:
     return await _read(request, scene, _robot, robot_id)
 
 
-@router.get("/scenes/{scene}/sensors/{sensor_id:path}", response_class=Response,
+@router.get("/scenes/{scene}/sensors/{sensor_id:path}", responses=NOT_FOUND, response_class=Response,
             summary="A sensor's readings now: distance, touch, position, collision, objects "
                     "(and object, with ?other=<id>)")
 async def sensor_detail(request: Request, scene: str, sensor_id: str,
@@ -102,7 +115,7 @@ async def sensor_detail(request: Request, scene: str, sensor_id: str,
     return await _read(request, scene, _sensor, sensor_id, other)
 
 
-@router.get("/scenes/{scene}/contacts", summary="The pairs of parts (and ground) touching now",
+@router.get("/scenes/{scene}/contacts", responses=NOT_FOUND, summary="The pairs of parts (and ground) touching now",
             response_class=Response)
 async def contacts(request: Request, scene: str) -> Response:
     return await _read(request, scene, reports.contacts_report)
