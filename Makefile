@@ -23,6 +23,7 @@ bench: install
 	$(BIN)/python bench/tick.py
 	$(BIN)/python bench/sensing.py
 	$(BIN)/python bench/viewer_latency.py
+	$(BIN)/python bench/flood.py
 
 install: $(PY_STAMP) $(WEB_STAMP)
 

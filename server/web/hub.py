@@ -17,6 +17,7 @@ from typing import Any
 
 from ..core.limits import DEFAULT, Limits
 from ..errors import LimitExceeded, OutOfRange, UnknownScene
+from . import heap
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .runner import SceneRunner
 from .worker import SceneSetup
@@ -139,10 +140,10 @@ class SceneHub:
             connection.send(answers)
             connection.applied(size)
 
-    def _ended(self, exitcode: int | None) -> None:
+    def _ended(self, failed: bool) -> None:
         """The scene's process is gone: its clients are disconnected (they may rejoin)."""
         for connection in self.members.values():
-            if exitcode:
+            if failed:
                 connection.farewell = Outgoing.of(UnknownScene(
                     f"scene {self.name} failed and was closed; reconnect to start it "
                     f"again", scene=self.name).to_wire())
@@ -212,6 +213,7 @@ class Hubs:
             for name in self.remove_idle(time.monotonic()):
                 log.info("removed scene %s: no clients for %d s", name,
                          self.limits.scene_idle_seconds)
+            heap.trim()  # what past floods of messages used goes back to the system
 
     async def stop(self) -> None:
         """Stop every scene and wait for their processes to end."""

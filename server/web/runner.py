@@ -33,7 +33,7 @@ sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 class SceneRunner:
     """Starts a scene's process, sends it commands, and hands its events to ``deliver``
-    on the event loop (a final ``("ended", exitcode)`` when the process is gone)."""
+    on the event loop (a final ``("ended", failed)`` when the process is gone)."""
 
     def __init__(self, name: str, limits: Limits, tick_rate: float,
                  setup: worker.SceneSetup | None, deliver: Deliver) -> None:
@@ -50,6 +50,7 @@ class SceneRunner:
         self._replies: dict[int, asyncio.Future[Any]] = {}
         self._numbers = itertools.count(1)
         self.ended = False
+        self.stopping = False  # asked to stop: however the process ends, it is no failure
 
     @property
     def pid(self) -> int | None:
@@ -79,6 +80,7 @@ class SceneRunner:
 
     def stop(self) -> None:
         """Ask the process to finish the commands sent so far, then end."""
+        self.stopping = True
         self._commands.put(_STOP)
 
     def join(self, timeout: float) -> None:
@@ -141,11 +143,12 @@ class SceneRunner:
     def _end(self, exitcode: int | None) -> None:
         self.ended = True
         self._pipe.close()
-        if exitcode:
+        failed = bool(exitcode) and not self.stopping
+        if failed:
             log.error("the process of scene %s ended with exit code %s", self.name, exitcode)
         for future in self._replies.values():
             if not future.done():
                 future.set_exception(UnknownScene(f"scene {self.name} has ended",
                                                   scene=self.name))
         self._replies.clear()
-        self._deliver([("ended", exitcode)])
+        self._deliver([("ended", failed)])

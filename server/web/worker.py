@@ -23,8 +23,6 @@ each tick                                 ``("frame", [messages])`` for every cl
 
 from __future__ import annotations
 
-import ctypes
-import ctypes.util
 import logging
 import signal
 import time
@@ -39,13 +37,13 @@ from ..core.scene import Scene
 from ..core.session import Session
 from ..core.wire import encode_numbers
 from ..errors import InternalError, VPError
+from . import heap
 from .outbox import Outgoing
 
 log = logging.getLogger(__name__)
 Animator = Callable[[Scene, float], None]
 SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
-_LIBC = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
 
 
 @dataclass
@@ -151,7 +149,7 @@ class SceneWorker:
     def _leave(self, cid: int) -> None:
         session = self._sessions.pop(cid, None)
         if session is not None and session.close():
-            _LIBC.malloc_trim(0)  # what the client's objects used goes back to the system
+            heap.trim()  # what the client's objects used goes back to the system
 
     def _read(self, number: int, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
         try:
