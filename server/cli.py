@@ -45,9 +45,11 @@ def main(argv: list[str] | None = None) -> None:
     _raise_file_limit(limits)
     app = create_app(tick_rate=args.tick_rate, setup=None if args.no_demo else setup_diggers,
                      limits=limits)
+    # No permessage-deflate: it would compress every frame for every client on the one
+    # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md).
     uvicorn.run(app, host=args.host, port=args.port, log_level=args.log_level,
                 http=guarded_protocol(limits, ConnectionCount()), ws="websockets-sansio",
-                ws_max_size=WS_MAX_BYTES, ws_ping_interval=args.ping_seconds,
+                ws_max_size=WS_MAX_BYTES, ws_per_message_deflate=False, ws_ping_interval=args.ping_seconds,
                 ws_ping_timeout=args.ping_seconds,
                 h11_max_incomplete_event_size=limits.header_bytes)
 

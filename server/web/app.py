@@ -13,7 +13,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.limits import DEFAULT, Limits
 from ..errors import LookupFailure, VPError
-from . import rest, socket
+from . import heap, rest, socket
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
@@ -31,6 +31,7 @@ def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None,
         asyncio.get_running_loop().set_exception_handler(LoopErrorLog().handle)
         hubs.open(DEFAULT_SCENE, setup)
         sweeper = asyncio.create_task(hubs.sweep())
+        heap.settle()
         yield
         sweeper.cancel()
         await hubs.stop()

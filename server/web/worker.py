@@ -73,6 +73,7 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float,
     logging.basicConfig(level=log_level)
     scene = Scene(name, limits)
     animator = setup(scene) if setup is not None else None
+    heap.settle()
     try:
         SceneWorker(pipe, scene, tick_rate, animator).run()
     finally:

@@ -153,3 +153,10 @@ def test_frames_carry_contact_changes_to_every_client(server, scene_name):
         while "contacts" not in ended:
             ended = next_message(viewer, "frame")
         assert ended["contacts"] == {"begin": [], "end": [[f"{me}.b", "ground"]]}
+
+
+def test_messages_are_sent_uncompressed_even_when_the_client_offers_deflate(server, scene_name):
+    # compressing on the loop every scene shares would hold every other scene's frames
+    with connect(f"{server.ws}/ws?scene={scene_name}", compression="deflate") as ws:
+        assert "Sec-WebSocket-Extensions" not in ws.response.headers
+        assert json.loads(ws.recv(timeout=10))["op"] == "hello"
