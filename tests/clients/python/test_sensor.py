@@ -125,7 +125,8 @@ def test_only_parts_with_callbacks_keep_contact_changes(scene):
     scene.sync()
     eventually(lambda: (plain.id, "ground") in scene.mirror.contacts
                and (listening.id, "ground") in scene.mirror.contacts)
-    # the change is queued, or already handed to the callback by sync(); nothing of plain's
-    kept = [event[1] for event in scene.mirror.events] + [listening.id] * len(listening.log)
-    assert kept == [listening.id]
+    # the change is queued, or already handed to the callback (the mirror's thread may
+    # move it between the two looks, so it can be seen in both); nothing of plain's
+    kept = {event[1] for event in scene.mirror.events} | {listening.id for _ in listening.log}
+    assert kept == {listening.id}
     assert not plain.hears_contacts and listening.hears_contacts
