@@ -9,7 +9,7 @@ import resource
 import uvicorn
 
 from .core.limits import DEFAULT, Limits
-from .demo import setup_diggers
+from .demo import DEMOS
 from .web.app import create_app
 from .web.guard import ConnectionCount, guarded_protocol
 
@@ -43,7 +43,7 @@ def main(argv: list[str] | None = None) -> None:
         parser.error(str(error))
     logging.basicConfig(level=args.log_level.upper())
     _raise_file_limit(limits)
-    app = create_app(tick_rate=args.tick_rate, setup=None if args.no_demo else setup_diggers,
+    app = create_app(tick_rate=args.tick_rate, setups=None if args.no_demo else DEMOS,
                      limits=limits)
     # No permessage-deflate: it would compress every frame for every client on the one
     # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md).

@@ -1,4 +1,5 @@
-"""The live demo of `make run`: the manual's three Diggers (Step 5), driven by the server."""
+"""The live demos of `make run`: six hands making gestures (the ``default`` scene) and the
+manual's three Diggers (Step 5, scene ``diggers``), driven by the server."""
 
 from __future__ import annotations
 
@@ -6,10 +7,12 @@ import math
 from itertools import count
 from typing import Callable
 
+from .core.hands import AnthroHand, EdgedHand, Hand, RoundHand
 from .core.motor import MotorZ
 from .core.parts import EdgedFinger
 from .core.robot import Robot
 from .core.scene import Scene
+from .web.worker import SceneSetup
 
 # (speed, z position) of robots A, B and C in the manual.
 DIGGERS = ((2.0, 1.0), (3.0, 0.0), (4.0, -1.0))
@@ -51,3 +54,44 @@ def setup_diggers(scene: Scene) -> Callable[[Scene, float], None]:
             if robot.id in scene.nodes:
                 dig(robot, time)
     return animate
+
+
+# The hands of the default demo: (class, x); each kind has a left hand behind (z < 0)
+# and a right hand in front, turned towards the camera.
+HANDS = ((EdgedHand, -3.0), (RoundHand, 0.0), (AnthroHand, 3.0))
+GESTURE_SECONDS = 3.0
+
+
+def gesture(hand: Hand, time: float) -> None:
+    """Open, fist, spread, point, in turn, each easing into the next."""
+    phase, within = divmod(time / GESTURE_SECONDS, 1.0)
+    ease = 0.5 - 0.5 * math.cos(math.pi * min(1.0, within * 2))
+    poses = [(0.0, 0.0, 0.0), (1.3, 1.3, 0.0), (0.0, 0.0, 0.5), (1.3, 0.0, 0.0)]
+    (flex, index_flex, spread), (flex2, index2, spread2) = (
+        poses[int(phase) % 4], poses[(int(phase) + 1) % 4])
+    flex, index_flex, spread = (a + (b - a) * ease for a, b in
+                                ((flex, flex2), (index_flex, index2), (spread, spread2)))
+    hand.spread_fingers(spread, True)
+    for finger in range(5):
+        hand.flex_finger(finger, index_flex if finger == 1 else flex)
+
+
+def setup_hands(scene: Scene) -> Callable[[Scene, float], None]:
+    """A left and a right hand of each kind; the returned animator makes them gesture."""
+    hands = []
+    for kind, x in HANDS:
+        for left, z in ((True, -1.2), (False, 1.2)):
+            hand = kind(scene, f"demo.{kind.type_name}-{'left' if left else 'right'}", left)
+            hand.set_position((x, 0.2, z))
+            hands.append(hand)
+    scene.set_camera_position((0.0, 5.0, 15.0))
+    scene.set_camera_target((0.0, 1.6, 0.0))
+
+    def animate(scene: Scene, time: float) -> None:
+        for k, hand in enumerate(hands):
+            if hand.id in scene.nodes:
+                gesture(hand, time + 0.4 * k)
+    return animate
+
+
+DEMOS: dict[str, SceneSetup] = {"default": setup_hands, "diggers": setup_diggers}

@@ -12,7 +12,8 @@ Hierarchy::
     │   ├── UnknownType          unknown_type   create with a type the API lacks
     │   ├── UnknownMethod        unknown_method call of a method the type lacks
     │   ├── UnknownObject        unknown_object an id no object in the scene has
-    │   └── UnknownScene         unknown_scene  a scene name that is not served
+    │   ├── UnknownScene         unknown_scene  a scene name that is not served
+    │   └── UnknownAsset         unknown_asset  a mesh file that is not bundled or uploaded
     ├── ArgumentError            arguments of a create or call
     │   ├── BadArguments         bad_arguments  wrong number of arguments
     │   ├── WrongType            wrong_type     an argument of the wrong kind
@@ -136,6 +137,10 @@ class UnknownScene(LookupFailure):
     code = "unknown_scene"
 
 
+class UnknownAsset(LookupFailure):
+    code = "unknown_asset"
+
+
 class ArgumentError(VPError):
     """Arguments that do not fit the called constructor or method."""
 
@@ -184,6 +189,7 @@ class InternalError(VPError):
 
 ERROR_CODES: tuple[str, ...] = tuple(
     cls.code for cls in (BadJSON, BadMessage, UnknownOp, TooLarge, UnknownType, UnknownMethod,
-                         UnknownObject, UnknownScene, BadArguments, WrongType, OutOfRange,
+                         UnknownObject, UnknownScene, UnknownAsset, BadArguments, WrongType,
+                         OutOfRange,
                          DuplicateId, ForeignId, Cycle, Forbidden, LimitExceeded, InternalError)
 )

@@ -137,6 +137,15 @@ def _color(value: Any, resolve: Resolver, label: str) -> str | int:
     raise WrongType(f"{label}: expected a CSS colour name, #hex or 0xRRGGBB, got {show(value)}")
 
 
+def _rgb(value: Any, resolve: Resolver, label: str) -> str | int | list[float]:
+    if isinstance(value, list):
+        if len(value) == 3 and all(isinstance(c, (int, float)) and not isinstance(c, bool)
+                                   and 0 <= c <= 1 for c in value):
+            return [float(c) for c in value]
+        raise WrongType(f"{label}: expected [r, g, b] with each in 0…1, got {show(value)}")
+    return _color(value, resolve, label)
+
+
 def _choice(options: Sequence[str]) -> Callable[[Any, Resolver, str], str]:
     def check(value: Any, resolve: Resolver, label: str) -> str:
         if value not in options:
@@ -187,6 +196,7 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "bool": _bool,
     "string": _string,
     "color": _color,
+    "rgb": _rgb,
     "axis": _choice(("x", "y", "z")),
     "order": _choice(EULER_ORDERS),
     "node": _reference(Robot, Part),

@@ -96,6 +96,73 @@ def edged_palm_slots(left: bool, length: float, width: float) -> list[tuple[Vec3
     return slots
 
 
+# --- round and anthropomorphic parts (meshes) ----------------------------------------
+
+# Bounding boxes ((x0, x1), (y0, y1), (z0, z1)) of the bundled meshes in their files' own
+# frames: 1.0's proportions (assets/meshes.py makes the files to fit them).
+MESH_BOUNDS: dict[str, tuple[tuple[float, float], ...]] = {
+    "round-finger-8.glb": ((-0.15, 0.15), (-0.456, 0.474), (-0.15, 0.15)),
+    "round-finger-5.glb": ((-0.15, 0.15), (-0.312, 0.324), (-0.15, 0.15)),
+    "round-tip.glb": ((-0.15, 0.15), (-0.312, 0.324), (-0.15, 0.15)),
+    "round-palm.glb": ((-0.825, 0.821), (-0.864, 1.03), (-0.15, 0.15)),
+    "anthro-palm.glb": ((-0.805, 0.76), (-0.864, 1.03), (-0.15, 0.15)),
+    "anthro-thumb.glb": ((-0.114, 0.116), (-0.33, 0.112), (-0.256, 0.292)),
+}
+MESH_WHITE = (1.0, 1.0, 1.0)  # flat faces
+MESH_BLUE = (0.0, 0.21, 1.0)  # curved faces
+ROUND_HAND_GREY = (0.3, 0.3, 0.3)  # what a round hand recolours the blue to
+ROUND_FINGER_LENGTH = 0.8
+ROUND_PALM_LENGTH = 1.4
+
+SlotFigure = tuple[Vec3, Vec3, str]  # position, Euler rotation, order
+INF = math.inf
+# Envelopes stop short of the joints, where neighbouring meshes overlap by design: a
+# finger's starts ENVELOPE_GAP above its joint, a palm's below its lowest finger slot and
+# inside its thumb slot.
+ENVELOPE_GAP = 0.08
+
+
+def round_finger_envelope(length: float) -> tuple[tuple[float, float], ...]:
+    """The box a round finger's envelope is kept within (part frame)."""
+    return ((-INF, INF), (ENVELOPE_GAP, INF), (-INF, INF))
+
+
+def palm_envelope(left: bool, slots: list[SlotFigure]) -> tuple[tuple[float, float], ...]:
+    """The box a round or anthropomorphic palm's envelope is kept within."""
+    top = min(position[1] for position, _, _ in slots[1:]) - ENVELOPE_GAP / 4
+    thumb_x = slots[0][0][0]
+    x = (-INF, thumb_x - ENVELOPE_GAP / 4) if left else (thumb_x + ENVELOPE_GAP / 4, INF)
+    return (x, (-INF, top), (-INF, INF))
+
+
+def _finger_slots(f: float, length: float) -> list[SlotFigure]:
+    """Slots 1-4 of round and anthropomorphic palms (index to little finger)."""
+    spots = [(0.36, 1.13, -3), (0.12, 1.17, -1), (-0.12, 1.16, 1), (-0.36, 1.09, 3)]
+    return [((x * f * length, y * length, 0.0), (0.0, PI / 2, k * f * PI / 180), "ZXY")
+            for x, y, k in spots]
+
+
+def round_palm_slots(left: bool, length: float) -> list[SlotFigure]:
+    """The five slots of a round palm, the thumb's first."""
+    f = 1.0 if left else -1.0
+    thumb = ((0.53 * f * length, 0.50 * length, 0.0),
+             (PI / 2 * (1 + f), -f * PI / 2, PI / 2 + 0.7 * f), "ZXY")
+    return [thumb, *_finger_slots(f, length)]
+
+
+def anthro_palm_slots(left: bool, length: float) -> list[SlotFigure]:
+    """The five slots of an anthropomorphic palm, the thumb's first."""
+    f = 1.0 if left else -1.0
+    thumb = ((0.32 * f * length, 0.16 * length, 0.0),
+             (PI / 2, 0.75 * PI + (0.0 if left else PI / 2), -0.5 * f * PI), "XYZ")
+    return [thumb, *_finger_slots(f, length)]
+
+
+def anthro_thumb_slot(left: bool, length: float) -> SlotFigure:
+    """The one slot of an anthropomorphic thumb, where its finger goes on."""
+    f = 1.0 if left else -1.0
+    return (0.0, -0.2 * length, 0.06 * length), (PI / 2, (1 - f) * PI / 2, 0.0), "XYZ"
+
 # --- sensors --------------------------------------------------------------------------
 
 SENSOR_PAD_RADIUS = 0.1   # the dome's radius in X and Z
@@ -127,8 +194,25 @@ def edged_spread_motor(finger: int) -> tuple[float, float, float, float, float]:
 
 
 # spreadFingers(a): thumb angle (when included) and the other four fingers' angles.
-SPREAD_THUMB = {"EdgedHand": lambda a: -1 + 3 * a}
+SPREAD_THUMB = {"EdgedHand": lambda a: -1 + 3 * a, "RoundHand": lambda a: -3 * a,
+                "AnthroHand": lambda a: 0.5 - 2 * a}
 SPREAD_FINGERS = (1.0, 0.3, -0.3, -1.0)
+
+# Round hand: (motor type, min, max, def, width, height, flip when left) of each spread
+# motor, then the three flexing motors and fingers of every finger.
+ROUND_THUMB_SPREAD = ("MotorY", 0.0, PI / 2, 0.0, 0.25, 0.1, False)
+ROUND_FINGER_SPREAD = ("MotorX", -0.4, 0.4, 0.0, 0.0, 0.0, True)
+ROUND_FLEX = [("proximal", (PI / 4, -PI / 2, -PI / 4, 0.2, 0.07), "round-finger-8.glb", 0.8),
+              ("middle", (0.0, -PI / 2, -PI / 4, 0.2, 0.07), "round-finger-5.glb", 0.5),
+              ("distal", (0.0, -PI / 2, -PI / 4, 0.2, 0.07), "round-tip.glb", 0.5)]
+# Anthropomorphic hand: the thumb's four motors (type, name, min, max, def, width, height,
+# flip when left) around its AnthroThumb, and the fingers' flexing motors.
+ANTHRO_THUMB_MOTORS = [("MotorZ", "Palm", 0.0, 2.0, 0.0, 0.75, 0.07, False),
+                       ("MotorX", "Thumb", -0.75, 2.0, 0.0, 0.14, 0.06, False),
+                       ("MotorY", "twist", -0.5, 1.0, 0.0, 0.07, 0.2, False),
+                       ("MotorZ", "proximal", -1.75, 0.25, 0.0, 0.2, 0.06, None)]
+ANTHRO_PROXIMAL = (PI / 4, -PI / 2, -PI / 8, 0.2, 0.07)
+ANTHRO_FLEX = (0.0, -PI / 2, -PI / 8, 0.2, 0.07)
 
 # --- scene ----------------------------------------------------------------------------
 

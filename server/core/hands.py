@@ -6,7 +6,8 @@ from typing import TYPE_CHECKING, Any, Callable
 
 from ..errors import OutOfRange
 from . import figures
-from .motor import Motor, MotorX, MotorZ
+from .meshparts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
+from .motor import Motor, MotorX, MotorY, MotorZ
 from .node import Node
 from .parts import EdgedFinger, EdgedPalm, EdgedTip
 from .robot import Robot
@@ -115,3 +116,88 @@ class EdgedHand(Hand):
                 self.make(EdgedTip, 0.5),
             )
         self.built()
+
+
+MOTOR_TYPES: dict[str, type[Motor]] = {"MotorX": MotorX, "MotorY": MotorY, "MotorZ": MotorZ}
+
+
+class RoundHand(Hand):
+    """Manual ``RoundHand(isLeft)``: a round palm with five three-segment round fingers."""
+
+    type_name = "RoundHand"
+    spread_thumb = staticmethod(figures.SPREAD_THUMB["RoundHand"])
+    palm_type: type[RoundPalm] = RoundPalm
+    palm_file = "round-palm.glb"
+
+    def __init__(self, scene: Scene, node_id: str, is_left: bool = True) -> None:
+        super().__init__(scene, node_id, is_left)
+        self.palm = self.round(self.make(self.palm_type, is_left, self.palm_file))
+        self.palm.attach_to_slot(self)
+        self.build_fingers()
+        self.built()
+
+    def round(self, part: GLTFPart) -> GLTFPart:
+        """A part of this hand, its blue recoloured grey as 1.0's round hands do."""
+        part.recolor(list(figures.MESH_BLUE), list(figures.ROUND_HAND_GREY))
+        return part
+
+    def motor(self, motor_type: str, name: str, arguments: tuple[float, ...],
+              flip_when_left: bool | None) -> Motor:
+        """A named motor of this hand, flipped on the side the figures say."""
+        motor = self.make(MOTOR_TYPES[motor_type], *arguments).set_name(name)
+        if flip_when_left is not None:
+            motor.flip(self.is_left if flip_when_left else not self.is_left)
+        return motor
+
+    def flexing(self, base: Node, flex: list[tuple[str, tuple[float, ...]]]) -> None:
+        """Flexing motors and round fingers, in turn, from ``base`` on."""
+        chain: list[Node] = [base]
+        for (name, arguments), (file, length) in zip(flex, _ROUND_SEGMENTS):
+            chain += [self.motor("MotorZ", name, arguments, None),
+                      self.round(self.make(RoundFinger, file, length))]
+        self.add_chain(*chain)
+
+    def build_fingers(self) -> None:
+        for finger in range(FINGERS):
+            kind, *arguments, flip_when_left = (figures.ROUND_THUMB_SPREAD if finger == 0
+                                                else figures.ROUND_FINGER_SPREAD)
+            spread = self.motor(kind, figures.FINGER_NAMES[finger], tuple(arguments),
+                                flip_when_left)
+            spread.attach_to_slot(self.palm, finger)
+            self.flexing(spread, [(name, arguments) for name, arguments, _, _ in figures.ROUND_FLEX])
+
+
+_ROUND_SEGMENTS = [(file, length) for _, _, file, length in figures.ROUND_FLEX]
+
+
+class AnthroHand(RoundHand):
+    """Manual ``AnthroHand(isLeft)``: an anthropomorphic palm and thumb, round fingers."""
+
+    type_name = "AnthroHand"
+    spread_thumb = staticmethod(figures.SPREAD_THUMB["AnthroHand"])
+    palm_type = AnthroPalm
+    palm_file = "anthro-palm.glb"
+
+    def spread_index(self, finger: int) -> int:
+        return 1 if finger == 0 else 4 * finger + 2
+
+    def flex_indices(self, finger: int) -> range:
+        return range(4 * finger + 3, 4 * finger + 6)
+
+    def build_fingers(self) -> None:
+        (palm_type, palm_name, *palm_args, palm_flip), *thumb_motors = figures.ANTHRO_THUMB_MOTORS
+        base = self.motor(palm_type, palm_name, tuple(palm_args), palm_flip)
+        base.attach_to_slot(self.palm, 0)
+        chain: list[Node] = [base, self.round(self.make(AnthroThumb, self.is_left, "anthro-thumb.glb"))]
+        for motor_type, name, *arguments, flip_when_left in thumb_motors[:-1]:
+            chain.append(self.motor(motor_type, name, tuple(arguments), flip_when_left))
+        self.add_chain(*chain)
+        _, proximal_name, *proximal, _ = thumb_motors[-1]
+        self.flexing(chain[-1], [(proximal_name, tuple(proximal)),
+                                 ("middle", figures.ANTHRO_FLEX), ("distal", figures.ANTHRO_FLEX)])
+        for finger in range(1, FINGERS):
+            kind, *arguments, flip_when_left = figures.ROUND_FINGER_SPREAD
+            spread = self.motor(kind, figures.FINGER_NAMES[finger], tuple(arguments), flip_when_left)
+            spread.attach_to_slot(self.palm, finger)
+            self.flexing(spread, [("proximal", figures.ANTHRO_PROXIMAL),
+                                  ("middle", figures.ANTHRO_FLEX), ("distal", figures.ANTHRO_FLEX)])

@@ -7,7 +7,8 @@ from typing import Any, Callable
 from ..errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
 from . import api
 from .arguments import bind
-from .hands import EdgedHand
+from .hands import AnthroHand, EdgedHand, RoundHand
+from .meshparts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from .motor import Motor, MotorX, MotorY, MotorZ
 from .node import Node, Slot
 from .parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
@@ -18,7 +19,8 @@ from .wire import encode_numbers
 
 NODE_CLASSES: dict[str, type[Node]] = {cls.type_name: cls for cls in (
     Slot, Part, Motor, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,
-    Sensor, Robot, EdgedHand)}
+    Sensor, Robot, EdgedHand, GLTFPart, RoundFinger, RoundPalm, AnthroPalm, AnthroThumb,
+    RoundHand, AnthroHand)}
 SCENE_ID = "scene"
 
 

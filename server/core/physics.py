@@ -106,7 +106,7 @@ class PhysicsWorld:
         self._filter(body)
         self._bodies[key] = body
         self._keys[body] = key
-        self._padding[body] = CONVEX_MARGIN if geometry["kind"] == "convex" else 0.0
+        self._padding[body] = CONVEX_MARGIN if "points" in geometry else 0.0
         self._placed[key] = (geometry, pose)
 
     def _shape(self, geometry: dict[str, Any]) -> int:
@@ -189,6 +189,6 @@ def _shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:
     if kind == "box":
         return {"shapeType": pybullet.GEOM_BOX,
                 "halfExtents": [s / 2 for s in geometry["size"]]}
-    if kind == "convex":
+    if kind in ("convex", "mesh"):  # a mesh part's envelope: its hull's points
         return {"shapeType": pybullet.GEOM_MESH, "vertices": geometry["points"]}
     raise ValueError(f"no collision shape for geometry kind {kind!r}")

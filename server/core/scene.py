@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any, Iterator
 
 from ..errors import DuplicateId, LimitExceeded, UnknownObject
 from . import figures
+from .assets import AssetLibrary
 from .changes import ChangeSet
 from .contacts import ContactBook, ContactTracker, Overlaps
 from .ids import IdBook
@@ -41,7 +42,8 @@ def owner_of(node_id: str) -> str:
 class Scene:
     """Robots and parts in one PyBullet world, with time, sequence number and camera."""
 
-    def __init__(self, name: str = "default", limits: Limits = DEFAULT) -> None:
+    def __init__(self, name: str = "default", limits: Limits = DEFAULT,
+                 assets: AssetLibrary | None = None) -> None:
         self.name = name
         self.limits = limits
         self.nodes: dict[str, Node] = {}
@@ -50,6 +52,7 @@ class Scene:
         self.owned: Counter[str] = Counter()  # objects per owner
         self.physical = 0  # physical parts, in the scene or not
         self.physics = PhysicsWorld()
+        self.assets = assets or AssetLibrary()
         self.tracker = ContactTracker(self.physics, limits.contact_tests,
                                       limits.contact_pairs)
         self.time = 0.0

@@ -5,7 +5,7 @@ from __future__ import annotations
 import asyncio
 import time
 from contextlib import asynccontextmanager
-from typing import AsyncIterator
+from typing import AsyncIterator, Mapping
 
 from fastapi import FastAPI, Request
 from fastapi.responses import JSONResponse, Response
@@ -21,15 +21,18 @@ from .pages import mount_pages
 HTTP_CODES = {404: "not_found", 405: "method_not_allowed"}
 
 
-def create_app(tick_rate: float = 60.0, setup: SceneSetup | None = None,
+def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None = None,
                limits: Limits = DEFAULT) -> FastAPI:
-    """The server: the ``default`` scene exists from the start (prepared by ``setup``)."""
+    """The server: the ``default`` scene exists from the start; ``setups`` prepare scenes
+    by name (whenever one starts)."""
     hubs = Hubs(tick_rate, limits)
+    for name, setup in (setups or {}).items():
+        hubs.prepare(name, setup)
 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         asyncio.get_running_loop().set_exception_handler(LoopErrorLog().handle)
-        hubs.open(DEFAULT_SCENE, setup)
+        hubs.open(DEFAULT_SCENE)
         sweeper = asyncio.create_task(hubs.sweep())
         heap.settle()
         yield

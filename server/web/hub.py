@@ -168,11 +168,15 @@ class Hubs:
         """The hub of an existing scene."""
         return self.scenes.get(name)
 
+    def prepare(self, name: str, setup: SceneSetup) -> None:
+        """Let ``setup`` prepare the scene ``name`` whenever it starts."""
+        self._setups[name] = setup
+
     def open(self, name: str, setup: SceneSetup | None = None) -> SceneHub:
         """The hub of a scene, made and started if it does not exist (or its process ended);
         ``setup`` prepares it, then and whenever it starts again."""
         if setup is not None:
-            self._setups[name] = setup
+            self.prepare(name, setup)
         hub = self.scenes.get(name)
         if hub is not None and hub.ended:
             del self.scenes[name]

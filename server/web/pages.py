@@ -1,4 +1,4 @@
-"""The browser pages: the index, the viewer, its ES modules and its npm dependencies.
+"""The browser pages: the index, the viewer, its ES modules, npm dependencies and meshes.
 
 three.js and lil-gui are served from ``web/node_modules`` (installed from the npm registry
 by the set-up command, never committed); the pages find them through an import map.
@@ -12,6 +12,8 @@ from pathlib import Path
 from fastapi import FastAPI
 from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
+
+from ..core.assets import BUNDLED_DIR, BUNDLED_URL
 
 log = logging.getLogger(__name__)
 
@@ -27,6 +29,7 @@ def mount_pages(app: FastAPI) -> None:
         app.mount(f"/vendor/{name}", StaticFiles(directory=folder, check_dir=False),
                   name=f"vendor-{name}")
     app.mount("/web", StaticFiles(directory=WEB / "src"), name="web")
+    app.mount(BUNDLED_URL.rstrip("/"), StaticFiles(directory=BUNDLED_DIR), name="meshes")
 
     @app.get("/", include_in_schema=False)
     async def index() -> FileResponse:

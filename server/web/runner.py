@@ -27,7 +27,8 @@ COMMANDS_PER_SEND = 512  # commands pickled together: fewer, larger writes in a 
 _STOP = ("stop",)
 
 _CONTEXT = multiprocessing.get_context("forkserver")
-_CONTEXT.set_forkserver_preload([worker.__name__])
+# Mesh reading too: loaded once in the fork server, a scene's first hand costs no import.
+_CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial"])
 sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 

@@ -2,11 +2,12 @@
 // builder returns a group of meshes (shadows on) whose materials belong to this part
 // alone (so that one part can glow), and, for a physical part, a function giving the
 // geometry of its collision envelope (only debug-physics asks). Parts shaped by GLB
-// files add a kind here.
+// files are built in meshes.js.
 
 import * as THREE from 'three';
 import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
 import { sensorTexture } from './textures.js';
+import { mesh as fileMesh } from './meshes.js';
 
 const EDGE_OPACITY = 0.3;
 
@@ -50,16 +51,16 @@ function dome(g) {
 	return { meshes: [mesh], envelope: null };
 }
 
-export const SHAPES = { sphere, box, convex, cylinder, dome };
+export const SHAPES = { sphere, box, convex, cylinder, dome, mesh: fileMesh };
 
 // The meshes of one part, in a group named 'shape'; null for an unknown kind.
-export function buildShape(geometry, physical) {
+export function buildShape(geometry, physical, node) {
 	const builder = SHAPES[geometry.kind];
 	if (!builder) {
 		console.warn(`no shape for geometry kind ${geometry.kind}`);
 		return null;
 	}
-	const { meshes, envelope } = builder(geometry);
+	const { meshes, envelope, recolor } = builder(geometry, node);
 	const group = new THREE.Group();
 	group.name = 'shape';
 	for (const mesh of meshes) {
@@ -67,6 +68,7 @@ export function buildShape(geometry, physical) {
 		group.add(mesh);
 	}
 	group.userData.envelope = physical ? envelope : null;
+	group.userData.recolor = recolor ?? null;
 	return group;
 }
 

@@ -39,7 +39,7 @@ export class SceneTree {
 		object.userData.node = { ...node };
 		object.userData.base = new THREE.Quaternion(...node.quaternion);
 		object.position.set(...node.position);
-		const shape = node.geometry ? buildShape(node.geometry, node.physical) : null;
+		const shape = node.geometry ? buildShape(node.geometry, node.physical, node) : null;
 		if (shape) object.add(shape);
 		object.userData.shape = shape;
 		this.objects.set(node.id, object);
@@ -108,6 +108,7 @@ export class SceneTree {
 		if ('parent' in fields) (this.objects.get(fields.parent) ?? this.root).add(object);
 		if ('visible' in fields) this.applyVisibility(object);
 		if ('flipped' in fields) this.setAngle(object, object.userData.shownAngle ?? 0);
+		if ('recolors' in fields) object.userData.shape?.userData.recolor?.(fields.recolors);
 		this.emit('changed', object, fields);
 	}
 

@@ -1,0 +1,95 @@
+"""Round and anthropomorphic hands: chains, motor names and order, and what each method moves."""
+
+import math
+
+import pytest
+
+from server.core.hands import AnthroHand, RoundHand
+from server.core.meshparts import AnthroPalm, AnthroThumb, RoundFinger, RoundPalm
+
+FINGERS = ["Thumb", "Index finger", "Middle finger", "Ring finger", "Little finger"]
+FLEX = ["proximal", "middle", "distal"]
+
+
+def test_round_hand_has_the_specs_twenty_named_motors(scene):
+    hand = RoundHand(scene, "h", True)
+    names = [m.name for m in hand.get_motors()]
+    assert names == [n for finger in FINGERS for n in [finger, *FLEX]]
+    types = [m.type_name for m in hand.get_motors()][0::4]
+    assert types == ["MotorY", "MotorX", "MotorX", "MotorX", "MotorX"]
+
+
+def test_anthro_hand_has_the_specs_twenty_two_named_motors(scene):
+    hand = AnthroHand(scene, "h", True)
+    names = [m.name for m in hand.get_motors()]
+    assert names == ["Palm", "Thumb", "twist", *FLEX] + [
+        n for finger in FINGERS[1:] for n in [finger, *FLEX]]
+    assert [m.type_name for m in hand.get_motors()][:6] == [
+        "MotorZ", "MotorX", "MotorY", "MotorZ", "MotorZ", "MotorZ"]
+
+
+def test_hand_parts_are_the_manuals_classes_and_files(scene):
+    round_parts = [type(p) for p in RoundHand(scene, "r").get_parts() if not p.type_name.startswith("Motor")]
+    assert round_parts == [RoundPalm] + [RoundFinger] * 15
+    anthro = [p for p in AnthroHand(scene, "a").get_parts() if not p.type_name.startswith("Motor")]
+    assert [type(p) for p in anthro[:3]] == [AnthroPalm, AnthroThumb, RoundFinger]
+    assert [p.mesh.url.rsplit("/", 1)[1] for p in anthro[2:5]] == [
+        "round-finger-8.glb", "round-finger-5.glb", "round-tip.glb"]
+
+
+@pytest.mark.parametrize("kind, spread, flex", [
+    (RoundHand, lambda i: 4 * i, lambda i: [4 * i + 1, 4 * i + 2, 4 * i + 3]),
+    (AnthroHand, lambda i: 1 if i == 0 else 4 * i + 2, lambda i: [4 * i + 3, 4 * i + 4, 4 * i + 5]),
+])
+def test_each_method_moves_exactly_the_motors_the_spec_names(scene, kind, spread, flex):
+    for finger in range(5):
+        hand = kind(scene, f"h{finger}")
+        before = hand.get_angles()
+        hand.flex_finger(finger, 0.3)
+        moved = [i for i, (a, b) in enumerate(zip(before, hand.get_angles())) if a != b]
+        assert moved == flex(finger) and all(hand.get_angles()[i] == -0.3 for i in moved)
+        before = hand.get_angles()
+        hand.spread_finger(finger, -0.1)  # within every spread motor's range (thumb: 0…π/2)
+        moved = [i for i, (a, b) in enumerate(zip(before, hand.get_angles())) if a != b]
+        assert moved == [spread(finger)]
+
+
+@pytest.mark.parametrize("kind, thumb", [(RoundHand, lambda a: -3 * a), (AnthroHand, lambda a: 0.5 - 2 * a)])
+def test_spread_fingers_includes_the_thumb_as_the_spec_says(scene, kind, thumb):
+    hand = kind(scene, "h")
+    motors = hand.get_motors()
+    hand.spread_fingers(0.2, True)
+    thumb_motor = motors[hand.spread_index(0)]
+    expected = max(thumb_motor.min, min(thumb_motor.max, -thumb(0.2)))
+    assert thumb_motor.get_angle() == pytest.approx(expected)
+    assert [motors[hand.spread_index(i)].get_angle() for i in range(1, 5)] == pytest.approx(
+        [-0.2, -0.06, 0.06, 0.2])
+
+
+def test_round_hands_are_recoloured_grey_and_right_ones_mirrored(scene):
+    left, right = RoundHand(scene, "l", True), RoundHand(scene, "r", False)
+    palm = left.get_parts()[0]
+    assert palm.describe()["recolors"] == [[[0.0, 0.21, 1.0], [0.3, 0.3, 0.3], 0.01]]
+    assert palm.geometry()["mirror"] is False and right.get_parts()[0].geometry()["mirror"] is True
+    assert palm.geometry()["offset"] == [0.0, 0.7, 0.0]
+
+
+def test_mesh_envelopes_are_a_few_dozen_hull_points_and_mirror_with_the_part(scene):
+    left, right = RoundPalm(scene, "l", True, "round-palm.glb"), RoundPalm(scene, "r", False, "round-palm.glb")
+    points = left.geometry()["points"]
+    assert 20 <= len(points) <= 60
+    mirrored = sorted((-x, y, z) for x, y, z in right.geometry()["points"])
+    assert [c for p in mirrored for c in p] == pytest.approx(
+        [c for p in sorted(tuple(p) for p in points) for c in p])
+    ys = [p[1] for p in points]  # the file's box raised by length/2, kept below the fingers
+    assert min(ys) == pytest.approx(-0.864 + 0.7, abs=0.02) and max(ys) < 1.09 * 1.4
+
+
+def test_a_round_fist_touches_its_palm(scene):
+    hand = RoundHand(scene, "h", True)
+    hand.set_position((0, 1, 0))
+    palm = hand.get_parts()[0]
+    at_rest = set(scene.touching(palm))
+    hand.flex_fingers(math.pi / 2)
+    fist = set(scene.touching(palm))
+    assert len(fist - at_rest) >= 3  # fingers folded onto the palm touch it

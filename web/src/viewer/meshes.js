@@ -1,0 +1,75 @@
+// Parts drawn from mesh files (GLTFPart and the round and anthropomorphic hand parts):
+// each file is loaded once and shared; every part gets its own copy of the geometry's
+// colours, so that recolor() on one part changes that part alone.
+
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
+
+const loader = new GLTFLoader();
+const files = new Map();  // url -> Promise of [BufferGeometry] in the file's frame
+
+function load(url) {
+	if (!files.has(url)) {
+		files.set(url, loader.loadAsync(url).then((gltf) => {
+			const geometries = [];
+			gltf.scene.updateMatrixWorld(true);
+			gltf.scene.traverse((child) => {
+				if (child.isMesh) geometries.push(child.geometry.clone().applyMatrix4(child.matrixWorld));
+			});
+			return geometries;
+		}));
+	}
+	return files.get(url);
+}
+
+// [r, g, b] are the file's own (linear) components, as 1.0's recolor took them; names
+// and hex strings are CSS colours.
+function toColor(value) {
+	return Array.isArray(value) ? new THREE.Color().setRGB(...value) : new THREE.Color(value);
+}
+
+// Each vertex whose colour is within eps of `from` (every component) takes `to`.
+function recolor(geometry, original, recolors) {
+	const colors = geometry.getAttribute('color');
+	if (!colors) return;
+	colors.copy(original);
+	for (const [from, to, eps] of recolors) {
+		const a = toColor(from), b = toColor(to);
+		for (let i = 0; i < colors.count; i++) {
+			if (Math.abs(colors.getX(i) - a.r) <= eps && Math.abs(colors.getY(i) - a.g) <= eps &&
+				Math.abs(colors.getZ(i) - a.b) <= eps) colors.setXYZ(i, b.r, b.g, b.b);
+		}
+	}
+	colors.needsUpdate = true;
+}
+
+// The builder for geometry kind 'mesh': a group filled once the file has loaded.
+export function mesh(g, node) {
+	const holder = new THREE.Group();
+	holder.position.set(...g.offset);
+	if (g.mirror) holder.scale.x = -1;  // three.js turns the faces round for a mirrored mesh
+	const parts = [];
+	let recolors = node?.recolors ?? [];
+	holder.userData.ready = load(g.url).then((geometries) => {
+		for (const source of geometries) {
+			const geometry = source.clone();
+			const original = source.getAttribute('color')?.clone();
+			const material = new THREE.MeshPhongMaterial({ vertexColors: Boolean(original), shininess: 40 });
+			const part = new THREE.Mesh(geometry, material);
+			part.castShadow = part.receiveShadow = true;
+			part.userData.original = original;
+			parts.push(part);
+			holder.add(part);
+			recolor(geometry, original, recolors);
+		}
+	}).catch((error) => console.warn(`mesh ${g.url} did not load:`, error));
+	return {
+		meshes: [holder],
+		envelope: g.points ? () => new ConvexGeometry(g.points.map((p) => new THREE.Vector3(...p))) : null,
+		recolor: (latest) => {
+			recolors = latest;
+			for (const part of parts) recolor(part.geometry, part.userData.original, recolors);
+		},
+	};
+}
