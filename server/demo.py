@@ -57,7 +57,7 @@ def setup_diggers(scene: Scene) -> Callable[[Scene, float], None]:
 
 
 # The hands of the default demo: (class, x); each kind has a left hand behind (z < 0)
-# and a right hand in front, turned towards the camera.
+# and a right hand in front.
 HANDS = ((EdgedHand, -3.0), (RoundHand, 0.0), (AnthroHand, 3.0))
 GESTURE_SECONDS = 3.0
 

@@ -122,9 +122,7 @@ INF = math.inf
 ENVELOPE_GAP = 0.08
 
 
-def round_finger_envelope(length: float) -> tuple[tuple[float, float], ...]:
-    """The box a round finger's envelope is kept within (part frame)."""
-    return ((-INF, INF), (ENVELOPE_GAP, INF), (-INF, INF))
+ROUND_FINGER_ENVELOPE = ((-INF, INF), (ENVELOPE_GAP, INF), (-INF, INF))  # part frame
 
 
 def palm_envelope(left: bool, slots: list[SlotFigure]) -> tuple[tuple[float, float], ...]:

@@ -157,17 +157,24 @@ class RoundHand(Hand):
                       self.round(self.make(RoundFinger, file, length))]
         self.add_chain(*chain)
 
+    def finger(self, finger: int, spread: tuple[Any, ...],
+               flex: list[tuple[str, tuple[float, ...]]]) -> None:
+        """A finger on its palm slot: the named spread motor, then ``flexing``."""
+        kind, *arguments, flip_when_left = spread
+        motor = self.motor(kind, figures.FINGER_NAMES[finger], tuple(arguments), flip_when_left)
+        motor.attach_to_slot(self.palm, finger)
+        self.flexing(motor, flex)
+
     def build_fingers(self) -> None:
         for finger in range(FINGERS):
-            kind, *arguments, flip_when_left = (figures.ROUND_THUMB_SPREAD if finger == 0
-                                                else figures.ROUND_FINGER_SPREAD)
-            spread = self.motor(kind, figures.FINGER_NAMES[finger], tuple(arguments),
-                                flip_when_left)
-            spread.attach_to_slot(self.palm, finger)
-            self.flexing(spread, [(name, arguments) for name, arguments, _, _ in figures.ROUND_FLEX])
+            self.finger(finger, figures.ROUND_THUMB_SPREAD if finger == 0
+                        else figures.ROUND_FINGER_SPREAD, _ROUND_MOTORS)
 
 
 _ROUND_SEGMENTS = [(file, length) for _, _, file, length in figures.ROUND_FLEX]
+_ROUND_MOTORS = [(name, arguments) for name, arguments, _, _ in figures.ROUND_FLEX]
+_ANTHRO_MOTORS = [("proximal", figures.ANTHRO_PROXIMAL), ("middle", figures.ANTHRO_FLEX),
+                  ("distal", figures.ANTHRO_FLEX)]
 
 
 class AnthroHand(RoundHand):
@@ -193,11 +200,6 @@ class AnthroHand(RoundHand):
             chain.append(self.motor(motor_type, name, tuple(arguments), flip_when_left))
         self.add_chain(*chain)
         _, proximal_name, *proximal, _ = thumb_motors[-1]
-        self.flexing(chain[-1], [(proximal_name, tuple(proximal)),
-                                 ("middle", figures.ANTHRO_FLEX), ("distal", figures.ANTHRO_FLEX)])
+        self.flexing(chain[-1], [(proximal_name, tuple(proximal)), *_ANTHRO_MOTORS[1:]])
         for finger in range(1, FINGERS):
-            kind, *arguments, flip_when_left = figures.ROUND_FINGER_SPREAD
-            spread = self.motor(kind, figures.FINGER_NAMES[finger], tuple(arguments), flip_when_left)
-            spread.attach_to_slot(self.palm, finger)
-            self.flexing(spread, [("proximal", figures.ANTHRO_PROXIMAL),
-                                  ("middle", figures.ANTHRO_FLEX), ("distal", figures.ANTHRO_FLEX)])
+            self.finger(finger, figures.ROUND_FINGER_SPREAD, _ANTHRO_MOTORS)

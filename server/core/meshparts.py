@@ -23,10 +23,13 @@ Color = Any  # a CSS colour name, "#hex", 0xRRGGBB or [r, g, b] in 0…1
 
 
 class GLTFPart(Part):
-    """Manual ``GLTFPart(filename, length=0)``: a mesh raised by length/2; no slots, no envelope."""
+    """Manual ``GLTFPart(filename, length=0)``: a mesh raised by length/2; no slots, no envelope.
+
+    Files hold left-hand shapes: a part that is not ``left`` shows its file mirrored in X.
+    """
 
     type_name = "GLTFPart"
-    mirror = False
+    left = True
 
     def __init__(self, scene: Scene, node_id: str, filename: str, length: float = 0.0) -> None:
         self.mesh: Mesh = scene.assets.mesh(filename)  # refused before the node exists
@@ -38,6 +41,11 @@ class GLTFPart(Part):
     def offset(self) -> Vec3:
         """Where the file's origin sits in the part's frame."""
         return (0.0, self.length / 2, 0.0)
+
+    @property
+    def mirror(self) -> bool:
+        """True when the file is shown mirrored in X (a right-hand part)."""
+        return not self.left
 
     def recolor(self, from_color: Color, to_color: Color, eps: float = 0.01) -> None:
         """Manual ``recolor(fromColor, toColor, eps)``: vertices within eps of one colour get another."""
@@ -77,7 +85,7 @@ class RoundFinger(GLTFPart):
         self.new_slot((0.0, length, 0.0))
 
     def envelope_box(self) -> Box:
-        return figures.round_finger_envelope(self.length)
+        return figures.ROUND_FINGER_ENVELOPE
 
 
 class RoundPalm(GLTFPart):
@@ -92,10 +100,6 @@ class RoundPalm(GLTFPart):
         self.left = left
         for position, rotation, order in self.slot_figures(left, length):
             self.new_slot(position, rotation, order)
-
-    @property
-    def mirror(self) -> bool:  # type: ignore[override]
-        return not self.left
 
     def envelope_box(self) -> Box:
         return figures.palm_envelope(self.left, self.slot_figures(self.left, self.length))
@@ -130,7 +134,3 @@ class AnthroThumb(GLTFPart):
     @property
     def offset(self) -> Vec3:
         return (0.0, 0.0, 0.0)
-
-    @property
-    def mirror(self) -> bool:  # type: ignore[override]
-        return not self.left

@@ -172,11 +172,9 @@ class Hubs:
         """Let ``setup`` prepare the scene ``name`` whenever it starts."""
         self._setups[name] = setup
 
-    def open(self, name: str, setup: SceneSetup | None = None) -> SceneHub:
-        """The hub of a scene, made and started if it does not exist (or its process ended);
-        ``setup`` prepares it, then and whenever it starts again."""
-        if setup is not None:
-            self.prepare(name, setup)
+    def open(self, name: str) -> SceneHub:
+        """The hub of a scene, made and started if it does not exist (or its process ended),
+        prepared by its setup (:meth:`prepare`) each time it starts."""
         hub = self.scenes.get(name)
         if hub is not None and hub.ended:
             del self.scenes[name]
