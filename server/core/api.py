@@ -13,7 +13,7 @@ Parameter kinds (how each argument is checked, see :mod:`server.core.arguments`)
 within ±100 000 ·
 ``node`` a robot or part reference · ``part`` a part reference · ``slot`` slot index or
 Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) · ``rgb`` a colour or
-[r, g, b] in 0…1 ·
+[r, g, b] in 0…1 · ``asset`` a mesh filename (bundled or uploaded) ·
 ``contact`` a part reference or "ground".
 
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
@@ -159,12 +159,12 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("setAngles", (Param("angles", "angle", variadic=True),)),
     )),
     TypeSpec("EdgedHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
-    TypeSpec("GLTFPart", "Part", (Param("filename", "string"), Param("length", "number", 0.0)),
+    TypeSpec("GLTFPart", "Part", (Param("filename", "asset"), Param("length", "number", 0.0)),
              (Method("recolor", (Param("fromColor", "rgb"), Param("toColor", "rgb"),
                                  Param("eps", "number", 0.01))),)),
-    TypeSpec("RoundFinger", "GLTFPart", (Param("filename", "string"),
+    TypeSpec("RoundFinger", "GLTFPart", (Param("filename", "asset"),
                                          Param("length", "size", figures.ROUND_FINGER_LENGTH))),
-    *(TypeSpec(name, "GLTFPart", (Param("left", "bool"), Param("filename", "string"),
+    *(TypeSpec(name, "GLTFPart", (Param("left", "bool"), Param("filename", "asset"),
                                   Param("length", "size", figures.ROUND_PALM_LENGTH)))
       for name in ("RoundPalm", "AnthroPalm", "AnthroThumb")),
     TypeSpec("RoundHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),

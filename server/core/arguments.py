@@ -195,6 +195,7 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "angle": lambda v, r, label: None if v is None else _number(v, label, tuple(NON_FINITE)),
     "bool": _bool,
     "string": _string,
+    "asset": _string,  # a mesh filename: the part resolves it (server.core.assets)
     "color": _color,
     "rgb": _rgb,
     "axis": _choice(("x", "y", "z")),

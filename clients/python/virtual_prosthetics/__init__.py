@@ -10,9 +10,10 @@
 
 from .animation import get_time, run, set_animation
 from .errors import ConnectionLost, ServerError, Timeout, VPError
-from .objects import (Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Motor, MotorX, MotorY,
-                      MotorZ, Node, Part, Slot)
-from .robots import EdgedHand, Robot
+from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip,
+                      GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
+                      RoundPalm, Slot)
+from .robots import AnthroHand, EdgedHand, RoundHand, Robot
 from .scene import Scene, connect, current_scene
 from .sensor import Sensor
 
@@ -28,7 +29,8 @@ def set_camera_target(*target: float) -> None:
 
 
 __all__ = [
-    "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
+    "AnthroHand", "AnthroPalm", "AnthroThumb", "GLTFPart", "RoundFinger", "RoundHand",
+    "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Sensor",
     "ServerError", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target",

@@ -6,7 +6,7 @@ argument (None) takes the server's default. Names are the manual's in snake_case
 
 from __future__ import annotations
 
-from typing import Any, ClassVar
+from typing import Any, Callable, ClassVar
 
 from .errors import VPError
 from .scene import Scene, current_scene
@@ -193,3 +193,65 @@ class EdgedPalm(Part):
                  width: float | None = None, thickness: float | None = None, *,
                  scene: Scene | None = None) -> None:
         self._create(scene, left, length, width, thickness)
+
+
+Color = Any  # a CSS colour name, "#hex", 0xRRGGBB or [r, g, b] in 0…1
+
+
+class GLTFPart(Part):
+    """Manual ``GLTFPart(filename, length=0, callback)``: a part shaped by a mesh file.
+
+    ``callback(part)`` runs once the server has made the part (as 1.0 ran it once the
+    file had loaded); it is keyword-only here.
+    """
+
+    _type = "GLTFPart"
+
+    def __init__(self, filename: str, length: float | None = None, *,
+                 callback: Callable[[GLTFPart], Any] | None = None,
+                 scene: Scene | None = None) -> None:
+        self._create(scene, filename, length)
+        self._ready(callback)
+
+    def _ready(self, callback: Callable[[GLTFPart], Any] | None) -> None:
+        if callback is not None:
+            self._scene.sync()  # raises the server's error when the part was not made
+            callback(self)
+
+    def recolor(self, from_color: Color, to_color: Color, eps: float | None = None) -> None:
+        """Manual ``recolor(fromColor, toColor, eps=0.01)``: in every viewer, now and later."""
+        self._call("recolor", from_color, to_color, eps)
+
+
+class RoundFinger(GLTFPart):
+    """Manual ``RoundFinger(filename, length=0.8)``: one slot at (0, length, 0)."""
+
+    _type = "RoundFinger"
+
+
+class _HandedPart(GLTFPart):
+    """A mesh part made for a left or a right hand (the right one mirrored in X)."""
+
+    def __init__(self, left: bool, filename: str, length: float | None = None, *,
+                 callback: Callable[[GLTFPart], Any] | None = None,
+                 scene: Scene | None = None) -> None:
+        self._create(scene, left, filename, length)
+        self._ready(callback)
+
+
+class RoundPalm(_HandedPart):
+    """Manual ``RoundPalm(left, filename, length=1.4)``: five finger slots, the thumb's first."""
+
+    _type = "RoundPalm"
+
+
+class AnthroPalm(_HandedPart):
+    """Manual ``AnthroPalm(left, filename, length=1.4)``: the round palm cut for the thumb."""
+
+    _type = "AnthroPalm"
+
+
+class AnthroThumb(_HandedPart):
+    """Manual ``AnthroThumb(left, filename, length=1.4)``: one slot for its finger."""
+
+    _type = "AnthroThumb"

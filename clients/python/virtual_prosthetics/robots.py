@@ -108,10 +108,23 @@ class EdgedHand(Hand):
     _type = "EdgedHand"
 
 
+class RoundHand(Hand):
+    """Manual ``RoundHand(isLeft=true)``: 20 motors, round parts recoloured grey."""
+
+    _type = "RoundHand"
+
+
+class AnthroHand(Hand):
+    """Manual ``AnthroHand(isLeft=true)``: 22 motors, the thumb's six first."""
+
+    _type = "AnthroHand"
+
+
 CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
     objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
     objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
-    Sensor, Robot, EdgedHand)}
+    objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
+    objects.AnthroThumb, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
 
 
 def stand_in(scene: Scene, node_id: str, type_name: str) -> Node:
