@@ -6,8 +6,7 @@ prefixes, what is left must be a plain file name (letters, digits, ``_-.``, endi
 ``.glb`` or ``.gltf``) of a bundled or uploaded file. Anything else (other folders, ``..``,
 absolute paths, URLs, percent-encoding, backslashes) is refused before any file is opened.
 
-The mesh of a file is read once per process (trimesh), with the convex envelope that
-physics uses: a few dozen points of the mesh's convex hull.
+The mesh of a file is read once per process (trimesh).
 """
 
 from __future__ import annotations
@@ -20,14 +19,12 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import Forbidden, UnknownAsset
-from .math3d import Vec3
 
 BUNDLED_DIR = Path(__file__).resolve().parents[2] / "assets" / "gltf"
 BUNDLED_URL = "/assets/gltf/"
 UPLOADED_URL = "/api/assets/"
 PREFIXES = ("../assets/gltf/", "./assets/gltf/", "assets/gltf/", BUNDLED_URL, UPLOADED_URL)
 _NAME = re.compile(r"[A-Za-z0-9_-]+(?:\.[A-Za-z0-9_-]+)*\.(?:glb|gltf)")
-ENVELOPE_POINTS = 40
 
 
 @dataclass(frozen=True, eq=False)  # compared and hashed by identity: one per file read
@@ -89,34 +86,3 @@ def _read_mesh(path: str, url: str, version: int) -> Mesh:
     loaded = trimesh.load(path, force="mesh", process=False)
     return Mesh(url, np.asarray(loaded.vertices, dtype=float),
                 np.asarray(loaded.faces, dtype=np.int64))
-
-
-Box = tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
-EVERYWHERE: Box = ((-np.inf, np.inf),) * 3
-
-
-def envelope(mesh: Mesh, offset: Vec3, mirror: bool, within: Box = EVERYWHERE,
-             count: int = ENVELOPE_POINTS) -> tuple[Vec3, ...]:
-    """About ``count`` points of the mesh's convex hull, moved by ``offset``, mirrored in X,
-    and kept ``within`` a box of the part's frame (so that neighbours joined at a slot do
-    not overlap where their meshes do).
-
-    The points are spread over the hull (farthest-point order from the topmost one), so
-    the envelope follows the mesh closely with far fewer points than the hull has.
-    """
-    return _envelope(mesh, tuple(offset), mirror, within, count)
-
-
-@lru_cache(maxsize=256)
-def _envelope(mesh: Mesh, offset: Vec3, mirror: bool, within: Box, count: int) -> tuple[Vec3, ...]:
-    from scipy.spatial import ConvexHull
-
-    placed = mesh.vertices * ([-1.0, 1.0, 1.0] if mirror else 1.0) + np.array(offset)
-    clipped = np.clip(placed, [low for low, _ in within], [high for _, high in within])
-    points = clipped[ConvexHull(clipped).vertices]
-    chosen = [int(np.argmax(points[:, 1]))]
-    distance = np.linalg.norm(points - points[chosen[0]], axis=1)
-    while len(chosen) < min(count, len(points)):
-        chosen.append(int(np.argmax(distance)))
-        distance = np.minimum(distance, np.linalg.norm(points - points[chosen[-1]], axis=1))
-    return tuple(tuple(float(c) for c in p) for p in points[chosen])

@@ -115,22 +115,11 @@ ROUND_FINGER_LENGTH = 0.8
 ROUND_PALM_LENGTH = 1.4
 
 SlotFigure = tuple[Vec3, Vec3, str]  # position, Euler rotation, order
-INF = math.inf
-# Envelopes stop short of the joints, where neighbouring meshes overlap by design: a
-# finger's starts ENVELOPE_GAP above its joint, a palm's below its lowest finger slot and
-# inside its thumb slot.
-ENVELOPE_GAP = 0.08
-
-
-ROUND_FINGER_ENVELOPE = ((-INF, INF), (ENVELOPE_GAP, INF), (-INF, INF))  # part frame
-
-
-def palm_envelope(left: bool, slots: list[SlotFigure]) -> tuple[tuple[float, float], ...]:
-    """The box a round or anthropomorphic palm's envelope is kept within."""
-    top = min(position[1] for position, _, _ in slots[1:]) - ENVELOPE_GAP / 4
-    thumb_x = slots[0][0][0]
-    x = (-INF, thumb_x - ENVELOPE_GAP / 4) if left else (thumb_x + ENVELOPE_GAP / 4, INF)
-    return (x, (-INF, top), (-INF, INF))
+# Envelopes of mesh parts stop short of their joints (server.core.envelopes): a finger's
+# ends are pyramids beginning FINGER_JOINT_GAP beyond its joints; a palm keeps
+# PALM_JOINT_GAP behind its finger slots and inside a round hand's thumb slot.
+FINGER_JOINT_GAP = 0.01
+PALM_JOINT_GAP = 0.02
 
 
 def _finger_slots(f: float, length: float) -> list[SlotFigure]:

@@ -10,8 +10,9 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import LimitExceeded
 from . import figures
-from .assets import EVERYWHERE, Box, Mesh, envelope
-from .math3d import Vec3
+from .assets import Mesh
+from .envelopes import Plane, envelope, half_space, pyramid
+from .math3d import Vec3, euler_to_quat, rotate
 from .parts import Part
 
 if TYPE_CHECKING:
@@ -56,11 +57,11 @@ class GLTFPart(Part):
 
     def envelope(self) -> tuple[Vec3, ...]:
         """Points whose convex hull is the part's collision envelope (part frame)."""
-        return envelope(self.mesh, self.offset, self.mirror, self.envelope_box())
+        return envelope(self.mesh, self.offset, self.mirror, self.envelope_cuts())
 
-    def envelope_box(self) -> Box:
-        """Where the envelope may reach (the whole mesh unless a part says otherwise)."""
-        return EVERYWHERE
+    def envelope_cuts(self) -> list[Plane]:
+        """Where the envelope stops short of the part's joints (nowhere unless a part says)."""
+        return []
 
     def geometry(self) -> dict[str, Any]:
         shape: dict[str, Any] = {"kind": "mesh", "url": self.mesh.url,
@@ -84,8 +85,9 @@ class RoundFinger(GLTFPart):
         super().__init__(scene, node_id, filename, length)
         self.new_slot((0.0, length, 0.0))
 
-    def envelope_box(self) -> Box:
-        return figures.ROUND_FINGER_ENVELOPE
+    def envelope_cuts(self) -> list[Plane]:
+        gap, up, down = figures.FINGER_JOINT_GAP, (0.0, 1.0, 0.0), (0.0, -1.0, 0.0)
+        return [*pyramid((0.0, 0.0, 0.0), up, gap), *pyramid((0.0, self.length, 0.0), down, gap)]
 
 
 class RoundPalm(GLTFPart):
@@ -101,8 +103,17 @@ class RoundPalm(GLTFPart):
         for position, rotation, order in self.slot_figures(left, length):
             self.new_slot(position, rotation, order)
 
-    def envelope_box(self) -> Box:
-        return figures.palm_envelope(self.left, self.slot_figures(self.left, self.length))
+    def envelope_cuts(self) -> list[Plane]:
+        """Flat below each finger slot, and inside the thumb slot's side of the palm."""
+        slots = self.slot_figures(self.left, self.length)
+        gap = figures.PALM_JOINT_GAP
+        cuts = [half_space(position, slot_direction(rotation, order), gap)
+                for position, rotation, order in slots[1:]]
+        return cuts + self.thumb_cuts(slots[0])
+
+    def thumb_cuts(self, thumb: figures.SlotFigure) -> list[Plane]:
+        side = 1.0 if self.left else -1.0
+        return [half_space(thumb[0], (side, 0.0, 0.0), figures.PALM_JOINT_GAP)]
 
     @staticmethod
     def slot_figures(left: bool, length: float) -> list[figures.SlotFigure]:
@@ -113,6 +124,9 @@ class AnthroPalm(RoundPalm):
     """Manual ``AnthroPalm(left, filename, length=1.4)``: the round palm cut for the thumb."""
 
     type_name = "AnthroPalm"
+
+    def thumb_cuts(self, thumb: figures.SlotFigure) -> list[Plane]:
+        return []  # the mesh is cut away where the thumb sits
 
     @staticmethod
     def slot_figures(left: bool, length: float) -> list[figures.SlotFigure]:
@@ -134,3 +148,16 @@ class AnthroThumb(GLTFPart):
     @property
     def offset(self) -> Vec3:
         return (0.0, 0.0, 0.0)
+
+    def envelope_cuts(self) -> list[Plane]:
+        """Clear of the palm while it swings about its motor's Z, and of its finger."""
+        gap = figures.FINGER_JOINT_GAP
+        position, rotation, order = figures.anthro_thumb_slot(self.left, self.length)
+        toward_finger = slot_direction(rotation, order)
+        return [*pyramid((0.0, 0.0, 0.0), (0.0, -1.0, 0.0), gap, ((1, 0, 0), (-1, 0, 0))),
+                *pyramid(position, tuple(-c for c in toward_finger), gap)]
+
+
+def slot_direction(rotation: Vec3, order: str) -> Vec3:
+    """Where a part attached to a slot with this rotation points (the slot's +Y)."""
+    return rotate(euler_to_quat(*rotation, order), (0.0, 1.0, 0.0))

@@ -28,7 +28,7 @@ _STOP = ("stop",)
 
 _CONTEXT = multiprocessing.get_context("forkserver")
 # Mesh reading too: loaded once in the fork server, a scene's first hand costs no import.
-_CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial"])
+_CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial", "scipy.optimize"])
 sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 

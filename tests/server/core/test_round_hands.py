@@ -5,7 +5,8 @@ import math
 import pytest
 
 from server.core.hands import AnthroHand, RoundHand
-from server.core.meshparts import AnthroPalm, AnthroThumb, RoundFinger, RoundPalm
+from server.core.figures import PALM_JOINT_GAP, round_palm_slots
+from server.core.meshparts import AnthroPalm, AnthroThumb, RoundFinger, RoundPalm, slot_direction
 
 FINGERS = ["Thumb", "Index finger", "Middle finger", "Ring finger", "Little finger"]
 FLEX = ["proximal", "middle", "distal"]
@@ -77,19 +78,63 @@ def test_round_hands_are_recoloured_grey_and_right_ones_mirrored(scene):
 def test_mesh_envelopes_are_a_few_dozen_hull_points_and_mirror_with_the_part(scene):
     left, right = RoundPalm(scene, "l", True, "round-palm.glb"), RoundPalm(scene, "r", False, "round-palm.glb")
     points = left.geometry()["points"]
-    assert 20 <= len(points) <= 60
+    assert 20 <= len(points) <= 80
     mirrored = sorted((-x, y, z) for x, y, z in right.geometry()["points"])
     assert [c for p in mirrored for c in p] == pytest.approx(
         [c for p in sorted(tuple(p) for p in points) for c in p])
-    ys = [p[1] for p in points]  # the file's box raised by length/2, kept below the fingers
-    assert min(ys) == pytest.approx(-0.864 + 0.7, abs=0.02) and max(ys) < 1.09 * 1.4
+    ys = [p[1] for p in points]  # the file's box raised by length/2
+    assert min(ys) == pytest.approx(-0.864 + 0.7, abs=0.02)
+    clearance = [-max(sum((p[k] - position[k]) * u[k] for k in range(3)) for p in points)
+                 for position, rotation, order in round_palm_slots(True, 1.4)[1:]
+                 for u in [slot_direction(rotation, order)]]
+    assert min(clearance) == pytest.approx(PALM_JOINT_GAP)  # the lowest finger's, exactly
 
 
-def test_a_round_fist_touches_its_palm(scene):
-    hand = RoundHand(scene, "h", True)
-    hand.set_position((0, 1, 0))
-    palm = hand.get_parts()[0]
-    at_rest = set(scene.touching(palm))
-    hand.flex_fingers(math.pi / 2)
-    fist = set(scene.touching(palm))
-    assert len(fist - at_rest) >= 3  # fingers folded onto the palm touch it
+def _touching_within(scene, hand):
+    """Pairs of the hand's own parts that touch (sorted ids)."""
+    parts = {p.id for p in hand.get_parts() if p.physical}
+    return {tuple(sorted((a, b))) for a in parts for b in scene.touching(scene.get(a)) if b in parts}
+
+
+@pytest.mark.parametrize("kind", [RoundHand, AnthroHand])
+@pytest.mark.parametrize("left", [True, False])
+def test_hands_at_rest_and_spread_open_touch_nothing_of_their_own(scene, kind, left):
+    hand = kind(scene, "h", left)
+    assert _touching_within(scene, hand) == set()
+    hand.flex_fingers(0)
+    hand.spread_fingers(1, True)
+    assert _touching_within(scene, hand) == set()
+
+
+def _physical_neighbours(motor):
+    below, above = motor.parent, next(iter(motor.children), None)
+    while below is not None and not below.physical:
+        below = below.parent
+    while above is not None and not above.physical:
+        above = next(iter(above.children), None)
+    return below, above
+
+
+@pytest.mark.parametrize("kind", [RoundHand, AnthroHand])
+def test_finger_segments_never_touch_their_neighbours_whatever_the_joint_angle(scene, kind):
+    hand = kind(scene, "h")
+    joints = [m for m in hand.get_motors() if m.name in ("middle", "distal")]
+    assert len(joints) == 10
+    for motor in joints:
+        below, above = _physical_neighbours(motor)
+        assert type(below) is type(above) is RoundFinger
+        for step in range(11):
+            motor.set_angle(motor.min + (motor.max - motor.min) * step / 10)
+            assert above.id not in scene.touching(below), (motor.id, motor.get_angle())
+
+
+@pytest.mark.parametrize("kind, fingers", [(RoundHand, 5), (AnthroHand, 4)])
+def test_a_fist_touches_its_palm_left_and_right_alike(scene, kind, fingers):
+    hands = [kind(scene, "l", True), kind(scene, "r", False)]
+    for x, hand in zip((-3, 3), hands):
+        hand.set_position((x, 2, 0))  # apart, and off the ground
+        hand.flex_fingers(math.pi / 2)
+    touched = [sorted(i.split("/")[1] for i in scene.touching(hand.get_parts()[0]))
+               for hand in hands]
+    assert touched[0] == touched[1]  # the right hand is the left one's mirror image
+    assert len(touched[0]) >= fingers  # every folded finger (not its thumb, for anthro)
