@@ -84,8 +84,10 @@ class ContactTracker:
         self._dirty[key] = None
 
     def removed(self, key: str) -> None:
-        """A body left the world: its pairs end now."""
-        row = self._rows.pop(key)
+        """A body left the world: its pairs end now (nothing for a body never placed)."""
+        row = self._rows.pop(key, None)
+        if row is None:
+            return
         last = len(self._keys) - 1
         if row != last:  # the last row takes the freed place
             moved = self._keys[last]

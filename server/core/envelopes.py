@@ -17,6 +17,7 @@ from typing import Sequence
 import numpy as np
 
 from .assets import Mesh
+from .hulls import convex_hull
 from .math3d import Vec3
 
 ENVELOPE_POINTS = 64
@@ -80,11 +81,11 @@ def _mirrored(v: Vec3) -> Vec3:
 
 @lru_cache(maxsize=256)
 def _envelope(mesh: Mesh, offset: Vec3, cuts: tuple[Plane, ...], count: int) -> tuple[Vec3, ...]:
-    from scipy.spatial import ConvexHull
-
     placed = mesh.vertices + np.array(offset)
-    corners = _cut(placed[ConvexHull(placed).vertices], cuts)
-    corners = corners[ConvexHull(corners).vertices]
+    outline = convex_hull(placed)
+    corners = _cut(outline.points[outline.vertices], cuts)
+    outline = convex_hull(corners)
+    corners = outline.points[outline.vertices]
     return tuple(tuple(float(c) for c in p) for p in _thinned(corners, count))
 
 
@@ -96,8 +97,6 @@ def _thinned(corners: np.ndarray, count: int) -> np.ndarray:
     maps the corners onto themselves maps the choice onto itself too: mirror-image parts
     get mirror-image envelopes.
     """
-    from scipy.spatial import ConvexHull
-
     centre = (corners.max(axis=0) + corners.min(axis=0)) / 2
     images = [np.where(np.arange(3) == axis, 2 * centre - corners, corners)
               for axis in range(3) if _maps_onto(np.where(np.arange(3) == axis,
@@ -115,7 +114,7 @@ def _thinned(corners: np.ndarray, count: int) -> np.ndarray:
         choose(int(np.argmin(corners[:, axis])))
         choose(int(np.argmax(corners[:, axis])))
     while len(chosen) < min(count, len(corners)):
-        planes = ConvexHull(corners[sorted(chosen)]).equations
+        planes = convex_hull(corners[sorted(chosen)]).equations
         outside = (corners @ planes[:, :3].T + planes[:, 3]).max(axis=1)
         farthest = int(np.argmax(outside))
         if outside[farthest] <= 1e-12:
@@ -137,9 +136,9 @@ def _cut(points: np.ndarray, cuts: tuple[Plane, ...]) -> np.ndarray:
     if not cuts:
         return points
     from scipy.optimize import linprog
-    from scipy.spatial import ConvexHull, HalfspaceIntersection
+    from scipy.spatial import HalfspaceIntersection
 
-    hull = ConvexHull(points).equations  # rows (n, d): n·p + d ≤ 0 inside
+    hull = convex_hull(points).equations  # rows (n, d): n·p + d ≤ 0 inside
     extra = np.array([[*n, -c] for n, c in cuts], dtype=float)
     halfspaces = np.vstack([hull, extra])
     # a point deepest inside all of them (Chebyshev centre) seeds the intersection

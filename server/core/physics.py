@@ -2,7 +2,7 @@
 
 Kinematic mode, as in 1.0: bodies are placed from the transform tree and never stepped,
 so nothing falls or gets pushed. Part bodies have mass 1 (Bullet keeps the world boxes of
-moved non-static bodies current, which rays rely on).
+moved non-static bodies current). Rays are not Bullet's: see :mod:`server.core.raycast`.
 
 Contacts are those of the exact shapes: a pair is measured with ``getClosestPoints``
 (never through Bullet's contact manifolds, which keep points from earlier poses after a
@@ -16,7 +16,7 @@ from __future__ import annotations
 import ctypes
 import os
 import sys
-from typing import Any, Sequence
+from typing import Any
 
 
 def _quiet_import():  # type: ignore[no-untyped-def]
@@ -40,6 +40,7 @@ def _quiet_import():  # type: ignore[no-untyped-def]
 
 pybullet = _quiet_import()
 
+from .hulls import HAIR
 from .math3d import Pose, Vec3
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
@@ -47,10 +48,9 @@ GROUND = "ground"
 _BODY_MASS = 1.0
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
 TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
-_THREADED_RAYS = 256
 # Bodies are in group 2 and collide with group 1 only: Bullet's broadphase then never
-# pairs two bodies (no pair cache, no manifolds, whatever overlaps), while rays, whose
-# filter group is 1, still hit every body. Contacts are tested pair by pair instead.
+# pairs two bodies (no pair cache, no manifolds, whatever overlaps). Contacts are tested
+# pair by pair instead.
 _BODY_GROUP, _BODY_MASK = 2, 1
 # PyBullet keeps about 1 kB for every body ever removed and never frees a shape; a fresh
 # client after this many removals gives the memory back.
@@ -159,17 +159,6 @@ class PhysicsWorld:
         low, high = pybullet.getAABB(self._bodies[key], physicsClientId=self._client)
         return tuple(low), tuple(high)
 
-    def cast_rays(self, starts: Sequence[Vec3], ends: Sequence[Vec3]) -> list[tuple[str, float]]:
-        """For each ray, the key hit first and the hit fraction ('' and 1.0 for a miss).
-
-        Large batches use every core (PyBullet's ``numThreads=0``); small ones stay on
-        this thread, where starting threads would cost more than it saves.
-        """
-        threads = 0 if len(starts) >= _THREADED_RAYS else -1
-        hits = pybullet.rayTestBatch(list(starts), list(ends), numThreads=threads,
-                                     physicsClientId=self._client)
-        return [(self._keys.get(hit[0], ""), hit[2]) for hit in hits]
-
     def touching(self, key_a: str, key_b: str) -> bool:
         """True when the exact shapes of two bodies (or a body and the ground) touch.
 
@@ -184,8 +173,8 @@ class PhysicsWorld:
 
 def _shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:
     kind = geometry["kind"]
-    if kind == "sphere":
-        return {"shapeType": pybullet.GEOM_SPHERE, "radius": geometry["radius"]}
+    if kind == "sphere":  # Bullet refuses a sphere of radius 0: a point gets a hair's
+        return {"shapeType": pybullet.GEOM_SPHERE, "radius": max(geometry["radius"], HAIR)}
     if kind == "box":
         return {"shapeType": pybullet.GEOM_BOX,
                 "halfExtents": [s / 2 for s in geometry["size"]]}

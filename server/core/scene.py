@@ -22,6 +22,7 @@ from .limits import DEFAULT, Limits
 from .math3d import Vec3
 from .node import Node
 from .physics import PhysicsWorld
+from .raycast import RayTargets
 from .robot import Robot
 from .sensing import Reading, read_sensors
 from .watches import Watches
@@ -53,6 +54,7 @@ class Scene:
         self.physical = 0  # physical parts, in the scene or not
         self.physics = PhysicsWorld()
         self.assets = assets or AssetLibrary()
+        self.rays = RayTargets(self.assets)
         self.tracker = ContactTracker(self.physics, limits.contact_tests,
                                       limits.contact_pairs)
         self.time = 0.0
@@ -244,25 +246,42 @@ class Scene:
         return out
 
     def sync_physics(self) -> None:
-        """Create, move or remove collision bodies for every part that changed."""
-        physics, tracker = self.physics, self.tracker
+        """Create, move or remove collision bodies and ray shapes of every changed part."""
         for node_id in self._physics_dirty:
-            node = self.nodes.get(node_id)
-            wanted = node is not None and node.physical and self.in_scene(node)
-            if wanted and node_id in physics:
-                physics.move(node_id, node.world_pose())
-            elif wanted:
-                physics.add(node_id, node.geometry(), node.world_pose())
-            elif node_id in physics:
-                physics.remove(node_id)
-                tracker.removed(node_id)
-                continue
-            else:
-                continue
-            tracker.placed(node_id)
+            try:
+                self._sync_body(node_id)
+            except Exception:  # a bug: this part is left out, the scene goes on
+                self.failures += 1
+                log.exception("part %s of scene %s could not be placed", node_id, self.name)
+                self._forget_body(node_id)
         self._physics_dirty.clear()
-        if physics.needs_rebuild():
-            physics.rebuild()
+        if self.physics.needs_rebuild():
+            self.physics.rebuild()
+
+    def _sync_body(self, node_id: str) -> None:
+        node = self.nodes.get(node_id)
+        wanted = node is not None and node.physical and self.in_scene(node)
+        if wanted and node_id in self.physics:
+            pose = node.world_pose()
+            self.physics.move(node_id, pose)
+            self.rays.move(node_id, pose)
+        elif wanted:
+            geometry, pose = node.geometry(), node.world_pose()
+            self.rays.add(node_id, geometry, pose)
+            self.physics.add(node_id, geometry, pose)
+        elif node_id in self.physics:
+            self._forget_body(node_id)
+            return
+        else:
+            return
+        self.tracker.placed(node_id)
+
+    def _forget_body(self, node_id: str) -> None:
+        if node_id in self.physics:
+            self.physics.remove(node_id)
+            self.tracker.removed(node_id)
+        if node_id in self.rays:
+            self.rays.remove(node_id)
 
     # --- contacts and sensors ------------------------------------------------------------
 
@@ -287,7 +306,7 @@ class Scene:
     def read_sensors(self, sensors: list[Sensor], exact: bool = True) -> dict[str, Reading]:
         """Readings of ``sensors`` for the scene as it is now."""
         self.sync_physics()
-        return read_sensors(self.physics, sensors,
+        return read_sensors(self.rays, sensors,
                             lambda sensor: self.touching(sensor.host(), exact))
 
     def watched_readings(self) -> dict[str, Reading]:

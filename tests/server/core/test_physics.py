@@ -1,4 +1,4 @@
-"""The collision world: exact pair measures between padded Bullet shapes, batched rays."""
+"""The collision world: exact pair measures between padded Bullet shapes."""
 
 import pytest
 
@@ -41,13 +41,3 @@ def test_bodies_of_one_geometry_share_a_shape_and_a_rebuild_keeps_them(world):
     world.rebuild()
     assert len(world) == 50 and "b0" not in world and world.rebuilds == 1
     assert world.touching("b7", GROUND) and world.pose("h")[0] == (0, 5, 0)
-    assert world.cast_rays([(21, 10, 0)], [(21, 0, 0)])[0][0] == "b7"
-
-
-def test_rays_in_one_batch(world):
-    world.add("a", CUBE, ((0, 5, 0), IDENTITY))
-    hits = world.cast_rays([(0, 10, 0), (3, 10, 0), (0, 5, 0)],
-                           [(0, 0, 0), (3, 20, 0), (0, 7, 0)])
-    assert hits[0][0] == "a" and hits[0][1] == pytest.approx(0.45)
-    assert hits[1] == ("", 1.0)  # a miss
-    assert hits[2] == ("", 1.0)  # rays do not see the body they start in

@@ -6,7 +6,8 @@ import pytest
 
 from server.core import math3d
 from server.core.motor import MotorZ
-from server.core.parts import Box, EdgedFinger
+from server.core.parts import Ball, Box, EdgedFinger, EdgedPalm
+from server.core.sensor import Sensor
 from server.core.robot import Robot
 from server.errors import DuplicateId, OutOfRange
 
@@ -108,10 +109,10 @@ def test_a_ray_hits_the_finger_where_the_tree_puts_it(scene):
     motor.set_angle(math.pi / 2)  # the finger now lies along -X at height 1
     scene.tick(0.1)
     # straight down at x = -0.5: the finger's upper face is 0.15 above its axis
-    [(key, fraction)] = scene.physics.cast_rays([(-0.5, 3, 0)], [(-0.5, -1, 0)])
-    assert key == "f" and 3 - 4 * fraction == pytest.approx(1.15, abs=0.01)
-    [(key, fraction)] = scene.physics.cast_rays([(0.5, 3, 0)], [(0.5, -1, 0)])
-    assert key == "ground" and 3 - 4 * fraction == pytest.approx(0, abs=1e-6)
+    [(key, distance)] = scene.rays.first_hits((-0.5, 3, 0), (0, -1, 0), [0], 10)
+    assert key == "f" and distance == pytest.approx(3 - 1.15, abs=1e-12)
+    [(key, distance)] = scene.rays.first_hits((0.5, 3, 0), (0, -1, 0), [0], 10)
+    assert key == "ground" and distance == 3
 
 
 def test_camera_changes_are_reported(scene):
@@ -172,3 +173,24 @@ def test_frames_carry_readings_of_watched_and_laser_sensors(scene):
     scene.delete(laser)
     assert set(frame_of(scene.tick(0.1))["sensors"]) == {"w"}
     assert scene.watches.ids() == ["w"]
+
+
+@pytest.mark.parametrize("make", [
+    lambda scene: EdgedFinger(scene, "flat", 1, 0, 0.3),   # no thickness
+    lambda scene: EdgedFinger(scene, "flat", 1, 0.3, 0),   # no width
+    lambda scene: EdgedFinger(scene, "flat", 0, 0, 0),     # a point
+    lambda scene: EdgedPalm(scene, "flat", True, 1.4, 1.4, 0),
+    lambda scene: Box(scene, "flat", 1, 0, 1),
+    lambda scene: Ball(scene, "flat", 0),
+])
+def test_parts_without_volume_are_still_met_by_rays_and_contacts(scene, make):
+    part = make(scene)
+    part.set_position((0, 1, 0))
+    Box(scene, "floor", 4, 0.1, 4).set_position((0, 1.05, 0))  # covers the part's origin
+    sensor = Sensor(scene, "s")
+    sensor.set_position((0, 0.5, 0))  # looking up at the part's origin from below
+    distance = sensor.sense_distance()
+    scene.tick(0.1)
+    assert scene.failures == 0
+    assert distance <= 0.5 + 1e-6  # the part (or, for a point, the floor at its origin)
+    assert "floor" in scene.touching(part)

@@ -1,0 +1,145 @@
+"""The shapes rays meet, in a part's own frame: sphere, convex hull (boxes too) and mesh.
+
+Each meets many rays at once (numpy) and answers, per ray and per lower limit, the first
+distance at which the ray enters a *front* face at or beyond that limit (``inf`` for
+none). Only front faces count, so a ray that starts inside a shape never sees it; a ray
+starting on a face (within ``ON_SURFACE``) meets it at 0. Directions are unit vectors.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Protocol, Sequence
+
+import numpy as np
+
+from .assets import AssetLibrary
+from .hulls import convex_hull
+
+ON_SURFACE = 1e-9  # a ray starting this close outside or inside a face starts on it
+AT_LIMIT = 1e-12   # entries this close below a limit count as at it (rounding)
+_PARALLEL = 1e-15
+_MESH_CHUNK = 200_000  # ray × triangle pairs worked on at once (bounded memory)
+
+
+class Shape(Protocol):
+    """A part's shape in its own frame, as rays meet it."""
+
+    centre: np.ndarray  # of a sphere around the shape
+    radius: float
+
+    def entries(self, origins: np.ndarray, directions: np.ndarray,
+                limits: Sequence[float]) -> np.ndarray:
+        """(rays, limits): the first front-face entry at or beyond each limit, or inf."""
+
+
+def _from_one_entry(enter: np.ndarray, valid: np.ndarray, limits: Sequence[float]) -> np.ndarray:
+    """Per limit, for shapes a ray enters at most once (convex ones)."""
+    enter = np.where(valid, np.maximum(enter, 0.0), np.inf)
+    return np.stack([np.where(enter >= limit - AT_LIMIT, np.maximum(enter, limit), np.inf)
+                     for limit in limits], axis=1)
+
+
+class Sphere:
+    """A sphere of ``radius`` centred at the origin."""
+
+    def __init__(self, radius: float) -> None:
+        self.radius, self.centre = float(radius), np.zeros(3)
+
+    def entries(self, origins: np.ndarray, directions: np.ndarray,
+                limits: Sequence[float]) -> np.ndarray:
+        b = np.einsum("ij,ij->i", origins, directions)
+        c = np.einsum("ij,ij->i", origins, origins) - self.radius ** 2
+        reach = b * b - c
+        enter = -b - np.sqrt(np.maximum(reach, 0.0))
+        outside = c >= -ON_SURFACE * self.radius
+        return _from_one_entry(enter, outside & (reach >= 0) & (enter >= -ON_SURFACE), limits)
+
+
+class Convex:
+    """A convex hull by its face planes n·p ≤ c (n of unit length)."""
+
+    def __init__(self, normals: np.ndarray, offsets: np.ndarray, corners: np.ndarray) -> None:
+        self.normals, self.offsets = normals, offsets
+        self.centre = (corners.min(axis=0) + corners.max(axis=0)) / 2
+        self.radius = float(np.linalg.norm(corners - self.centre, axis=1).max())
+
+    def entries(self, origins: np.ndarray, directions: np.ndarray,
+                limits: Sequence[float]) -> np.ndarray:
+        towards = directions @ self.normals.T         # (rays, planes)
+        gaps = self.offsets - origins @ self.normals.T  # ≥ 0: inside that plane
+        with np.errstate(divide="ignore", invalid="ignore"):
+            at = gaps / towards
+        entering, leaving = towards < -_PARALLEL, towards > _PARALLEL
+        enter = np.where(entering, at, -np.inf).max(axis=1)
+        leave = np.where(leaving, at, np.inf).min(axis=1)
+        beside = (~entering & ~leaving & (gaps < -ON_SURFACE)).any(axis=1)
+        return _from_one_entry(enter, ~beside & (enter <= leave) & (enter >= -ON_SURFACE), limits)
+
+
+def box(size: Sequence[float]) -> Convex:
+    """A box of ``size`` centred at the origin."""
+    half = np.asarray(size, dtype=float) / 2
+    corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * half
+    return Convex(np.vstack([np.eye(3), -np.eye(3)]), np.concatenate([half, half]), corners)
+
+
+def hull(points: Sequence[Sequence[float]]) -> Convex:
+    """The convex hull of ``points``."""
+    shape = convex_hull(points)
+    corners, planes = shape.points, shape.equations  # n·p + d ≤ 0 inside
+    return Convex(planes[:, :3], -planes[:, 3], corners)
+
+
+class Triangles:
+    """A mesh's triangles, placed as a mesh part places its file (offset, mirror)."""
+
+    def __init__(self, vertices: np.ndarray, triangles: np.ndarray, offset: Sequence[float],
+                 mirror: bool) -> None:
+        placed = vertices * ([-1.0, 1.0, 1.0] if mirror else 1.0) + np.asarray(offset)
+        a, b, c = (placed[triangles[:, k]] for k in range(3))
+        if mirror:  # a mirror turns faces inside out: two corners swap back
+            b, c = c, b
+        self.a, self.ab, self.ac = a, b - a, c - a
+        self.normals = np.cross(self.ab, self.ac)  # outwards: faces turn counter-clockwise
+        self.centre = (placed.min(axis=0) + placed.max(axis=0)) / 2
+        self.radius = float(np.linalg.norm(placed - self.centre, axis=1).max())
+
+    def entries(self, origins: np.ndarray, directions: np.ndarray,
+                limits: Sequence[float]) -> np.ndarray:
+        step = max(1, _MESH_CHUNK // len(self.a))
+        return np.concatenate([self._entries(origins[k:k + step], directions[k:k + step], limits)
+                               for k in range(0, len(origins), step)])
+
+    def _entries(self, origins: np.ndarray, directions: np.ndarray,
+                 limits: Sequence[float]) -> np.ndarray:
+        # Möller–Trumbore for every ray against every triangle: (rays, triangles) arrays
+        d = directions[:, None, :]
+        p = np.cross(d, self.ac)
+        det = np.einsum("tj,rtj->rt", self.ab, p)
+        s = origins[:, None, :] - self.a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.einsum("rtj,rtj->rt", s, p) / det
+            q = np.cross(s, self.ab)
+            v = np.einsum("rtj,rj->rt", q, directions) / det
+            t = np.einsum("tj,rtj->rt", self.ac, q) / det
+            facing = directions @ self.normals.T < 0
+            edge = 1e-12  # a ray along an edge shared by two faces meets one of them
+            hit = facing & (u >= -edge) & (v >= -edge) & (u + v <= 1 + edge) & (t >= -ON_SURFACE)
+        t = np.where(hit, np.maximum(t, 0.0), np.inf)
+        return np.stack([np.where(t >= limit - AT_LIMIT, np.maximum(t, limit), np.inf).min(axis=1)
+                         for limit in limits], axis=1)
+
+
+def shape_of(geometry: dict[str, Any], assets: AssetLibrary) -> Shape:
+    """The shape rays meet for a physical part's geometry."""
+    kind = geometry["kind"]
+    if kind == "sphere":
+        return Sphere(geometry["radius"])
+    if kind == "box":
+        return box(geometry["size"])
+    if kind == "convex":
+        return hull(geometry["points"])
+    if kind == "mesh":  # the drawn triangles, not the envelope that contacts use
+        mesh = assets.mesh(geometry["url"])
+        return Triangles(mesh.vertices, mesh.triangles, geometry["offset"], geometry["mirror"])
+    raise ValueError(f"rays do not meet geometry kind {kind!r}")
