@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 class ChangeSet:
-    """Ids of nodes that were born, died, turned, moved or got new properties.
+    """Ids of nodes that were born, died, turned, moved or got new properties (and warnings).
 
     It stores only ids and field names; the values are read from the scene when the
     change set is collected, so a change undone by a failed batch costs nothing more
@@ -18,6 +18,7 @@ class ChangeSet:
         self.poses: dict[str, None] = {}
         self.updates: dict[str, set[str]] = {}
         self.camera = False
+        self.warnings: list[str] = []  # what the requester should know, though nothing failed
 
     def update(self, node_id: str, field: str) -> None:
         """Note a changed property (``children`` when the order of a node's children changed)."""

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, ClassVar, Iterator
 
-from ..errors import Cycle, LimitExceeded, OutOfRange
+from ..errors import Cycle, LimitExceeded
 from . import math3d
 from .math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
 
@@ -119,8 +119,7 @@ class Node:
 
     def add_slot_node(self, slot: Slot) -> None:
         """Make ``slot`` one of this node's slots (and its child), journaled."""
-        if slot.parent is not None and slot in slot.parent.slots:
-            slot.parent._drop_slot(slot)
+        slot.leave_slots()
         self.slots.append(slot)
         self.scene.journal.record(lambda: self._drop_slot(slot, journal=False))
         slot._link(self)
@@ -130,15 +129,6 @@ class Node:
         self.slots.pop(index)
         if journal:
             self.scene.journal.record(lambda: self.slots.insert(index, slot))
-
-    def slot_by_index(self, index: int) -> Node:
-        """The slot a part attaches to for an index; the node itself when it has no slots."""
-        if not self.slots:
-            return self
-        if not 0 <= index < len(self.slots):
-            raise OutOfRange(f"{self.id} has {len(self.slots)} slots; there is no slot {index}",
-                             object=self.id, slot=index)
-        return self.slots[index]
 
     # --- pose ----------------------------------------------------------------------------
 
@@ -205,3 +195,8 @@ class Slot(Node):
     def __init__(self, scene: Scene, node_id: str, position: Vec3 = ORIGIN) -> None:
         super().__init__(scene, node_id)
         self.position = tuple(position)
+
+    def leave_slots(self) -> None:
+        """Stop being one of the slots of the node it hangs on (it stays its child)."""
+        if self.parent is not None and self in self.parent.slots:
+            self.parent._drop_slot(self)

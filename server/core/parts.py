@@ -38,11 +38,17 @@ class Part(Node):
     def attach_to_slot(self, parent: Node, slot: int | Slot = 0) -> Part:
         """Manual ``attachToSlot(parent, slot=0)``: by index, by Slot object, or to the parent."""
         if isinstance(slot, Slot):
-            if slot not in parent.slots:
-                parent.add_slot_node(slot)
+            if slot.parent is not parent:  # a child of parent, not one of parent.slots
+                slot.leave_slots()
+                slot._link(parent)
             target: Node = slot
+        elif 0 <= slot < len(parent.slots):
+            target = parent.slots[slot]
         else:
-            target = parent.slot_by_index(slot)
+            target = parent
+            if parent.slots or slot != 0:
+                self.scene.warn(f"{parent.id} has {len(parent.slots)} slots and no slot {slot}: "
+                                f"{self.id} is attached to {parent.id} itself, as 1.0 does")
         self._link(target)
         return self
 

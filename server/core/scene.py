@@ -177,6 +177,11 @@ class Scene:
             if changed.physical:
                 self._physics_dirty.add(changed.id)
 
+    def warn(self, message: str) -> None:
+        """Tell whoever made the current request something that did not fail but may surprise."""
+        for changes in self._recorders[1:]:  # the tick's own feed has no one to tell
+            changes.warnings.append(message)
+
     @contextmanager
     def recording(self) -> Iterator[ChangeSet]:
         """Note, besides the tick's feed, what changes inside this block."""

@@ -112,6 +112,8 @@ class Session:
         delta = self.scene.delta(changes)
         if delta:
             answer["changes"] = delta
+        if changes.warnings:
+            answer["warnings"] = changes.warnings
         return _encoded(answer)
 
     def _authorize(self, message: dict[str, Any]) -> None:

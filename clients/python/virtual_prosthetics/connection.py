@@ -5,13 +5,14 @@ from __future__ import annotations
 import json
 import math
 import threading
+import warnings
 from itertools import count
 from typing import Any, Callable
 
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect as ws_connect
 
-from .errors import ConnectionLost, ServerError, Timeout
+from .errors import ConnectionLost, ServerError, ServerWarning, Timeout
 
 Handler = Callable[[dict[str, Any]], None]
 ANSWER_TIMEOUT = 30.0
@@ -47,6 +48,7 @@ class Connection:
         self._unanswered: set[int] = set()
         self._waiters: dict[int, _Waiter] = {}
         self._deferred: list[ServerError] = []
+        self._remarks: list[str] = []  # warnings in answers, not yet issued
         self.closed: str | None = None
         self._reader = threading.Thread(target=self._read, name="vp-reader", daemon=True)
 
@@ -82,6 +84,7 @@ class Connection:
             raise Timeout(f"no answer to {message['op']} within {ANSWER_TIMEOUT} s")
         if waiter.answer["op"] == "error":
             raise ServerError.from_wire(waiter.answer)
+        self._warn()
         return waiter.answer.get("result")
 
     def settle(self, timeout: float = ANSWER_TIMEOUT) -> None:
@@ -94,11 +97,19 @@ class Connection:
         self.raise_deferred()
 
     def raise_deferred(self) -> None:
-        """Raise the first kept error of a request nobody waited for."""
+        """Raise the first kept error of a request nobody waited for (after its warnings)."""
+        self._warn()
         with self._lock:
             if self._deferred:
                 error = self._deferred.pop(0)
                 raise error
+
+    def _warn(self) -> None:
+        """Issue the server's warnings received so far, in the caller's thread."""
+        with self._lock:
+            remarks, self._remarks = self._remarks, []
+        for remark in remarks:
+            warnings.warn(remark, ServerWarning, stacklevel=4)
 
     def _check_open(self) -> None:
         if self.closed is not None:
@@ -131,6 +142,7 @@ class Connection:
             return
         self._on_answer(message)
         with self._lock:
+            self._remarks += message.get("warnings", [])
             self._unanswered.discard(request_id)
             waiter = self._waiters.pop(request_id, None)
             if waiter is not None:

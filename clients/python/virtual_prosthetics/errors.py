@@ -6,6 +6,8 @@ Hierarchy::
     ├── ServerError         the server answered a request with an error
     ├── ConnectionLost      the WebSocket closed (or never opened)
     └── Timeout             the server did not answer in time
+
+    ServerWarning           (a UserWarning) the server did what was asked, with a remark
 """
 
 from __future__ import annotations
@@ -45,3 +47,11 @@ class ConnectionLost(VPError):
 
 class Timeout(VPError):
     """The server did not answer within the time limit."""
+
+
+class ServerWarning(UserWarning):
+    """A remark in the server's answer to a request that succeeded (``warnings.warn``).
+
+    For example: ``attach_to_slot`` with a slot index the parent does not have attaches
+    the part to the parent itself, as 1.0 did, and says so.
+    """

@@ -114,6 +114,20 @@ def test_errors_are_raised_as_server_errors(scene):
     assert robot.get_angles() == []  # the connection carries on
 
 
+def test_a_missing_slot_index_attaches_to_the_parent_and_warns(server, scene, scene_name):
+    palm = vp.EdgedPalm()
+    ball = vp.Ball(0.2)
+    ball.attach_to_slot(palm, 7)
+    with pytest.warns(vp.ServerWarning, match="has 5 slots and no slot 7"):
+        scene.sync()
+    marker = vp.Slot(0, 3, 0)
+    box = vp.Box().attach_to_slot(palm, marker)
+    scene.sync()
+    nodes = {n["id"]: n for n in server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]}
+    assert nodes[ball.id]["parent"] == palm.id and nodes[box.id]["parent"] == marker.id
+    assert nodes[palm.id]["children"] == [f"{palm.id}/s{k}" for k in range(5)] + [ball.id, marker.id]
+
+
 def test_two_clients_share_a_scene_and_viewers_cannot_change_it(server, scene, scene_name):
     hand = vp.EdgedHand(False)
     hand.flex_finger(1, 0.3)

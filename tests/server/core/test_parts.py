@@ -8,7 +8,7 @@ from server.core import math3d
 from server.core.node import Slot
 from server.core.parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
 from server.core.robot import Robot
-from server.errors import Cycle, OutOfRange
+from server.errors import Cycle
 
 
 def flat(points):
@@ -69,16 +69,42 @@ def test_attach_to_slot_by_index_object_and_parent_without_slots(scene):
     assert a.parent is palm.slots[2]
     custom = Slot(scene, "s", (0, 3, 0))
     b.attach_to_slot(palm, custom)
-    assert b.parent is custom and palm.slots[-1] is custom and custom.parent is palm
+    # the slot is palm's child, not one of its slots: indices keep their meaning
+    assert b.parent is custom and custom.parent is palm and len(palm.slots) == 5
+    assert custom not in palm.slots
     c.attach_to_slot(box)
     assert c.parent is box
 
 
-def test_attach_to_missing_slot_index_is_an_error(scene):
+def test_a_slot_object_moved_to_another_parent_leaves_its_old_slot_list(scene):
+    first, second, part = EdgedFinger(scene, "f1"), EdgedFinger(scene, "f2"), Part(scene, "a")
+    extra = first.add_slot((0, 0.5, 0))
+    part.attach_to_slot(second, extra)
+    assert extra.parent is second and extra not in first.slots and extra not in second.slots
+    again = Part(scene, "b")
+    again.attach_to_slot(second, extra)  # already a child of second: stays as it is
+    assert again.parent is extra and extra.parent is second
+
+
+@pytest.mark.parametrize("index", [5, 17, -1])
+def test_a_missing_slot_index_attaches_to_the_parent_itself_with_a_warning(scene, index):
     palm, part = EdgedPalm(scene, "p", True), Part(scene, "a")
-    with pytest.raises(OutOfRange):
-        part.attach_to_slot(palm, 5)
-    assert part.parent is None
+    with scene.recording() as changes:
+        part.attach_to_slot(palm, index)
+    assert part.parent is palm
+    [warning] = changes.warnings
+    assert "p has 5 slots and no slot" in warning and "attached to p itself" in warning
+
+
+def test_attaching_to_a_part_without_slots_warns_only_for_an_index_other_than_0(scene):
+    robot, box = Robot(scene, "r"), Box(scene, "b")
+    with scene.recording() as changes:
+        Part(scene, "a").attach_to_slot(robot)
+        Part(scene, "c").attach_to_slot(box, 0)
+    assert changes.warnings == []
+    with scene.recording() as changes:
+        Part(scene, "d").attach_to_slot(box, 1)
+    assert changes.warnings == ["b has 0 slots and no slot 1: d is attached to b itself, as 1.0 does"]
 
 
 def test_attaching_below_itself_is_a_cycle(scene):
