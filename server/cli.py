@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import logging
 import resource
+from pathlib import Path
 
 import uvicorn
 
@@ -32,6 +33,9 @@ def main(argv: list[str] | None = None) -> None:
                              f"{', '.join(f'{k}={v}' for k, v in DEFAULT.wire().items())}")
     parser.add_argument("--ping-seconds", type=float, default=PING_SECONDS,
                         help="ping WebSockets this often; close those that stay silent as long")
+    parser.add_argument("--assets-dir", type=Path, default=None, metavar="DIR",
+                        help="keep uploaded mesh files here (default: a temporary folder "
+                             "removed when the server stops)")
     parser.add_argument("--log-level", default="info",
                         choices=["critical", "error", "warning", "info", "debug"])
     args = parser.parse_args(argv)
@@ -44,7 +48,7 @@ def main(argv: list[str] | None = None) -> None:
     logging.basicConfig(level=args.log_level.upper())
     _raise_file_limit(limits)
     app = create_app(tick_rate=args.tick_rate, setups=None if args.no_demo else DEMOS,
-                     limits=limits)
+                     limits=limits, uploads=args.assets_dir)
     # No permessage-deflate: it would compress every frame for every client on the one
     # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md).
     uvicorn.run(app, host=args.host, port=args.port, log_level=args.log_level,

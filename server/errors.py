@@ -17,7 +17,8 @@ Hierarchy::
     ├── ArgumentError            arguments of a create or call
     │   ├── BadArguments         bad_arguments  wrong number of arguments
     │   ├── WrongType            wrong_type     an argument of the wrong kind
-    │   └── OutOfRange           out_of_range   a value outside what is allowed
+    │   ├── OutOfRange           out_of_range   a value outside what is allowed
+    │   └── BadAsset             bad_asset      an uploaded file that is not a usable glTF mesh
     ├── ConflictError            a request that contradicts the scene
     │   ├── DuplicateId          duplicate_id   an id already (or once) in use
     │   ├── ForeignId            foreign_id     an id without this client's prefix
@@ -157,6 +158,10 @@ class OutOfRange(ArgumentError):
     code = "out_of_range"
 
 
+class BadAsset(ArgumentError):
+    code = "bad_asset"
+
+
 class ConflictError(VPError):
     """A request that contradicts the current scene."""
 
@@ -190,6 +195,5 @@ class InternalError(VPError):
 ERROR_CODES: tuple[str, ...] = tuple(
     cls.code for cls in (BadJSON, BadMessage, UnknownOp, TooLarge, UnknownType, UnknownMethod,
                          UnknownObject, UnknownScene, UnknownAsset, BadArguments, WrongType,
-                         OutOfRange,
-                         DuplicateId, ForeignId, Cycle, Forbidden, LimitExceeded, InternalError)
+                         OutOfRange, BadAsset, DuplicateId, ForeignId, Cycle, Forbidden, LimitExceeded, InternalError)
 )

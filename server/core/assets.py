@@ -6,19 +6,29 @@ prefixes, what is left must be a plain file name (letters, digits, ``_-.``, endi
 ``.glb`` or ``.gltf``) of a bundled or uploaded file. Anything else (other folders, ``..``,
 absolute paths, URLs, percent-encoding, backslashes) is refused before any file is opened.
 
-The mesh of a file is read once per process (trimesh).
+The mesh of a file is read once per process (trimesh). :meth:`AssetLibrary.store` takes
+an upload: it must be a self-contained glTF (GLB, or JSON with its buffers as ``data:``
+URIs) whose mesh trimesh reads, within the size limits; it is kept under the hash of its
+bytes (``<sha256>.glb``), so the same file uploaded twice is one file with one name.
 """
 
 from __future__ import annotations
 
+import hashlib
+import io
+import json
+import os
 import re
+import struct
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-from ..errors import Forbidden, UnknownAsset
+from ..errors import BadAsset, Forbidden, LimitExceeded, TooLarge, UnknownAsset
+from .limits import MAX_SIZE, Limits
 
 BUNDLED_DIR = Path(__file__).resolve().parents[2] / "assets" / "gltf"
 BUNDLED_URL = "/assets/gltf/"
@@ -55,6 +65,33 @@ class AssetLibrary:
                            f"{', '.join(self.bundled_names())}; others must be uploaded "
                            f"first (POST /api/assets)", filename=filename)
 
+    def store(self, data: bytes, limits: Limits) -> dict[str, Any]:
+        """Keep an uploaded glTF file; its name, URL, size and triangle count."""
+        if self.uploads is None:
+            raise Forbidden("this server takes no uploads")
+        if len(data) > limits.asset_bytes:
+            raise TooLarge(f"the file has {len(data)} bytes; at most {limits.asset_bytes} "
+                           f"are taken", limit="assetBytes", value=limits.asset_bytes)
+        kind = "glb" if data[:4] == b"glTF" else "gltf"
+        triangles = _check_mesh(data, kind, limits)
+        name = f"{hashlib.sha256(data).hexdigest()[:32]}.{kind}"
+        path = self.uploads / name
+        if not path.is_file():
+            if len(self.uploaded_names()) >= limits.assets:
+                raise LimitExceeded(f"the server keeps at most {limits.assets} uploaded files",
+                                    limit="assets", value=limits.assets)
+            partial = path.with_name(f".{name}.{os.getpid()}.part")
+            partial.write_bytes(data)
+            os.replace(partial, path)  # never a half-written file under the name
+        return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data),
+                "triangles": triangles}
+
+    def uploaded_names(self) -> list[str]:
+        """Names of the files uploaded so far."""
+        if self.uploads is None:
+            return []
+        return sorted(p.name for p in self.uploads.iterdir() if _NAME.fullmatch(p.name))
+
     def bundled_names(self) -> list[str]:
         """Names of the files that come with the server."""
         return sorted(p.name for p in self.bundled.glob("*.gl*"))
@@ -77,6 +114,55 @@ def plain_name(filename: str) -> str:
                         f"uploaded file's name, e.g. 'round-palm.glb' or "
                         f"'../assets/gltf/round-palm.glb'", filename=filename)
     return name
+
+
+def _check_mesh(data: bytes, kind: str, limits: Limits) -> int:
+    """The triangle count of a self-contained glTF file's mesh, or :class:`BadAsset`."""
+    _check_embedded(_gltf_document(data, kind))
+    import trimesh
+
+    try:
+        mesh = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh", process=False)
+        vertices, faces = np.asarray(mesh.vertices, float), np.asarray(mesh.faces)
+    except Exception as error:  # trimesh raises many kinds for broken files
+        raise BadAsset(f"the file does not read as a glTF mesh: {str(error)[:200]}") from None
+    if len(faces) == 0:
+        raise BadAsset("the file holds no triangles")
+    if len(faces) > limits.asset_triangles:
+        raise LimitExceeded(f"the mesh has {len(faces)} triangles; at most "
+                            f"{limits.asset_triangles} are taken", limit="assetTriangles",
+                            value=limits.asset_triangles)
+    if not np.isfinite(vertices).all() or np.abs(vertices).max() > MAX_SIZE:
+        raise BadAsset(f"the mesh's coordinates must be finite and within ±{MAX_SIZE:g}")
+    return len(faces)
+
+
+def _gltf_document(data: bytes, kind: str) -> dict[str, Any]:
+    """The JSON part of a GLB or glTF file."""
+    try:
+        if kind == "glb":
+            length, chunk_type = struct.unpack_from("<I4s", data, 12)
+            if chunk_type != b"JSON":
+                raise ValueError("the first chunk is not JSON")
+            text = data[20:20 + length]
+        else:
+            text = data
+        document = json.loads(text)
+    except (ValueError, struct.error, UnicodeDecodeError):
+        raise BadAsset("the file is neither GLB nor glTF JSON") from None
+    if not isinstance(document, dict) or "asset" not in document:
+        raise BadAsset("the file is not glTF: it has no 'asset' object")
+    return document
+
+
+def _check_embedded(document: dict[str, Any]) -> None:
+    """Refuse files that point at other files or hosts: everything must be inside."""
+    for group in ("buffers", "images"):
+        for item in document.get(group) or []:
+            uri = item.get("uri") if isinstance(item, dict) else None
+            if isinstance(uri, str) and not uri.startswith("data:"):
+                raise BadAsset(f"the file refers to {uri[:60]!r}; upload a GLB or a glTF "
+                               f"with its {group} embedded (data: URIs)")
 
 
 @lru_cache(maxsize=64)

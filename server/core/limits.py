@@ -46,6 +46,10 @@ class Limits:
     connections_per_address: int = 256
     header_seconds: int = 10              # to send a complete HTTP request head
     header_bytes: int = 16_384            # size of an HTTP request head
+    # uploaded mesh files (POST /api/assets)
+    asset_bytes: int = 8 << 20            # one file
+    asset_triangles: int = 200_000        # triangles of one file's mesh
+    assets: int = 1_000                   # files kept
 
     def wire(self) -> dict[str, int]:
         """The limits by wire name, as ``hello`` carries them."""

@@ -3,29 +3,40 @@
 from __future__ import annotations
 
 import asyncio
+import shutil
+import tempfile
 import time
 from contextlib import asynccontextmanager
+from pathlib import Path
 from typing import AsyncIterator, Mapping
 
 from fastapi import FastAPI, Request
 from fastapi.responses import JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
+from ..core.assets import AssetLibrary
 from ..core.limits import DEFAULT, Limits
-from ..errors import LookupFailure, VPError
-from . import heap, rest, socket
+from ..errors import Forbidden, LimitExceeded, LookupFailure, TooLarge, VPError
+from . import assets, heap, rest, socket
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
 
 HTTP_CODES = {404: "not_found", 405: "method_not_allowed"}
+HTTP_STATUS: dict[type[VPError], int] = {LookupFailure: 404, Forbidden: 403, TooLarge: 413,
+                                         LimitExceeded: 429}
 
 
 def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None = None,
-               limits: Limits = DEFAULT) -> FastAPI:
+               limits: Limits = DEFAULT, uploads: Path | None = None) -> FastAPI:
     """The server: the ``default`` scene exists from the start; ``setups`` prepare scenes
-    by name (whenever one starts)."""
-    hubs = Hubs(tick_rate, limits)
+    by name (whenever one starts). Uploaded meshes are kept in ``uploads`` (by default a
+    temporary folder removed when the server stops)."""
+    temporary = uploads is None
+    if uploads is None:
+        uploads = Path(tempfile.mkdtemp(prefix="vp-uploads-"))
+    uploads.mkdir(parents=True, exist_ok=True)
+    hubs = Hubs(tick_rate, limits, AssetLibrary(uploads=uploads))
     for name, setup in (setups or {}).items():
         hubs.prepare(name, setup)
 
@@ -38,16 +49,20 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
         yield
         sweeper.cancel()
         await hubs.stop()
+        if temporary:
+            shutil.rmtree(uploads, ignore_errors=True)
 
     app = FastAPI(title="Virtual Prosthetics", version=rest.VERSION, lifespan=lifespan)
     app.state.hubs = hubs
     app.state.started = time.monotonic()
     app.include_router(rest.router)
+    app.include_router(assets.router)
     app.include_router(socket.router)
 
     @app.exception_handler(VPError)
     async def vp_error(request: Request, error: VPError) -> JSONResponse:
-        return rest.error_response(error, 404 if isinstance(error, LookupFailure) else 400)
+        status = next((s for kind, s in HTTP_STATUS.items() if isinstance(error, kind)), 400)
+        return rest.error_response(error, status)
 
     @app.exception_handler(StarletteHTTPException)
     async def http_error(request: Request, error: StarletteHTTPException) -> Response:

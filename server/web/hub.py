@@ -15,6 +15,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..core.assets import AssetLibrary
 from ..core.limits import DEFAULT, Limits
 from ..errors import LimitExceeded, OutOfRange, UnknownScene
 from . import heap
@@ -67,13 +68,13 @@ class Connection:
 class SceneHub:
     """One scene: its process and the connections that receive its messages."""
 
-    def __init__(self, name: str, limits: Limits, tick_rate: float,
+    def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                  setup: SceneSetup | None = None) -> None:
         self.name = name
         self.members: dict[int, Connection] = {}  # joined, admitted or not yet
         self.connections: set[Connection] = set()  # admitted: they get every frame
         self.idle_since: float | None = time.monotonic()
-        self.runner = SceneRunner(name, limits, tick_rate, setup, self._events)
+        self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events)
 
     @property
     def tick_rate(self) -> float:
@@ -156,9 +157,11 @@ class Hubs:
     """Every scene the server runs, by name; a scene is made on first use and removed
     when it has had no client for ``scene_idle_seconds`` (``default`` always stays)."""
 
-    def __init__(self, tick_rate: float = 60.0, limits: Limits = DEFAULT) -> None:
+    def __init__(self, tick_rate: float = 60.0, limits: Limits = DEFAULT,
+                 assets: AssetLibrary | None = None) -> None:
         self.tick_rate = tick_rate
         self.limits = limits
+        self.assets = assets or AssetLibrary()  # uploads land here; every scene reads them
         self.scenes: dict[str, SceneHub] = {}
         self.removed = 0
         self._clients = 0
@@ -188,7 +191,7 @@ class Hubs:
                 raise LimitExceeded(f"the server runs the maximum of {self.limits.scenes} scenes",
                                     limit="scenes", value=self.limits.scenes)
             hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
-                                               self._setups.get(name))
+                                               self.assets, self._setups.get(name))
             hub.runner.start()
         return hub
 

@@ -17,6 +17,7 @@ import sys
 import threading
 from typing import Any, Callable
 
+from ..core.assets import AssetLibrary
 from ..core.limits import Limits
 from ..errors import UnknownScene
 from . import worker
@@ -36,7 +37,7 @@ class SceneRunner:
     """Starts a scene's process, sends it commands, and hands its events to ``deliver``
     on the event loop (a final ``("ended", failed)`` when the process is gone)."""
 
-    def __init__(self, name: str, limits: Limits, tick_rate: float,
+    def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                  setup: worker.SceneSetup | None, deliver: Deliver) -> None:
         self.name = name
         self.tick_rate = tick_rate
@@ -45,7 +46,7 @@ class SceneRunner:
         self._pipe, child = _CONTEXT.Pipe()
         self._process = _CONTEXT.Process(
             target=worker.serve, name=f"scene-{name}", daemon=True,
-            args=(child, name, limits, tick_rate, setup, logging.getLogger().level))
+            args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level))
         self._child = child
         self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
         self._replies: dict[int, asyncio.Future[Any]] = {}

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from multiprocessing.connection import Connection as Pipe
 from typing import Any, Callable
 
+from ..core.assets import AssetLibrary
 from ..core.limits import Limits
 from ..core.messages import encode
 from ..core.scene import Scene
@@ -66,12 +67,12 @@ class TickStats:
                 "cpuSeconds": time.process_time()}
 
 
-def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float,
+def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
           setup: SceneSetup | None, log_level: int) -> None:
     """The process's main function: make the scene, then serve it."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
     logging.basicConfig(level=log_level)
-    scene = Scene(name, limits)
+    scene = Scene(name, limits, assets)
     animator = setup(scene) if setup is not None else None
     heap.settle()
     try:

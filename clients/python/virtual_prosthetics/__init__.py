@@ -16,6 +16,7 @@ from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm
 from .robots import AnthroHand, EdgedHand, RoundHand, Robot
 from .scene import Scene, connect, current_scene
 from .sensor import Sensor
+from .uploads import upload_asset
 
 
 def set_camera_position(*position: float) -> None:
@@ -33,5 +34,5 @@ __all__ = [
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Sensor",
     "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
-    "set_animation", "set_camera_position", "set_camera_target",
+    "set_animation", "set_camera_position", "set_camera_target", "upload_asset",
 ]

@@ -55,6 +55,7 @@ class Scene:
 
     def __init__(self, url: str = "ws://127.0.0.1:8000", scene: str = "default",
                  role: str = "controller", timeout: float = 10.0) -> None:
+        self.url = url.rstrip("/")
         self.mirror = Mirror(self._listens)
         self.lock = threading.RLock()
         self.objects: dict[str, Node] = {}

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
+import trimesh
 
 import virtual_prosthetics as vp
 
@@ -42,3 +45,28 @@ def test_round_hand_parts_are_the_manuals_classes(scene):
     parts = [type(p) for p in hand.get_parts() if not isinstance(p, vp.Motor)]
     assert parts[:3] == [vp.AnthroPalm, vp.AnthroThumb, vp.RoundFinger]
     assert len(hand.get_motors()) == 22 and len(vp.RoundHand().get_motors()) == 20
+
+
+def test_an_uploaded_glb_makes_mesh_parts_in_any_scene(server, scene, scene_name, tmp_path):
+    ball = trimesh.creation.icosphere(2, 0.4)
+    path = tmp_path / "ball.glb"
+    path.write_bytes(ball.export(file_type="glb"))
+    name = vp.upload_asset(path)
+    assert vp.upload_asset(path.read_bytes()) == name  # the same bytes, the same name
+    decoration = vp.GLTFPart(name, 0.8, callback=lambda p: None)
+    finger = vp.RoundFinger(name, 0.8, callback=lambda p: None)  # physical: an envelope
+    finger.set_position(3, 1, 0)
+    sensor = vp.Sensor()
+    sensor.set_position(3, 3, 0)
+    sensor.set_rotation(math.pi, 0, 0)
+    nodes = {n["id"]: n for n in server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]}
+    assert nodes[decoration.id]["geometry"]["url"] == f"/api/assets/{name}"
+    assert 20 <= len(nodes[finger.id]["geometry"]["points"]) <= 80
+    top = 1 + 0.4 + ball.vertices[:, 1].max()  # the mesh is raised by length/2 = 0.4
+    assert sensor.sense_distance() == pytest.approx(3 - top, abs=1e-6)
+
+
+def test_uploads_that_are_not_meshes_are_refused_with_the_reason(scene):
+    with pytest.raises(vp.ServerError) as caught:
+        vp.upload_asset(b"just some bytes")
+    assert caught.value.code == "bad_asset" and "neither GLB nor glTF" in caught.value.message

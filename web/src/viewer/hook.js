@@ -1,5 +1,7 @@
 // window.VP: what tests (and curious people in the console) can read of the viewer.
 
+import { meshesLoading } from './meshes.js';
+
 export function installHook(stage, tree, motion) {
 	const hook = {
 		scene: stage.scene,    // the THREE.Scene
@@ -29,7 +31,7 @@ export function installHook(stage, tree, motion) {
 		},
 		// True when the picture shows everything received (nothing left to draw).
 		drawn() {
-			return !stage.needsRender && !motion.busy;
+			return !stage.needsRender && !motion.busy && meshesLoading() === 0;
 		},
 		// The angle a motor is drawn at now.
 		shownAngle(id) {

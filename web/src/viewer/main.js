@@ -43,6 +43,8 @@ const panels = new MotorPanels(tree, {
 	showGesture: (text) => { gestureBox.textContent = text; gestureBox.hidden = false; },
 });
 
+tree.on('loaded', () => stage.invalidate());
+
 stage.beforeRender.push((now) => {
 	if (motion.step(now / 1000)) stage.invalidate();
 	if (logo.step(now, tree.objects.size === 0)) stage.invalidate();

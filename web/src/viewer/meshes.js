@@ -8,6 +8,12 @@ import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
 
 const loader = new GLTFLoader();
 const files = new Map();  // url -> Promise of [BufferGeometry] in the file's frame
+let loading = 0;          // mesh parts still waiting for their file
+
+// How many mesh parts are not drawn yet because their file is still loading.
+export function meshesLoading() {
+	return loading;
+}
 
 function load(url) {
 	if (!files.has(url)) {
@@ -51,7 +57,8 @@ export function mesh(g, node) {
 	if (g.mirror) holder.scale.x = -1;  // three.js turns the faces round for a mirrored mesh
 	const parts = [];
 	let recolors = node?.recolors ?? [];
-	holder.userData.ready = load(g.url).then((geometries) => {
+	loading++;
+	const ready = load(g.url).then((geometries) => {
 		for (const source of geometries) {
 			const geometry = source.clone();
 			const original = source.getAttribute('color')?.clone();
@@ -63,9 +70,11 @@ export function mesh(g, node) {
 			holder.add(part);
 			recolor(geometry, original, recolors);
 		}
-	}).catch((error) => console.warn(`mesh ${g.url} did not load:`, error));
+	}).catch((error) => console.warn(`mesh ${g.url} did not load:`, error))
+		.finally(() => { loading--; });
 	return {
 		meshes: [holder],
+		ready,
 		envelope: g.points ? () => new ConvexGeometry(g.points.map((p) => new THREE.Vector3(...p))) : null,
 		recolor: (latest) => {
 			recolors = latest;

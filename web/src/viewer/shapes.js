@@ -60,7 +60,7 @@ export function buildShape(geometry, physical, node) {
 		console.warn(`no shape for geometry kind ${geometry.kind}`);
 		return null;
 	}
-	const { meshes, envelope, recolor } = builder(geometry, node);
+	const { meshes, envelope, recolor, ready } = builder(geometry, node);
 	const group = new THREE.Group();
 	group.name = 'shape';
 	for (const mesh of meshes) {
@@ -69,6 +69,7 @@ export function buildShape(geometry, physical, node) {
 	}
 	group.userData.envelope = physical ? envelope : null;
 	group.userData.recolor = recolor ?? null;
+	group.userData.ready = ready ?? null;  // a promise while a file loads
 	return group;
 }
 

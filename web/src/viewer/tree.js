@@ -13,7 +13,7 @@ export class SceneTree {
 	constructor(root) {
 		this.root = root;              // the THREE.Group all nodes hang from
 		this.objects = new Map();      // id -> Object3D (userData.node: the description)
-		this.listeners = { added: [], removed: [], changed: [] };
+		this.listeners = { added: [], removed: [], changed: [], loaded: [] };
 	}
 
 	on(event, listener) { this.listeners[event].push(listener); }
@@ -42,6 +42,8 @@ export class SceneTree {
 		const shape = node.geometry ? buildShape(node.geometry, node.physical, node) : null;
 		if (shape) object.add(shape);
 		object.userData.shape = shape;
+		// a mesh file arrives later: the picture must be drawn again then
+		shape?.userData.ready?.then(() => this.emit('loaded', object));
 		this.objects.set(node.id, object);
 		this.applyVisibility(object);
 		this.setAngle(object, node.angle ?? 0);

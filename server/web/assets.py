@@ -1,0 +1,74 @@
+"""Mesh files over HTTP: ``POST /api/assets`` takes an upload, ``GET`` lists and serves them.
+
+Uploads are checked (size, glTF, self-contained, triangle count) in a worker thread, so a
+large file does not hold the event loop, and kept under the hash of their bytes
+(:meth:`server.core.assets.AssetLibrary.store`). Scenes read them by that name:
+``GLTFPart('<hash>.glb')``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from typing import Any
+
+from fastapi import APIRouter, Request
+from fastapi.responses import FileResponse, JSONResponse
+
+from ..core.assets import AssetLibrary, plain_name
+from ..errors import TooLarge, UnknownAsset
+from .rest import NOT_FOUND, ErrorBody
+
+router = APIRouter(prefix="/api")
+MEDIA_TYPES = {"glb": "model/gltf-binary", "gltf": "model/gltf+json"}
+REFUSED: dict[int | str, dict[str, Any]] = {
+    400: {"model": ErrorBody, "description": "Not a usable glTF mesh (bad_asset)"},
+    413: {"model": ErrorBody, "description": "Larger than the assetBytes limit (too_large)"},
+    429: {"model": ErrorBody, "description": "Too many triangles or files (limit_exceeded)"}}
+
+
+def _library(request: Request) -> AssetLibrary:
+    return request.app.state.hubs.assets
+
+
+UPLOAD_BODY = {"requestBody": {"required": True, "description": "the file's bytes", "content": {
+    media: {"schema": {"type": "string", "format": "binary"}}
+    for media in ("model/gltf-binary", "model/gltf+json", "application/octet-stream")}}}
+
+
+@router.post("/assets", status_code=201, responses=REFUSED, openapi_extra=UPLOAD_BODY,
+             summary="Upload a glTF mesh (GLB, or glTF with embedded buffers) as the body")
+async def upload(request: Request) -> JSONResponse:
+    """The body is the file. The answer names it: ``{"name", "url", "bytes", "triangles"}``;
+    give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene."""
+    limits = request.app.state.hubs.limits
+    data = bytearray()
+    async for chunk in request.stream():
+        data += chunk
+        if len(data) > limits.asset_bytes:  # stop reading: the rest is not wanted
+            raise TooLarge(f"the file has more than {limits.asset_bytes} bytes, the most "
+                           f"taken", limit="assetBytes", value=limits.asset_bytes)
+    stored = await asyncio.to_thread(_library(request).store, bytes(data), limits)
+    return JSONResponse(stored, status_code=201)
+
+
+@router.get("/assets", summary="The mesh files scenes can use: bundled and uploaded")
+async def listing(request: Request) -> dict[str, Any]:
+    library = _library(request)
+    return {"bundled": library.bundled_names(), "uploaded": library.uploaded_names()}
+
+
+SERVED: dict[int | str, dict[str, Any]] = {
+    **NOT_FOUND, 403: {"model": ErrorBody, "description": "Not a plain file name (forbidden)"},
+    200: {"content": {media: {} for media in MEDIA_TYPES.values()}, "description": "The file"}}
+
+
+@router.get("/assets/{name:path}", responses=SERVED, response_class=FileResponse,
+            summary="An uploaded mesh file (viewers load meshes from here)")
+async def download(request: Request, name: str) -> FileResponse:
+    library = _library(request)
+    plain = plain_name(name)  # refuses paths, URLs and encodings before any file is opened
+    if library.uploads is None or not (library.uploads / plain).is_file():
+        raise UnknownAsset(f"no uploaded mesh file {plain!r}", filename=name)
+    return FileResponse(library.uploads / plain, media_type=MEDIA_TYPES[plain.rsplit(".", 1)[1]],
+                        headers={"Cache-Control": "public, max-age=31536000, immutable"})
+

@@ -1,0 +1,61 @@
+"""Mesh parts in the viewer: an uploaded GLB is drawn where the part is, in its own colours,
+and a recolour shows in every viewer, including one that joins later."""
+
+from __future__ import annotations
+
+import numpy as np
+import trimesh
+
+import virtual_prosthetics as vp
+
+from .conftest import open_viewer, wait_until
+from .picture import Picture, project
+
+CAMERA = ((0, 1.5, 4), (0, 1, 0))
+LOADED = """(id) => { const o = VP.objects.get(id); let n = 0;
+                      o?.traverse((c) => { if (c.isMesh && c.geometry.getAttribute('color')) n++; });
+                      return n > 0 && VP.drawn(); }"""
+
+
+def coloured_ball(rgb) -> bytes:
+    ball = trimesh.creation.icosphere(3, 0.5)
+    ball.visual.vertex_colors = np.tile([*[int(255 * c) for c in rgb], 255], (len(ball.vertices), 1))
+    return ball.export(file_type="glb")
+
+
+def near(colour, wanted, tolerance=60):
+    return all(abs(c - w) < tolerance for c, w in zip(colour, wanted))
+
+
+def greenish(colour):
+    r, g, b = colour
+    return g > 90 and g > 1.5 * r and g > 1.5 * b
+
+
+def blueish(colour):
+    r, g, b = colour
+    return b > 90 and b > 1.5 * r and b > 1.2 * g
+
+
+def test_an_uploaded_glb_is_drawn_and_recoloured_in_every_viewer(browser, pages, server, scene, scene_name):
+    name = vp.upload_asset(coloured_ball((0.1, 0.8, 0.1)))
+    part = vp.GLTFPart(name, 0, callback=lambda p: None)
+    part.set_position(0, 1, 0)
+    vp.set_camera_position(*CAMERA[0])
+    vp.set_camera_target(*CAMERA[1])
+    scene.sync()
+    first = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(first, LOADED, part.id)
+    picture = Picture(first.screenshot())
+    centre = project((0, 1, 0), *CAMERA, picture.size)
+    assert greenish(picture.at(centre)), picture.at(centre)
+    assert not greenish(picture.at(project((1.2, 1, 0), *CAMERA, picture.size)))  # beside it
+
+    part.recolor([0.1, 0.8, 0.1], "blue", 0.05)
+    scene.sync()
+    later = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(later, LOADED, part.id)
+    for page in (first, later):
+        wait_until(page, "(id) => VP.objects.get(id).userData.node.recolors?.length === 1 "
+                         "&& VP.drawn()", part.id)
+        assert blueish(Picture(page.screenshot()).at(centre))
