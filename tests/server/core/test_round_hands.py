@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from server.core.hands import AnthroHand, RoundHand
+from server.core.hands import AnthroHand, EdgedHand, RoundHand
 from server.core.figures import PALM_JOINT_GAP, round_palm_slots
 from server.core.meshparts import AnthroPalm, AnthroThumb, RoundFinger, RoundPalm, slot_direction
 
@@ -138,3 +138,16 @@ def test_a_fist_touches_its_palm_left_and_right_alike(scene, kind, fingers):
                for hand in hands]
     assert touched[0] == touched[1]  # the right hand is the left one's mirror image
     assert len(touched[0]) >= fingers  # every folded finger (not its thumb, for anthro)
+
+
+@pytest.mark.parametrize("kind", [EdgedHand, RoundHand, AnthroHand])
+def test_two_hands_pressed_palm_to_palm_touch(scene, kind):
+    left, right = kind(scene, "l", True), kind(scene, "r", False)
+    right.set_rotation(0, math.pi, 0)  # the right hand faces the left one: a clap
+    palms = left.get_parts()[0], right.get_parts()[0]
+    for hand in (left, right):
+        hand.flex_fingers(0)  # flat hands: only the palms can meet
+    for half_gap, touching in ((0.16, False), (0.1505, False), (0.1495, True), (0.1, True)):
+        left.set_position((0, 1, half_gap))   # palms are 0.3 thick: faces at ±0.15
+        right.set_position((0, 1, -half_gap))
+        assert (palms[1].id in scene.touching(palms[0])) is touching, half_gap
