@@ -5,7 +5,9 @@ so a hull of the whole mesh would make every joint a contact. Each part therefor
 its envelope within a few half-spaces (:data:`Plane`): a finger's ends are cut into
 pyramids (:func:`pyramid`) whose 45° faces let its neighbour bend up to 90° without
 touching, a palm is cut flat below its fingers (:func:`half_space`). The result is
-thinned to a few dozen points of its hull, which is what physics uses.
+thinned to a few dozen points of its hull, which is what physics uses. A part too short
+for its cuts keeps its whole hull; an envelope that cannot be made at all (qhull gives
+up) refuses the part with ``bad_asset`` when it is created, never later in a tick.
 """
 
 from __future__ import annotations
@@ -16,14 +18,19 @@ from typing import Sequence
 
 import numpy as np
 
+from ..errors import BadAsset
 from .assets import Mesh
-from .hulls import convex_hull
+from .hulls import convex_hull, solid
 from .math3d import Vec3
 
 ENVELOPE_POINTS = 64
 PYRAMID_SIDES = 8  # faces of a joint's pyramid: its corners stand 47° off its axis
 
-Plane = tuple[Vec3, float]  # (n, c): the envelope keeps the points p with n·p ≤ c
+Plane = tuple[Vec3, float]
+
+
+class NothingLeft(ValueError):
+    """The cuts leave nothing of a hull (a part shorter than its joints' cuts)."""  # (n, c): the envelope keeps the points p with n·p ≤ c
 
 
 def half_space(point: Vec3, normal: Vec3, gap: float) -> Plane:
@@ -68,11 +75,15 @@ def envelope(mesh: Mesh, offset: Vec3, mirror: bool, cuts: Sequence[Plane] = (),
     The points are spread over the hull (farthest-point order from the topmost one), so
     the envelope follows the mesh closely with far fewer points than the hull has.
     """
-    if not mirror:
-        return _envelope(mesh, tuple(offset), tuple(cuts), count)
-    # the left-hand envelope mirrored: exactly the mirror image of the left part's
-    flip = [(_mirrored(n), c) for n, c in cuts]
-    return tuple(_mirrored(p) for p in _envelope(mesh, _mirrored(offset), tuple(flip), count))
+    try:
+        if not mirror:
+            return _envelope(mesh, tuple(offset), tuple(cuts), count)
+        # the left-hand envelope mirrored: exactly the mirror image of the left part's
+        flip = [(_mirrored(n), c) for n, c in cuts]
+        return tuple(_mirrored(p) for p in _envelope(mesh, _mirrored(offset), tuple(flip), count))
+    except Exception as error:  # qhull's own errors, or cuts that leave nothing
+        raise BadAsset(f"no collision envelope can be made of {mesh.url} placed so: "
+                       f"{str(error).splitlines()[0][:160]}") from None
 
 
 def _mirrored(v: Vec3) -> Vec3:
@@ -81,9 +92,13 @@ def _mirrored(v: Vec3) -> Vec3:
 
 @lru_cache(maxsize=256)
 def _envelope(mesh: Mesh, offset: Vec3, cuts: tuple[Plane, ...], count: int) -> tuple[Vec3, ...]:
-    placed = mesh.vertices + np.array(offset)
-    outline = convex_hull(placed)
-    corners = _cut(outline.points[outline.vertices], cuts)
+    corners, planes = _mesh_hull(mesh)
+    shift = np.array(offset)
+    planes = np.hstack([planes[:, :3], planes[:, 3:] - planes[:, :3] @ shift[:, None]])
+    try:
+        corners = _cut(corners + shift, planes, cuts)
+    except NothingLeft:  # a part too short for its joints' cuts: its whole hull, touching
+        corners = corners + shift
     outline = convex_hull(corners)
     corners = outline.points[outline.vertices]
     return tuple(tuple(float(c) for c in p) for p in _thinned(corners, count))
@@ -97,54 +112,83 @@ def _thinned(corners: np.ndarray, count: int) -> np.ndarray:
     maps the corners onto themselves maps the choice onto itself too: mirror-image parts
     get mirror-image envelopes.
     """
+    from scipy.spatial import ConvexHull
+
     centre = (corners.max(axis=0) + corners.min(axis=0)) / 2
-    images = [np.where(np.arange(3) == axis, 2 * centre - corners, corners)
-              for axis in range(3) if _maps_onto(np.where(np.arange(3) == axis,
-                                                          2 * centre - corners, corners), corners)]
+    mirrors = [np.where(np.arange(3) == axis, 2 * centre - corners, corners) for axis in range(3)]
+    images = [image for image in mirrors if _maps_onto(image, corners)]
     chosen: set[int] = set()
 
-    def choose(index: int) -> None:  # with its images under every symmetry, and theirs
-        new = [index]
+    def choose(index: int) -> list[int]:  # with its images under every symmetry, and theirs
+        added, new = [], [index]
         while new:
             chosen.update(new)
-            new = [k for i in new for image in images
-                   if (k := _nearest(corners, image[i])) not in chosen]
+            added += new
+            new = list(dict.fromkeys(k for i in new for image in images
+                                     if (k := _nearest(corners, image[i])) not in chosen))
+        return added
 
     for axis in range(3):
         choose(int(np.argmin(corners[:, axis])))
         choose(int(np.argmax(corners[:, axis])))
+    hull = ConvexHull(solid(corners[sorted(chosen)]), incremental=True)
     while len(chosen) < min(count, len(corners)):
-        planes = convex_hull(corners[sorted(chosen)]).equations
+        planes = hull.equations
         outside = (corners @ planes[:, :3].T + planes[:, 3]).max(axis=1)
         farthest = int(np.argmax(outside))
         if outside[farthest] <= 1e-12:
             break
-        choose(farthest)
+        try:
+            hull.add_points(corners[choose(farthest)])
+        except Exception:  # qhull gives up on a near-flat facet: start this hull afresh
+            hull.close()
+            hull = ConvexHull(solid(corners[sorted(chosen)]), incremental=True)
+    hull.close()
     return corners[sorted(chosen)]
 
 
 def _maps_onto(image: np.ndarray, corners: np.ndarray) -> bool:
-    return all(np.linalg.norm(corners - p, axis=1).min() < 1e-9 for p in image)
+    from scipy.spatial import cKDTree
+
+    distances, _ = cKDTree(corners).query(image)
+    return bool(distances.max() < 1e-9)
 
 
 def _nearest(corners: np.ndarray, point: np.ndarray) -> int:
     return int(np.argmin(np.linalg.norm(corners - point, axis=1)))
 
 
-def _cut(points: np.ndarray, cuts: tuple[Plane, ...]) -> np.ndarray:
-    """The corners of the hull of ``points`` intersected with the cuts' half-spaces."""
+@lru_cache(maxsize=64)
+def _mesh_hull(mesh: Mesh) -> tuple[np.ndarray, np.ndarray]:
+    """The corners and face planes (n·p + d ≤ 0 inside) of a mesh's hull, file frame."""
+    outline = convex_hull(mesh.vertices)
+    return outline.points[outline.vertices], outline.equations
+
+
+def _cut(corners: np.ndarray, planes: np.ndarray, cuts: tuple[Plane, ...]) -> np.ndarray:
+    """The corners of the hull (``corners``, its ``planes``) within the cuts' half-spaces."""
     if not cuts:
-        return points
-    from scipy.optimize import linprog
+        return corners
     from scipy.spatial import HalfspaceIntersection
 
-    hull = convex_hull(points).equations  # rows (n, d): n·p + d ≤ 0 inside
-    extra = np.array([[*n, -c] for n, c in cuts], dtype=float)
-    halfspaces = np.vstack([hull, extra])
-    # a point deepest inside all of them (Chebyshev centre) seeds the intersection
+    halfspaces = np.vstack([planes, [[*n, -c] for n, c in cuts]])
+    return HalfspaceIntersection(halfspaces, _inside(corners, halfspaces, len(cuts))).intersections
+
+
+def _inside(corners: np.ndarray, halfspaces: np.ndarray, cuts: int) -> np.ndarray:
+    """A point strictly inside every half-space: the mean of the corners the last ``cuts``
+    half-spaces keep (all are in the others), else the point deepest inside (slower)."""
+    extra = halfspaces[-cuts:]
+    kept = corners[(corners @ extra[:, :3].T + extra[:, 3] <= 0).all(axis=1)]
+    if len(kept) >= 4:
+        mean = kept.mean(axis=0)
+        if (halfspaces[:, :3] @ mean + halfspaces[:, 3] < -1e-9).all():
+            return mean
+    from scipy.optimize import linprog
+
     norms = np.linalg.norm(halfspaces[:, :3], axis=1, keepdims=True)
     deepest = linprog([0, 0, 0, -1], A_ub=np.hstack([halfspaces[:, :3], norms]),
                       b_ub=-halfspaces[:, 3], bounds=[(None, None)] * 3 + [(0, None)])
     if not deepest.success or deepest.x[3] <= 1e-9:
-        raise ValueError("the cuts leave nothing of the mesh's hull")
-    return HalfspaceIntersection(halfspaces, deepest.x[:3]).intersections
+        raise NothingLeft("the cuts leave nothing of the mesh's hull")
+    return deepest.x[:3]

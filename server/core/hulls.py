@@ -26,7 +26,7 @@ def solid(points: np.ndarray) -> np.ndarray:
     """``points``, or for a set without volume the set doubled a hair to either side."""
     centred = points - points.mean(axis=0)
     scale = max(float(np.abs(centred).max()), 1.0)
-    _, sizes, axes = np.linalg.svd(centred, full_matrices=True)
+    _, sizes, axes = np.linalg.svd(centred, full_matrices=len(points) < 3)  # never n × n
     sizes = np.concatenate([sizes, np.zeros(3 - len(sizes))])
     for axis, size in zip(axes, sizes):
         if size <= 1e-7 * scale:

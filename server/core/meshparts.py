@@ -13,6 +13,7 @@ from . import figures
 from .assets import Mesh
 from .envelopes import Plane, envelope, half_space, pyramid
 from .math3d import Vec3, euler_to_quat, rotate
+from .wire import Finite
 from .parts import Part
 
 if TYPE_CHECKING:
@@ -37,6 +38,7 @@ class GLTFPart(Part):
         super().__init__(scene, node_id)
         self.filename, self.length = filename, length
         self.recolors: tuple[tuple[Color, Color, float], ...] = ()
+        self._envelope: Finite | None = None
 
     @property
     def offset(self) -> Vec3:
@@ -55,9 +57,13 @@ class GLTFPart(Part):
                                 f"a part keeps", limit="recolors", value=MAX_RECOLORS, object=self.id)
         self._assign("recolors", (*self.recolors, (from_color, to_color, eps)))
 
-    def envelope(self) -> tuple[Vec3, ...]:
-        """Points whose convex hull is the part's collision envelope (part frame)."""
-        return envelope(self.mesh, self.offset, self.mirror, self.envelope_cuts())
+    def envelope(self) -> Finite:
+        """Points whose convex hull is the part's collision envelope (part frame); made
+        once, when a physical part is made (its shape never changes)."""
+        if self._envelope is None:
+            points = envelope(self.mesh, self.offset, self.mirror, self.envelope_cuts())
+            self._envelope = Finite(Finite(p) for p in points)
+        return self._envelope
 
     def envelope_cuts(self) -> list[Plane]:
         """Where the envelope stops short of the part's joints (nowhere unless a part says)."""
@@ -67,7 +73,7 @@ class GLTFPart(Part):
         shape: dict[str, Any] = {"kind": "mesh", "url": self.mesh.url,
                                  "offset": list(self.offset), "mirror": self.mirror}
         if self.physical:
-            shape["points"] = [list(p) for p in self.envelope()]
+            shape["points"] = self.envelope()
         return shape
 
     def properties(self) -> dict[str, Any]:
@@ -84,6 +90,7 @@ class RoundFinger(GLTFPart):
                  length: float = figures.ROUND_FINGER_LENGTH) -> None:
         super().__init__(scene, node_id, filename, length)
         self.new_slot((0.0, length, 0.0))
+        self.envelope()  # made now: a length it cannot be made for refuses the part
 
     def envelope_cuts(self) -> list[Plane]:
         gap, up, down = figures.FINGER_JOINT_GAP, (0.0, 1.0, 0.0), (0.0, -1.0, 0.0)
@@ -102,6 +109,7 @@ class RoundPalm(GLTFPart):
         self.left = left
         for position, rotation, order in self.slot_figures(left, length):
             self.new_slot(position, rotation, order)
+        self.envelope()  # made now: a length it cannot be made for refuses the part
 
     def envelope_cuts(self) -> list[Plane]:
         """Flat below each finger slot, and inside the thumb slot's side of the palm."""
@@ -144,6 +152,7 @@ class AnthroThumb(GLTFPart):
         super().__init__(scene, node_id, filename, length)
         self.left = left
         self.new_slot(*figures.anthro_thumb_slot(left, length))
+        self.envelope()  # made now: a length it cannot be made for refuses the part
 
     @property
     def offset(self) -> Vec3:

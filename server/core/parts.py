@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 from . import figures
 from .math3d import ORIGIN, Vec3, euler_to_quat
 from .node import Node, Slot
+from .wire import Finite
 
 if TYPE_CHECKING:
     from .scene import Scene
@@ -98,7 +99,7 @@ class ConvexPart(Part):
     points: Sequence[Vec3] = ()
 
     def geometry(self) -> dict[str, Any]:
-        return {"kind": "convex", "points": [list(p) for p in self.points],
+        return {"kind": "convex", "points": Finite(Finite(p) for p in self.points),
                 "color": "white", "edges": "black"}
 
 

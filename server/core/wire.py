@@ -17,8 +17,15 @@ def wire_number(value: float) -> float | str:
     return "Infinity" if value > 0 else "-Infinity"
 
 
+class Finite(tuple):  # type: ignore[type-arg]
+    """Numbers (or nested tuples of them) known to be finite, such as a part's geometry:
+    :func:`encode_numbers` passes them as they are instead of looking at each."""
+
+
 def encode_numbers(value: Any) -> Any:
     """``value`` with every non-finite float inside it replaced by its wire string."""
+    if isinstance(value, Finite):
+        return value
     if isinstance(value, float):
         return wire_number(value)
     if isinstance(value, dict):

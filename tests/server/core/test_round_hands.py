@@ -151,3 +151,13 @@ def test_two_hands_pressed_palm_to_palm_touch(scene, kind):
         left.set_position((0, 1, half_gap))   # palms are 0.3 thick: faces at ±0.15
         right.set_position((0, 1, -half_gap))
         assert (palms[1].id in scene.touching(palms[0])) is touching, half_gap
+
+
+@pytest.mark.parametrize("length", [0.001, 0.01, 0.05, 3.0, 1000.0])
+def test_round_fingers_of_any_length_get_an_envelope_when_made(scene, length):
+    finger = RoundFinger(scene, "f", "round-finger-8.glb", length)
+    points = finger.geometry()["points"]
+    assert len(points) >= 4
+    finger.set_position((0, 5, 0))
+    scene.tick(0.1)  # the tick describes the new part: nothing is left to fail there
+    assert scene.failures == 0

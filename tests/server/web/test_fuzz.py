@@ -80,7 +80,10 @@ def fuzz_server() -> Iterator[RunningServer]:
 
 
 def open_client(server: RunningServer, role: str = "controller") -> tuple[Any, str, dict]:
-    ws = connect(f"{server.ws}/ws?scene={SCENE}&role={role}", max_size=None).__enter__()
+    # no bound on the receive queue: a client that closes without reading every frame
+    # must still read up to the server's close frame (else close() waits 10 s for it)
+    ws = connect(f"{server.ws}/ws?scene={SCENE}&role={role}", max_size=None,
+                 max_queue=None).__enter__()
     hello = json.loads(ws.recv(timeout=10))
     return ws, hello["client"], json.loads(ws.recv(timeout=10))
 
