@@ -1,0 +1,90 @@
+// The client's side of the protocol, without any socket (sans-I/O): request ids, the
+// answers being waited for, errors of requests nobody waits for (kept until the next
+// call), warnings, and which server message goes where. The browser and Node transports
+// feed it text and send what it returns; tests drive it directly.
+
+import { encode } from './codec.js';
+import { ProtocolError, ServerError } from './errors.js';
+
+export const SERVER_OPS = Object.freeze(['hello', 'snapshot', 'ok', 'error', 'frame', 'added', 'removed']);
+
+export class ProtocolCore {
+	// onMessage(message): every server message that is not an answer; onChanges(changes):
+	// what an answer says its request changed; onWarning(text): remarks in answers.
+	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {} } = {}) {
+		this.onMessage = onMessage;
+		this.onChanges = onChanges;
+		this.onWarning = onWarning;
+		this.nextId = 1;
+		this.waiting = new Map();  // id -> { resolve, reject }
+		this.unanswered = new Set();
+		this.deferred = [];        // ServerErrors of requests nobody waited for
+		this.settled = [];         // resolvers called once nothing is unanswered
+	}
+
+	// The text to send for `message` with a fresh id; with `wait`, also a promise of
+	// the answer's result (rejected with a ServerError for an error answer).
+	request(message, { wait = false } = {}) {
+		const id = this.nextId++;
+		this.unanswered.add(id);
+		const text = encode({ ...message, id });
+		if (!wait) return { id, text, answer: null };
+		const answer = new Promise((resolve, reject) => this.waiting.set(id, { resolve, reject }));
+		return { id, text, answer };
+	}
+
+	// Take one text from the server. Unknown or malformed messages throw ProtocolError.
+	receive(text) {
+		let message;
+		try {
+			message = JSON.parse(text);
+		} catch (error) {
+			throw new ProtocolError(`the server sent text that is not JSON: ${String(text).slice(0, 80)}`);
+		}
+		if (message === null || typeof message !== 'object' || !SERVER_OPS.includes(message.op)) {
+			throw new ProtocolError(`the server sent an unknown message: ${String(text).slice(0, 80)}`);
+		}
+		const isAnswer = (message.op === 'ok' || message.op === 'error') && message.id != null;
+		if (!isAnswer) {
+			if (message.op === 'error') this.deferred.push(ServerError.fromWire(message));
+			this.onMessage(message);
+			return message;
+		}
+		if (message.changes) this.onChanges(message.changes);
+		for (const warning of message.warnings ?? []) this.onWarning(warning);
+		this.answered(message);
+		return message;
+	}
+
+	answered(message) {
+		this.unanswered.delete(message.id);
+		const waiter = this.waiting.get(message.id);
+		this.waiting.delete(message.id);
+		if (message.op === 'error') {
+			const error = ServerError.fromWire(message);
+			if (waiter) waiter.reject(error); else this.deferred.push(error);
+		} else if (waiter) {
+			waiter.resolve(message.result);
+		}
+		if (this.unanswered.size === 0) for (const resolve of this.settled.splice(0)) resolve();
+	}
+
+	// Throw the first kept error of a request nobody waited for.
+	raiseDeferred() {
+		if (this.deferred.length) throw this.deferred.shift();
+	}
+
+	// A promise that resolves once every request sent so far is answered.
+	settle() {
+		if (this.unanswered.size === 0) return Promise.resolve();
+		return new Promise((resolve) => this.settled.push(resolve));
+	}
+
+	// The connection is gone: every waiter hears it.
+	lost(error) {
+		for (const { reject } of this.waiting.values()) reject(error);
+		this.waiting.clear();
+		this.unanswered.clear();
+		for (const resolve of this.settled.splice(0)) resolve();
+	}
+}
