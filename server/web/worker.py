@@ -106,12 +106,25 @@ class SceneWorker:
             if now >= deadline:
                 self._tick(now - last)
                 last, deadline = now, max(deadline + period, now - 5 * period)
+                # a scene whose ticks run late still hears its server (and its going)
+                # and still serves requests, half a period's worth after every tick
+                if not self._receive(0):
+                    return
+                self._serve(time.monotonic() + period / 2)
             elif self._commands:
-                self._command(self._commands.popleft())
-                if not self._commands or len(self._events) >= FLUSH_EVENTS:
-                    self._flush()
+                self._serve(deadline)
             elif not self._receive(deadline - now):
                 return
+
+    def _serve(self, until: float) -> None:
+        """Apply queued commands until ``until`` (at least one), then send what they made."""
+        while self._commands:
+            self._command(self._commands.popleft())
+            if len(self._events) >= FLUSH_EVENTS:
+                self._flush()
+            if time.monotonic() >= until:
+                break
+        self._flush()
 
     def _receive(self, wait: float) -> bool:
         """Wait up to ``wait`` seconds for commands; False once the server is gone."""

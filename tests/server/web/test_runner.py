@@ -4,9 +4,12 @@ import json
 import os
 import signal
 import threading
+import time
 
 import pytest
 from websockets.exceptions import ConnectionClosed
+
+from tests.conftest import start_server, stop_server
 
 from .test_socket import open_client
 from .ws_requests import next_message
@@ -64,3 +67,33 @@ def test_a_scene_whose_process_dies_takes_no_other_scene_with_it(server, scene_n
     again, _, snapshot = open_client(server, scene_name + "d")  # the scene starts afresh
     with again:
         assert snapshot["nodes"] == [] and next_message(again, "frame")
+
+
+def _running(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().split(") ", 1)[1][0] != "Z"  # a zombie has ended
+    except FileNotFoundError:
+        return False
+
+
+def test_scene_processes_end_when_the_server_is_killed(scene_name):
+    server = start_server("--no-demo")
+    try:
+        busy, hello, _ = open_client(server, scene_name + "b")
+        me = hello["client"]
+        with busy:  # a scene whose ticks all run late (overlapping hands) must hear it too
+            busy.send(json.dumps({"op": "batch", "id": 1, "ops": [
+                {"op": "create", "object": f"{me}.{k}", "type": "EdgedHand"} for k in range(100)]}))
+            assert next_message(busy, "ok", timeout=60)["id"] == 1
+            pids = [s["pid"] for s in server.get("/api/metrics")["scenes"].values()]
+            assert len(pids) == 2 and all(_running(pid) for pid in pids)
+            server.process.kill()  # no goodbye: as an out-of-memory kill would end it
+            server.process.wait(timeout=10)
+            deadline = time.monotonic() + 15
+            while any(_running(pid) for pid in pids) and time.monotonic() < deadline:
+                time.sleep(0.1)
+            assert not any(_running(pid) for pid in pids), "scene processes outlived the server"
+    finally:
+        if server.process.poll() is None:
+            stop_server(server)
