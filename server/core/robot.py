@@ -101,5 +101,10 @@ class Robot(Node):
         for motor, angle in zip(self.get_motors(), angles):
             motor.set_angle(angle)
 
+    @property
+    def motors(self) -> list[str]:
+        """Ids of the motors in index order: sent to clients, so none works it out again."""
+        return [motor.id for motor in self.get_motors()]
+
     def properties(self) -> dict[str, Any]:
-        return {"visible": self.visible, "gui": self.gui}
+        return {"visible": self.visible, "gui": self.gui, "motors": self.motors}

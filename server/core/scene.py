@@ -20,6 +20,7 @@ from .ids import IdBook
 from .journal import Journal
 from .limits import DEFAULT, Limits
 from .math3d import Vec3
+from .motor import Motor
 from .node import Node
 from .physics import PhysicsWorld
 from .raycast import RayTargets
@@ -166,10 +167,14 @@ class Scene:
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
         self.tree_version += 1
+        moves_motors = any(isinstance(n, Motor) for n in node.walk())
         for parent in (old_parent, node.parent):
             if parent is not None:
+                root = parent.root()
                 for changes in self._recorders:
                     changes.update(parent.id, "children")
+                    if moves_motors and isinstance(root, Robot):
+                        changes.update(root.id, "motors")  # the motor order changed
         self.node_changed(node, "parent")
 
     def _moved(self, node: Node) -> None:

@@ -111,8 +111,9 @@ class Mirror:
         return [n for n in self.walk(robot_id) if n["id"] != robot_id and n["type"] != "Slot"]
 
     def motors(self, robot_id: str) -> list[NodeState]:
-        """The motors below a robot: their order is their index."""
-        return [n for n in self.parts(robot_id) if "axis" in n]
+        """The motors of a robot in index order, as the server lists them."""
+        robot = self.nodes.get(robot_id, {})
+        return [self.nodes[i] for i in robot.get("motors", ()) if i in self.nodes]
 
 
 def _reading(wire: dict[str, Any]) -> dict[str, Any]:

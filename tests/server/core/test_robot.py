@@ -77,3 +77,22 @@ def test_set_rotation_turns_the_whole_robot(scene):
     robot, parts = chain(scene)
     robot.set_rotation(0, 0, math.pi / 2, "ZYX")
     assert parts[-1].slots[0].world_pose()[0] == pytest.approx((-2, 0, 0))
+
+
+def test_a_robot_lists_its_motors_in_index_order_and_says_when_that_changes(scene):
+    robot, first, second = Robot(scene, "r"), MotorZ(scene, "m1"), MotorX(scene, "m2")
+    finger = EdgedFinger(scene, "f")
+    assert robot.describe()["motors"] == []
+    with scene.recording() as changes:
+        robot.attach_chain(first, finger)
+        second.attach_to_slot(finger)
+    assert robot.describe()["motors"] == ["m1", "m2"] == [m.id for m in robot.get_motors()]
+    assert "motors" in changes.updates["r"]
+    delta = scene.delta(changes)
+    assert delta["updates"]["r"]["motors"] == ["m1", "m2"]
+    with scene.recording() as changes:
+        Box(scene, "b").attach_to_slot(finger, 3)  # no motor moved: the order stands
+    assert "motors" not in changes.updates.get("r", set())
+    with scene.recording() as changes:
+        scene.delete(second)
+    assert scene.delta(changes)["updates"]["r"]["motors"] == ["m1"]

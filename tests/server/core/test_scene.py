@@ -57,7 +57,7 @@ def test_tick_reports_added_frame_removed_in_order(scene):
     frame, removed = scene.tick(0.5)
     assert removed == {"op": "removed", "seq": 4, "ids": sorted(["m", "m/s0"])} or \
         set(removed["ids"]) == {"m", "m/s0"}
-    assert frame["updates"] == {"r": {"children": []}}
+    assert frame["updates"] == {"r": {"children": [], "motors": []}}
 
 
 def test_reattaching_reports_both_parents_children(scene):

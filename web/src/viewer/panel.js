@@ -11,15 +11,9 @@ function limit(value, fallback) {
 	return typeof value === 'number' ? value : fallback;
 }
 
-// The motor objects below a robot, in the server's depth-first order (their index).
-export function motorsOf(robot) {
-	const motors = [];
-	const visit = (object) => {
-		if (object !== robot && object.userData.node.axis) motors.push(object);
-		for (const child of object.children) if (child.userData.node) visit(child);
-	};
-	visit(robot);
-	return motors;
+// The motor objects of a robot in index order, as the server lists them.
+export function motorsOf(robot, objects) {
+	return (robot.userData.node.motors ?? []).map((id) => objects.get(id)).filter(Boolean);
 }
 
 export class MotorPanels {
@@ -33,7 +27,7 @@ export class MotorPanels {
 		const refresh = () => { this.stale = true; };
 		tree.on('added', refresh);
 		tree.on('removed', refresh);
-		tree.on('changed', (object, fields) => { if ('gui' in fields || 'children' in fields || 'name' in fields) refresh(); });
+		tree.on('changed', (object, fields) => { if ('gui' in fields || 'motors' in fields || 'name' in fields) refresh(); });
 	}
 
 	// Rebuild panels after structural changes (at most once per rendered frame).
@@ -61,7 +55,7 @@ export class MotorPanels {
 	build(robot) {
 		const gui = new GUI({ title: robot.userData.node.gui || 'Robot' });
 		const values = {}, sliders = new Map();
-		motorsOf(robot).forEach((motor, index) => {
+		motorsOf(robot, this.tree.objects).forEach((motor, index) => {
 			const node = motor.userData.node;
 			values[motor.name] = node.angle;
 			const slider = gui.add(values, motor.name, limit(node.min, -UNLIMITED), limit(node.max, UNLIMITED), 0.01)
@@ -72,13 +66,14 @@ export class MotorPanels {
 			} else slider.disable();
 			sliders.set(motor, slider);
 		});
-		gui.add({ gesture: () => this.showGesture(gesture(robot)) }, 'gesture').name('Get gesture');
+		gui.add({ gesture: () => this.showGesture(gesture(robot, this.tree.objects)) }, 'gesture')
+			.name('Get gesture');
 		this.panels.set(robot.name, { gui, sliders, values });
 	}
 }
 
 // The setAngles(...) call that puts a robot in its current pose.
-export function gesture(robot) {
-	const angles = motorsOf(robot).map((motor) => Number(motor.userData.node.angle.toFixed(2)));
+export function gesture(robot, objects) {
+	const angles = motorsOf(robot, objects).map((motor) => Number(motor.userData.node.angle.toFixed(2)));
 	return `setAngles( ${angles.join(', ')} );`;
 }
