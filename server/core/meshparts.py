@@ -39,6 +39,10 @@ class GLTFPart(Part):
         self.filename, self.length = filename, length
         self.recolors: tuple[tuple[Color, Color, float], ...] = ()
         self._envelope: Finite | None = None
+        for figure in self.slot_figures():
+            self.new_slot(*figure)
+        if self.physical:
+            self.envelope()  # made now: a shape it cannot be made for refuses the part
 
     @property
     def offset(self) -> Vec3:
@@ -69,6 +73,10 @@ class GLTFPart(Part):
         """Where the envelope stops short of the part's joints (nowhere unless a part says)."""
         return []
 
+    def slot_figures(self) -> list[tuple[Any, ...]]:
+        """Arguments of ``new_slot`` for each slot the part is made with (none here)."""
+        return []
+
     def geometry(self) -> dict[str, Any]:
         shape: dict[str, Any] = {"kind": "mesh", "url": self.mesh.url,
                                  "offset": list(self.offset), "mirror": self.mirror}
@@ -89,31 +97,34 @@ class RoundFinger(GLTFPart):
     def __init__(self, scene: Scene, node_id: str, filename: str,
                  length: float = figures.ROUND_FINGER_LENGTH) -> None:
         super().__init__(scene, node_id, filename, length)
-        self.new_slot((0.0, length, 0.0))
-        self.envelope()  # made now: a length it cannot be made for refuses the part
+
+    def slot_figures(self) -> list[tuple[Any, ...]]:
+        return [((0.0, self.length, 0.0),)]
 
     def envelope_cuts(self) -> list[Plane]:
         gap, up, down = figures.FINGER_JOINT_GAP, (0.0, 1.0, 0.0), (0.0, -1.0, 0.0)
         return [*pyramid((0.0, 0.0, 0.0), up, gap), *pyramid((0.0, self.length, 0.0), down, gap)]
 
 
-class RoundPalm(GLTFPart):
-    """Manual ``RoundPalm(left, filename, length=1.4)``: five finger slots, the thumb's first."""
+class HandedPart(GLTFPart):
+    """A mesh part of a left or a right hand: ``(left, filename, length=1.4)``."""
 
-    type_name = "RoundPalm"
     physical = True
 
     def __init__(self, scene: Scene, node_id: str, left: bool, filename: str,
                  length: float = figures.ROUND_PALM_LENGTH) -> None:
+        self.left = left  # before the slots and the envelope, which depend on it
         super().__init__(scene, node_id, filename, length)
-        self.left = left
-        for position, rotation, order in self.slot_figures(left, length):
-            self.new_slot(position, rotation, order)
-        self.envelope()  # made now: a length it cannot be made for refuses the part
+
+
+class RoundPalm(HandedPart):
+    """Manual ``RoundPalm(left, filename, length=1.4)``: five finger slots, the thumb's first."""
+
+    type_name = "RoundPalm"
 
     def envelope_cuts(self) -> list[Plane]:
         """Flat below each finger slot, and inside the thumb slot's side of the palm."""
-        slots = self.slot_figures(self.left, self.length)
+        slots = self.slot_figures()
         gap = figures.PALM_JOINT_GAP
         cuts = [half_space(position, slot_direction(rotation, order), gap)
                 for position, rotation, order in slots[1:]]
@@ -123,9 +134,8 @@ class RoundPalm(GLTFPart):
         side = 1.0 if self.left else -1.0
         return [half_space(thumb[0], (side, 0.0, 0.0), figures.PALM_JOINT_GAP)]
 
-    @staticmethod
-    def slot_figures(left: bool, length: float) -> list[figures.SlotFigure]:
-        return figures.round_palm_slots(left, length)
+    def slot_figures(self) -> list[figures.SlotFigure]:
+        return figures.round_palm_slots(self.left, self.length)
 
 
 class AnthroPalm(RoundPalm):
@@ -136,23 +146,17 @@ class AnthroPalm(RoundPalm):
     def thumb_cuts(self, thumb: figures.SlotFigure) -> list[Plane]:
         return []  # the mesh is cut away where the thumb sits
 
-    @staticmethod
-    def slot_figures(left: bool, length: float) -> list[figures.SlotFigure]:
-        return figures.anthro_palm_slots(left, length)
+    def slot_figures(self) -> list[figures.SlotFigure]:
+        return figures.anthro_palm_slots(self.left, self.length)
 
 
-class AnthroThumb(GLTFPart):
+class AnthroThumb(HandedPart):
     """Manual ``AnthroThumb(left, filename, length=1.4)``: not raised; one slot for its finger."""
 
     type_name = "AnthroThumb"
-    physical = True
 
-    def __init__(self, scene: Scene, node_id: str, left: bool, filename: str,
-                 length: float = figures.ROUND_PALM_LENGTH) -> None:
-        super().__init__(scene, node_id, filename, length)
-        self.left = left
-        self.new_slot(*figures.anthro_thumb_slot(left, length))
-        self.envelope()  # made now: a length it cannot be made for refuses the part
+    def slot_figures(self) -> list[figures.SlotFigure]:
+        return [figures.anthro_thumb_slot(self.left, self.length)]
 
     @property
     def offset(self) -> Vec3:
@@ -161,7 +165,7 @@ class AnthroThumb(GLTFPart):
     def envelope_cuts(self) -> list[Plane]:
         """Clear of the palm while it swings about its motor's Z, and of its finger."""
         gap = figures.FINGER_JOINT_GAP
-        position, rotation, order = figures.anthro_thumb_slot(self.left, self.length)
+        [(position, rotation, order)] = self.slot_figures()
         toward_finger = slot_direction(rotation, order)
         return [*pyramid((0.0, 0.0, 0.0), (0.0, -1.0, 0.0), gap, ((1, 0, 0), (-1, 0, 0))),
                 *pyramid(position, tuple(-c for c in toward_finger), gap)]

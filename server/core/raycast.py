@@ -18,7 +18,7 @@ import numpy as np
 
 from .assets import AssetLibrary
 from .math3d import Pose
-from .rayshapes import AT_LIMIT, ON_SURFACE, Shape, shape_of
+from .rayshapes import GROUND_SHAPE, Shape, shape_of
 
 GROUND = "ground"
 _NOTHING, _GROUND = -2, -1  # key indices besides the rows of parts
@@ -110,7 +110,7 @@ class RayTargets:
         """For many rays (unit directions): per ray and limit, what is met first at or
         beyond the limit and no farther than ``far``, and its distance (``inf``: nothing)."""
         self._place_moved()
-        best = _ground_entries(origins, directions, limits)
+        best = GROUND_SHAPE.entries(origins, directions, limits)
         who = np.where(np.isfinite(best), _GROUND, _NOTHING)
         for rays, rows, entries in self._exact(origins, directions, limits):
             for k in range(len(limits)):
@@ -164,16 +164,6 @@ def _improve(best: np.ndarray, who: np.ndarray, rays: np.ndarray, rows: np.ndarr
     nearer = entries < best[rays]
     best[rays[nearer]] = entries[nearer]
     who[rays[nearer]] = rows[nearer]
-
-
-def _ground_entries(origins: np.ndarray, directions: np.ndarray,
-                    limits: Sequence[float]) -> np.ndarray:
-    height, falling = origins[:, 1], -directions[:, 1]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        enter = np.where((falling > 0) & (height >= -ON_SURFACE),
-                         np.maximum(height, 0.0) / falling, np.inf)
-    return np.stack([np.where(enter >= limit - AT_LIMIT, np.maximum(enter, limit), np.inf)
-                     for limit in limits], axis=1)
 
 
 def _matrices(q: np.ndarray) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""The shapes rays meet, in a part's own frame: sphere, convex hull (boxes too) and mesh.
+"""The shapes rays meet: sphere, convex hull (boxes too) and mesh in a part's own frame, and the ground.
 
 Each meets many rays at once (numpy) and answers, per ray and per lower limit, the first
 distance at which the ray enters a *front* face at or beyond that limit (``inf`` for
@@ -74,6 +74,20 @@ class Convex:
         leave = np.where(leaving, at, np.inf).min(axis=1)
         beside = (~entering & ~leaving & (gaps < -ON_SURFACE)).any(axis=1)
         return _from_one_entry(enter, ~beside & (enter <= leave) & (enter >= -ON_SURFACE), limits)
+
+
+class Ground:
+    """The plane y = 0, met from above only (world frame)."""
+
+    def entries(self, origins: np.ndarray, directions: np.ndarray,
+                limits: Sequence[float]) -> np.ndarray:
+        height, falling = origins[:, 1], -directions[:, 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            enter = height / falling
+        return _from_one_entry(enter, (falling > 0) & (height >= -ON_SURFACE), limits)
+
+
+GROUND_SHAPE = Ground()
 
 
 def box(size: Sequence[float]) -> Convex:

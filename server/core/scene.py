@@ -167,14 +167,15 @@ class Scene:
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
         self.tree_version += 1
-        moves_motors = any(isinstance(n, Motor) for n in node.walk())
-        for parent in (old_parent, node.parent):
-            if parent is not None:
-                root = parent.root()
-                for changes in self._recorders:
-                    changes.update(parent.id, "children")
-                    if moves_motors and isinstance(root, Robot):
-                        changes.update(root.id, "motors")  # the motor order changed
+        parents = [parent for parent in (old_parent, node.parent) if parent is not None]
+        robots = [root for root in (parent.root() for parent in parents) if isinstance(root, Robot)]
+        if robots and not any(isinstance(n, Motor) for n in node.walk()):
+            robots = []  # no motor moved: the robots' motor orders stand
+        for changes in self._recorders:
+            for parent in parents:
+                changes.update(parent.id, "children")
+            for robot in robots:
+                changes.update(robot.id, "motors")
         self.node_changed(node, "parent")
 
     def _moved(self, node: Node) -> None:
