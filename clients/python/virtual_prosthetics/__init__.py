@@ -9,7 +9,8 @@
 """
 
 from .animation import get_time, run, set_animation
-from .errors import ConnectionLost, ServerError, ServerWarning, Timeout, VPError
+from .errors import (ConnectionLost, ProtocolError, ServerError, ServerWarning, Timeout,
+                     VPError)
 from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip,
                       GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
                       RoundPalm, Slot)
@@ -33,6 +34,6 @@ __all__ = [
     "AnthroHand", "AnthroPalm", "AnthroThumb", "GLTFPart", "RoundFinger", "RoundHand",
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Sensor",
-    "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
+    "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "upload_asset",
 ]

@@ -4,6 +4,7 @@ Hierarchy::
 
     VPError                 base of everything this package raises
     ├── ServerError         the server answered a request with an error
+    ├── ProtocolError       the server sent something the protocol does not define
     ├── ConnectionLost      the WebSocket closed (or never opened)
     └── Timeout             the server did not answer in time
 
@@ -39,6 +40,10 @@ class ServerError(VPError):
     def from_wire(cls, wire: dict[str, Any]) -> ServerError:
         """The exception for an ``error`` message."""
         return cls(wire["code"], wire["message"], wire.get("request"), wire.get("details"))
+
+
+class ProtocolError(VPError):
+    """The server sent a message the protocol does not define (the client stops reading)."""
 
 
 class ConnectionLost(VPError):

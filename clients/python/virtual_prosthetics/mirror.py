@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-import math
 import time
 from collections import deque
 from typing import Any, Callable, Iterator
 
+from .codec import from_wire
+
 NodeState = dict[str, Any]
 ContactEvent = tuple[str, str, str]  # "begin" or "end", then the pair's two ids
-_NON_FINITE = {"Infinity": math.inf, "-Infinity": -math.inf, "NaN": math.nan}
 
 
 class Mirror:
@@ -118,5 +118,4 @@ class Mirror:
 
 def _reading(wire: dict[str, Any]) -> dict[str, Any]:
     """A sensor reading with its distance as a float (Infinity travels as a string)."""
-    distance = wire["distance"]
-    return {**wire, "distance": _NON_FINITE.get(distance, distance)}
+    return {**wire, "distance": from_wire(wire["distance"])}

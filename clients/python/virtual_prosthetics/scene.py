@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import math
 import threading
 from itertools import count
 from typing import TYPE_CHECKING, Any, Callable, TypeVar
 from urllib.parse import urlencode
 
+from .codec import encode_arg
 from .connection import Connection
 from .errors import ConnectionLost, Timeout, VPError
 from .mirror import Mirror
@@ -25,17 +25,6 @@ def current_scene() -> Scene:
     if _current is None:
         raise VPError("not connected: call virtual_prosthetics.connect() first")
     return _current
-
-
-def encode_arg(value: Any) -> Any:
-    """An argument as it travels: objects as {"ref": id}, non-finite numbers as strings."""
-    if hasattr(value, "_scene") and hasattr(value, "id"):
-        return {"ref": value.id}
-    if isinstance(value, float) and not math.isfinite(value):
-        return "NaN" if math.isnan(value) else ("Infinity" if value > 0 else "-Infinity")
-    if isinstance(value, (list, tuple)):
-        return [encode_arg(v) for v in value]
-    return value
 
 
 def trim(args: tuple[Any, ...]) -> list[Any]:
@@ -65,7 +54,7 @@ class Scene:
         self._ready = threading.Event()
         query = urlencode({"scene": scene, "role": role})
         self.connection = Connection(f"{url.rstrip('/')}/ws?{query}", self._on_message,
-                                     self._on_answer)
+                                     self._on_changes)
         self.connection.start()
         if not self._ready.wait(timeout):
             self.connection.close()
@@ -93,10 +82,9 @@ class Scene:
         if message["op"] == "snapshot" or (message["op"] == "error" and not self.hello):
             self._ready.set()
 
-    def _on_answer(self, answer: dict[str, Any]) -> None:
-        if "changes" in answer:
-            with self.lock:
-                self.mirror.apply_changes(answer["changes"])
+    def _on_changes(self, changes: dict[str, Any]) -> None:
+        with self.lock:
+            self.mirror.apply_changes(changes)
 
     # --- requests ------------------------------------------------------------------------
 

@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
+from .codec import from_wire
 from .objects import Node, Part
 from .scene import Scene
-
-_NON_FINITE = {"Infinity": math.inf, "-Infinity": -math.inf, "NaN": math.nan}
 
 
 class Sensor(Part):
@@ -53,7 +51,7 @@ class Sensor(Part):
         """Manual ``senseDistance()``: distance along +Y to a body past 0.05, or inf."""
         reading = self._framed(exact)
         value = reading["distance"] if reading else self._ask("senseDistance")
-        return _NON_FINITE.get(value, value) if isinstance(value, str) else float(value)
+        return float(from_wire(value))
 
     def sense_touch(self, exact: bool = False) -> float:
         """Manual ``senseTouch()``: 0 (nothing within 0.05) to 1 (touching the pad)."""

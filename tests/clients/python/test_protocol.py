@@ -1,0 +1,87 @@
+"""The Python client's protocol core, driven without any socket."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from virtual_prosthetics.errors import ProtocolError, ServerError
+from virtual_prosthetics.protocol import ProtocolCore
+
+
+class Heard:
+    def __init__(self) -> None:
+        self.messages: list[dict] = []
+        self.changes: list[dict] = []
+
+    def core(self) -> ProtocolCore:
+        return ProtocolCore(self.messages.append, self.changes.append)
+
+
+def test_requests_get_increasing_ids_and_travel_without_bare_infinity():
+    core = Heard().core()
+    first = core.request({"op": "call", "object": "c1.1", "method": "setAngle", "args": ["NaN"]})
+    second = core.request({"op": "ping"})
+    assert (first.id, second.id) == (1, 2)
+    assert json.loads(first.text) == {"op": "call", "object": "c1.1", "method": "setAngle",
+                                      "args": ["NaN"], "id": 1}
+    assert core.unanswered == {1, 2}
+    with pytest.raises(ValueError):
+        core.request({"op": "call", "args": [float("inf")]})  # must be encoded first
+
+
+def test_a_waited_answer_is_kept_until_taken_and_its_changes_reach_the_mirror():
+    heard = Heard()
+    core = heard.core()
+    request = core.request({"op": "ping"}, wait=True)
+    core.receive(json.dumps({"op": "ok", "id": request.id, "result": {"seq": 3},
+                             "changes": {"angles": {"c1.2": 0.5}}}))
+    assert heard.changes == [{"angles": {"c1.2": 0.5}}]
+    assert core.unanswered == set()
+    assert core.result(request.id) == {"seq": 3}
+    with pytest.raises(KeyError):
+        core.result(request.id)
+
+
+def test_an_error_nobody_waits_for_is_kept_for_the_next_call():
+    core = Heard().core()
+    request = core.request({"op": "delete", "object": "c1.9"})
+    core.receive(json.dumps({"op": "error", "id": request.id, "code": "unknown_object",
+                             "message": "no object c1.9", "request": "delete"}))
+    error = core.take_deferred()
+    assert isinstance(error, ServerError) and error.code == "unknown_object"
+    assert core.take_deferred() is None
+
+
+def test_a_waited_error_is_raised_by_result_not_kept():
+    core = Heard().core()
+    request = core.request({"op": "call"}, wait=True)
+    core.receive(json.dumps({"op": "error", "id": request.id, "code": "wrong_type",
+                             "message": "x", "request": "call"}))
+    with pytest.raises(ServerError, match="wrong_type"):
+        core.result(request.id)
+    assert core.take_deferred() is None
+
+
+def test_warnings_are_kept_once():
+    core = Heard().core()
+    request = core.request({"op": "call"})
+    core.receive(json.dumps({"op": "ok", "id": request.id, "warnings": ["no slot 7"]}))
+    assert core.take_warnings() == ["no slot 7"]
+    assert core.take_warnings() == []
+
+
+def test_frames_and_errors_without_id_go_to_on_message():
+    heard = Heard()
+    core = heard.core()
+    core.receive('{"op": "frame", "seq": 1, "time": 0.1}')
+    core.receive('{"op": "error", "id": null, "code": "bad_json", "message": "x", "request": null}')
+    assert [m["op"] for m in heard.messages] == ["frame", "error"]
+    assert core.take_deferred().code == "bad_json"
+
+
+@pytest.mark.parametrize("text", ['{"op": "teleport"}', "[1, 2]", "not json", '{"no": "op"}'])
+def test_unknown_messages_fail_loudly(text):
+    with pytest.raises(ProtocolError):
+        Heard().core().receive(text)
