@@ -5,7 +5,7 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 PY_STAMP  := $(VENV)/.installed
-WEB_STAMP := web/node_modules/.installed
+JS_STAMP  := clients/js/node_modules/.installed
 CHROMIUM  := /usr/bin/chromium
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 HOST ?= 127.0.0.1
@@ -25,7 +25,7 @@ bench: install
 	$(BIN)/python bench/viewer_latency.py
 	$(BIN)/python bench/flood.py
 
-install: $(PY_STAMP) $(WEB_STAMP)
+install: $(PY_STAMP) $(JS_STAMP)
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -35,8 +35,10 @@ $(PY_STAMP): $(BIN)/python pyproject.toml requirements-dev.txt clients/python/py
 		-r requirements-dev.txt -e . -e clients/python
 	touch $@
 
-$(WEB_STAMP): web/package.json web/package-lock.json
-	cd web && npm ci --no-audit --no-fund --loglevel=error
+# three.js, lil-gui and ws: the JavaScript client's dependencies (Node), also served to
+# browsers by the server (the viewer and the client share them).
+$(JS_STAMP): clients/js/package.json clients/js/package-lock.json
+	cd clients/js && npm ci --no-audit --no-fund --loglevel=error
 	touch $@
 
 # The browser tests drive Debian's chromium (headless, software WebGL).
@@ -45,4 +47,4 @@ $(CHROMIUM):
 	DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends chromium
 
 clean:
-	rm -rf $(VENV) web/node_modules
+	rm -rf $(VENV) clients/js/node_modules

@@ -14,7 +14,8 @@ within ±100 000 ·
 ``node`` a robot or part reference · ``part`` a part reference · ``slot`` slot index or
 Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) · ``rgb`` a colour or
 [r, g, b] in 0…1 · ``asset`` a mesh filename (bundled or uploaded) ·
-``contact`` a part reference or "ground".
+``contact`` a part reference or "ground" · ``quaternion`` [x, y, z, w], not of zero length
+(normalised).
 
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
 or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z].
@@ -75,6 +76,8 @@ class TypeSpec:
     methods: tuple[Method, ...] = ()
     creatable: bool = True
     callbacks: tuple[str, ...] = field(default=())
+    slots: int = 0  # numbered slots a new object has (ids <id>/s0 …), so that a client can
+    # name the one addSlot makes next without waiting for the answer
 
 
 def _sizes(*names_defaults: tuple[str, float]) -> tuple[Param, ...]:
@@ -95,6 +98,9 @@ def _edged(defaults: dict[str, float]) -> tuple[Param, ...]:
 POSITION = Method("setPosition", (Param("position", "point"),))
 ROTATION = Method("setRotation", (Param("x", "number"), Param("y", "number"),
                                   Param("z", "number"), Param("order", "order", "XYZ")))
+# not in the manual: how the JavaScript client sends a rotation a page wrote to an
+# object's `quaternion` or `rotation` directly (three.js style)
+QUATERNION = Method("setQuaternion", (Param("quaternion", "quaternion"),))
 HAND_METHODS = (
     Method("flexFinger", (Param("index", "integer"), Param("angle", "angle"))),
     Method("flexFingers", (Param("angle", "angle"),)),
@@ -108,12 +114,13 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("setCameraTarget", (Param("target", "point"),)),
         Method("getTime", returns="number", mutates=False),
     )),
-    TypeSpec("Slot", None, (Param("position", "point", ORIGIN),), (POSITION, ROTATION)),
+    TypeSpec("Slot", None, (Param("position", "point", ORIGIN),),
+             (POSITION, ROTATION, QUATERNION)),
     TypeSpec("Part", None, methods=(
         Method("addSlot", (Param("position", "point", ORIGIN),), returns="ref"),
         Method("attachToSlot", (Param("parent", "node"), Param("slot", "slot", 0)),
                returns="self"),
-        POSITION, ROTATION,
+        POSITION, ROTATION, QUATERNION,
     ), callbacks=("beginContact", "endContact")),
     TypeSpec("Motor", "Part", (Param("axis", "axis"), Param("min", "limit", -math.inf),
                                Param("max", "limit", math.inf), Param("def", "number", 0.0)),
@@ -121,17 +128,17 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
               Method("getAngle", returns="number", mutates=False),
               Method("setAngle", (Param("angle", "angle"),)),
               Method("flip", (Param("bool", "bool", True),), returns="self"))),
-    TypeSpec("MotorX", "Motor", _motor_params("MotorX")),
-    TypeSpec("MotorY", "Motor", _motor_params("MotorY")),
-    TypeSpec("MotorZ", "Motor", _motor_params("MotorZ")),
+    TypeSpec("MotorX", "Motor", _motor_params("MotorX"), slots=1),
+    TypeSpec("MotorY", "Motor", _motor_params("MotorY"), slots=1),
+    TypeSpec("MotorZ", "Motor", _motor_params("MotorZ"), slots=1),
     TypeSpec("Ball", "Part", (Param("radius", "size", 1.0),
                               Param("color", "color", figures.DEFAULT_COLOR))),
     TypeSpec("Box", "Part", (*_sizes(("sizex", 1.0), ("sizey", 1.0), ("sizez", 1.0)),
                              Param("color", "color", figures.DEFAULT_COLOR))),
-    TypeSpec("EdgedFinger", "Part", _edged(figures.EDGED_FINGER_DEFAULTS)),
-    TypeSpec("EdgedTip", "Part", _edged(figures.EDGED_FINGER_DEFAULTS)),
+    TypeSpec("EdgedFinger", "Part", _edged(figures.EDGED_FINGER_DEFAULTS), slots=1),
+    TypeSpec("EdgedTip", "Part", _edged(figures.EDGED_FINGER_DEFAULTS), slots=1),
     TypeSpec("EdgedPalm", "Part", (Param("left", "bool", False),
-                                   *_edged(figures.EDGED_PALM_DEFAULTS))),
+                                   *_edged(figures.EDGED_PALM_DEFAULTS)), slots=5),
     TypeSpec("Sensor", "Part", (Param("visible", "bool", True),
                                 Param("laserColor", "laser", None)), (
         Method("senseDistance", returns="number", mutates=False),
@@ -152,7 +159,7 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("getSensors", returns="refs", mutates=False),
         Method("getPosition", returns="point", mutates=False),
         Method("setPosition", (Param("position", "point", None),)),
-        ROTATION,
+        ROTATION, QUATERNION,
         Method("getAngle", (Param("index", "integer"),), returns="number", mutates=False),
         Method("setAngle", (Param("index", "integer"), Param("angle", "angle"))),
         Method("getAngles", returns="numbers", mutates=False),
@@ -163,13 +170,19 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
              (Method("recolor", (Param("fromColor", "rgb"), Param("toColor", "rgb"),
                                  Param("eps", "number", 0.01))),)),
     TypeSpec("RoundFinger", "GLTFPart", (Param("filename", "asset"),
-                                         Param("length", "size", figures.ROUND_FINGER_LENGTH))),
+                                         Param("length", "size", figures.ROUND_FINGER_LENGTH)),
+             slots=1),
     *(TypeSpec(name, "GLTFPart", (Param("left", "bool"), Param("filename", "asset"),
-                                  Param("length", "size", figures.ROUND_PALM_LENGTH)))
-      for name in ("RoundPalm", "AnthroPalm", "AnthroThumb")),
+                                  Param("length", "size", figures.ROUND_PALM_LENGTH)), slots=slots)
+      for name, slots in (("RoundPalm", 5), ("AnthroPalm", 5), ("AnthroThumb", 1))),
     TypeSpec("RoundHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
     TypeSpec("AnthroHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
 )}
+
+
+def slot_counts() -> dict[str, int]:
+    """The numbered slots each creatable type starts with (sent in ``hello``)."""
+    return {spec.name: spec.slots for spec in TYPES.values() if spec.creatable}
 
 
 def lineage(type_name: str) -> list[TypeSpec]:

@@ -24,7 +24,7 @@ def _param(param: Param) -> dict[str, Any]:
 def table() -> dict[str, Any]:
     """The API table as JSON-ready data."""
     return {"protocol": 1, "types": {
-        spec.name: {"extends": spec.base, "creatable": spec.creatable,
+        spec.name: {"extends": spec.base, "creatable": spec.creatable, "slots": spec.slots,
                     "params": [_param(p) for p in spec.params],
                     "methods": {m.name: {"python": m.python, "params": [_param(p) for p in m.params],
                                          "returns": m.returns, "mutates": m.mutates}

@@ -14,7 +14,7 @@ from typing import Any, Callable, Sequence
 from ..errors import BadArguments, OutOfRange, WrongType, show
 from .api import REQUIRED, Param
 from .limits import MAX_COORDINATE, MAX_SIZE, MIN_SIZE
-from .math3d import EULER_ORDERS, Vec3
+from .math3d import EULER_ORDERS, Quat, Vec3
 from .node import Node, Slot
 from .parts import Part
 from .physics import GROUND
@@ -94,6 +94,17 @@ def _number(value: Any, label: str, allow: tuple[str, ...] = ()) -> float:
     if not math.isfinite(value):
         raise OutOfRange(f"{label}: {value} is not a finite number")
     return float(value)
+
+
+def _quaternion(value: Any, resolve: Resolver, label: str) -> Quat:
+    """[x, y, z, w], any length but zero: made a unit quaternion."""
+    if not isinstance(value, list) or len(value) != 4:
+        raise WrongType(f"{label}: expected a quaternion [x, y, z, w], got {show(value)}")
+    q = [_number(item, label) for item in value]
+    norm = math.sqrt(sum(c * c for c in q))
+    if norm < 1e-9 or norm > 1e9:
+        raise OutOfRange(f"{label}: a quaternion needs a length between 1e-9 and 1e9, got {norm:g}")
+    return tuple(c / norm for c in q)  # type: ignore[return-value]
 
 
 def _coerce(param: Param, value: Any, resolve: Resolver, label: str) -> Any:
@@ -205,6 +216,7 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "slot": _slot,
     "laser": _laser,
     "contact": _contact,
+    "quaternion": _quaternion,
 }
 
 

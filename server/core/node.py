@@ -172,6 +172,10 @@ class Node:
         """Manual ``setRotation``: Euler angles relative to the parent."""
         self._assign("quaternion", math3d.euler_to_quat(x, y, z, order))
 
+    def set_quaternion(self, quaternion: Quat) -> None:
+        """The rotation relative to the parent as a unit quaternion (not in the manual)."""
+        self._assign("quaternion", tuple(quaternion))
+
     # --- description ---------------------------------------------------------------------
 
     def describe(self) -> dict[str, Any]:

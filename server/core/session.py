@@ -12,6 +12,7 @@ import time
 from typing import Any
 
 from ..errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
+from . import api
 from .messages import (PROTOCOL_VERSION, byte_size, check_client_message, decode, encode,
                        request_id)
 from .operations import Operations
@@ -42,7 +43,8 @@ class Session:
         """The first message a client receives."""
         return {"op": "hello", "protocol": PROTOCOL_VERSION, "client": self.client_id,
                 "role": self.role, "scene": self.scene.name, "time": self.scene.time,
-                "tickRate": tick_rate, "limits": self.scene.limits.wire(), "engine": ENGINE}
+                "tickRate": tick_rate, "limits": self.scene.limits.wire(), "engine": ENGINE,
+                "slots": api.slot_counts()}
 
     def receive(self, text: str | bytes, now: float | None = None) -> list[dict[str, Any]]:
         """Apply every message in one WebSocket text message; the answers, in order.

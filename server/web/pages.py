@@ -1,6 +1,6 @@
 """The browser pages: the index, the viewer, its ES modules, npm dependencies and meshes.
 
-three.js and lil-gui are served from ``web/node_modules`` (installed from the npm registry
+three.js and lil-gui are served from ``clients/js/node_modules`` (installed from the npm registry
 by the set-up command, never committed); the pages find them through an import map.
 """
 
@@ -18,7 +18,8 @@ from ..core.assets import BUNDLED_DIR, BUNDLED_URL
 log = logging.getLogger(__name__)
 
 WEB = Path(__file__).resolve().parents[2] / "web"
-VENDOR = {"three": WEB / "node_modules" / "three", "lil-gui": WEB / "node_modules" / "lil-gui"}
+CLIENT = WEB.parent / "clients" / "js"
+VENDOR = {"three": CLIENT / "node_modules" / "three", "lil-gui": CLIENT / "node_modules" / "lil-gui"}
 
 
 def mount_pages(app: FastAPI) -> None:

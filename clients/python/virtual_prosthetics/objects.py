@@ -52,6 +52,10 @@ class Posed(Node):
         """Manual ``setRotation(x, y, z, order='XYZ')``: Euler angles."""
         self._call("setRotation", x, y, z, order)
 
+    def set_quaternion(self, quaternion: list[float]) -> None:
+        """The rotation as a quaternion [x, y, z, w] (not in the manual; normalised)."""
+        self._call("setQuaternion", list(quaternion))
+
 
 class Slot(Posed):
     """Manual ``Slot()``, ``Slot([x, y, z])`` or ``Slot(x, y, z)``."""

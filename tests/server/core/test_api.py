@@ -6,7 +6,7 @@ import json
 from server.core import api, api_export
 from server.core.arguments import KINDS
 from server.core.messages import schema
-from server.core.operations import NODE_CLASSES
+from server.core.operations import NODE_CLASSES, Operations
 from server.core.scene import Scene
 from server.errors import ERROR_CODES
 
@@ -52,3 +52,17 @@ def test_error_codes_match_the_schema():
 def test_api_json_is_valid_json_with_all_types():
     table = json.loads(api_export.API_PATH.read_text())
     assert set(table["types"]) == set(api.TYPES)
+
+
+MESH_ARGS = {"GLTFPart": ["round-finger-8.glb"], "RoundFinger": ["round-finger-8.glb"],
+             "RoundPalm": [True, "round-palm.glb"], "AnthroPalm": [True, "anthro-palm.glb"],
+             "AnthroThumb": [True, "anthro-thumb.glb"], "Motor": ["x"]}
+
+
+def test_each_type_starts_with_the_slots_the_table_says(scene):
+    # clients name the slot addSlot makes next from these counts, without a round trip
+    operations = Operations(scene, "c1")
+    for number, (name, count) in enumerate(api.slot_counts().items()):
+        operations.create(f"c1.{number}", name, MESH_ARGS.get(name, []))
+        slots = scene.nodes[f"c1.{number}"].slots
+        assert [slot.id for slot in slots] == [f"c1.{number}/s{k}" for k in range(count)], name
