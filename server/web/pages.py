@@ -1,4 +1,4 @@
-"""The browser pages: the index, the viewer, its ES modules, npm dependencies and meshes.
+"""The browser pages: the index, the viewer, the JavaScript client, npm dependencies, meshes.
 
 three.js and lil-gui are served from ``clients/js/node_modules`` (installed from the npm registry
 by the set-up command, never committed); the pages find them through an import map.
@@ -14,6 +14,7 @@ from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
 from ..core.assets import BUNDLED_DIR, BUNDLED_URL
+from .modules import ModuleFiles
 
 log = logging.getLogger(__name__)
 
@@ -27,9 +28,11 @@ def mount_pages(app: FastAPI) -> None:
     for name, folder in VENDOR.items():
         if not folder.is_dir():
             log.warning("%s is missing: run `make install` (the viewer needs it)", folder)
-        app.mount(f"/vendor/{name}", StaticFiles(directory=folder, check_dir=False),
+        app.mount(f"/vendor/{name}", ModuleFiles(directory=folder, check_dir=False),
                   name=f"vendor-{name}")
-    app.mount("/web", StaticFiles(directory=WEB / "src"), name="web")
+    app.mount("/web", ModuleFiles(directory=WEB / "src"), name="web")
+    app.mount("/client", ModuleFiles(directory=CLIENT, check_dir=False), name="client")
+    app.mount("/examples", StaticFiles(directory=WEB / "examples", html=True), name="examples")
     app.mount(BUNDLED_URL.rstrip("/"), StaticFiles(directory=BUNDLED_DIR), name="meshes")
 
     @app.get("/", include_in_schema=False)

@@ -83,6 +83,8 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
         "node": ref, "part": ref, "slot": st.one_of(st.integers(0, 6), ref),
         "laser": st.sampled_from([None, True, False, "blue"]),
         "contact": st.one_of(ref, st.just("ground")),
+        "quaternion": st.lists(numbers(-1, 1), min_size=4, max_size=4)
+        .filter(lambda q: sum(c * c for c in q) > 1e-6),
     }[kind]
 
 

@@ -17,8 +17,11 @@ export function motorsOf(robot, objects) {
 }
 
 export class MotorPanels {
-	constructor(tree, { editable, setAngle, showGesture }) {
+	// guiFor(robotId): a panel the page already made for that robot (the JavaScript
+	// client's robot.gui), filled here instead of a new one.
+	constructor(tree, { editable, setAngle, showGesture, guiFor = () => null }) {
 		this.tree = tree;
+		this.guiFor = guiFor;
 		this.editable = editable;
 		this.setAngle = setAngle;
 		this.showGesture = showGesture;
@@ -44,7 +47,10 @@ export class MotorPanels {
 
 	rebuild() {
 		this.stale = false;
-		for (const panel of this.panels.values()) panel.gui.destroy();
+		for (const { gui, owned } of this.panels.values()) {
+			if (owned) for (const controller of gui.controllersRecursive()) controller.destroy();
+			else gui.destroy();
+		}
 		this.panels.clear();
 		for (const object of this.tree.objects.values()) {
 			const node = object.userData.node;
@@ -53,7 +59,10 @@ export class MotorPanels {
 	}
 
 	build(robot) {
-		const gui = new GUI({ title: robot.userData.node.gui || 'Robot' });
+		const title = robot.userData.node.gui || 'Robot';
+		const owned = this.guiFor(robot.name);
+		const gui = owned ?? new GUI({ title });
+		if (owned) gui.title(title);
 		const values = {}, sliders = new Map();
 		motorsOf(robot, this.tree.objects).forEach((motor, index) => {
 			const node = motor.userData.node;
@@ -68,7 +77,7 @@ export class MotorPanels {
 		});
 		gui.add({ gesture: () => this.showGesture(gesture(robot, this.tree.objects)) }, 'gesture')
 			.name('Get gesture');
-		this.panels.set(robot.name, { gui, sliders, values });
+		this.panels.set(robot.name, { gui, sliders, values, owned });
 	}
 }
 

@@ -4,9 +4,10 @@
 const COUNT_EVERY = 2000;   // ms between asks for the scene's client count
 
 export class StatusLine {
-	constructor(element, scene) {
+	constructor(element, scene, watchLink = null) {
 		this.element = element;
 		this.scene = scene;
+		this.watchLink = watchLink;   // a page's own scene: where others can watch it
 		this.state = 'connecting';
 		this.fps = null;   // until a second of frames has been counted
 		this.clients = null;
@@ -35,7 +36,7 @@ export class StatusLine {
 
 	async countClients() {
 		try {
-			const response = await fetch(`/api/scenes/${encodeURIComponent(this.scene)}`);
+			const response = await fetch(new URL(`/api/scenes/${encodeURIComponent(this.scene)}`, import.meta.url));
 			if (response.ok) {
 				const { viewers, controllers } = await response.json();
 				this.clients = { viewers, controllers };
@@ -54,6 +55,10 @@ export class StatusLine {
 			if (controllers) parts.push(`${controllers} controller${controllers === 1 ? '' : 's'}`);
 		}
 		this.element.textContent = parts.join(' · ');
+		if (this.watchLink) {
+			const link = Object.assign(document.createElement('a'), { href: this.watchLink, textContent: 'watch link', target: '_blank' });
+			this.element.append(' · ', link);
+		}
 		this.element.classList.toggle('down', this.state !== 'connected');
 	}
 }

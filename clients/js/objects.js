@@ -1,0 +1,247 @@
+// The manual's classes. Every object is a three.js Object3D standing for one node of the
+// scene on the server: constructors and methods take the manual's arguments in the
+// manual's order (undefined: the server's default), setters change the object here at
+// once and tell the server, getters read the mirror at once. Each read also has an exact
+// form, `await x.<read>Exact(…)`, answered by the server after every earlier request.
+
+import * as THREE from 'three';
+import { fromWire } from './codec.js';
+import { currentSession } from './session.js';
+
+let adopting = null;   // {session, id, type} while an object is made for an existing node
+const euler = new THREE.Euler();
+
+// Built-in classes hand their creation arguments to their base as (ARGS, [...]); a
+// class's own constructor keeps the manual's parameters (and so its arity).
+const ARGS = Symbol('creation arguments');
+
+function forward(first, second, own) {
+	return first === ARGS ? [ARGS, second] : [ARGS, own];
+}
+
+// Base of every scene object: `vp` holds its id, type and session.
+export { ARGS, forward, named };
+
+export class SceneObject extends THREE.Object3D {
+	static vpType = 'Part';
+
+	constructor(tag, args) {
+		super();
+		if (adopting) {
+			adopting.session.register(this, adopting.id, adopting.type);
+		} else {
+			currentSession().make(this, new.target.vpType, tag === ARGS ? args : []);
+		}
+	}
+	// An object of this class for a node this client did not make.
+	static adopt(session, id, type) {
+		adopting = { session, id, type };
+		try {
+			return new this();
+		} finally {
+			adopting = null;
+		}
+	}
+
+	get session() { return this.vp.session; }
+
+	get node() { return this.vp.session.mirror.nodes.get(this.vp.id); }
+
+	call(method, ...args) {
+		this.vp.session.call(this.vp.id, method, args);
+	}
+
+	// Remove the object (and what is attached below it) from the scene.
+	delete() {
+		this.vp.session.send({ op: 'delete', object: this.vp.id });
+	}
+
+	setPosition(position, ...more) {
+		const point = Array.isArray(position) ? position : [position, ...more];
+		this.position.fromArray(point);
+		this.vp.session.remember(this);
+		this.call('setPosition', point);
+	}
+
+	setRotation(x, y, z, order = 'XYZ') {
+		this.vp.base.setFromEuler(euler.set(x, y, z, order));
+		this.vp.session.turn(this);
+		this.call('setRotation', x, y, z, order);
+	}
+}
+
+export class Slot extends SceneObject {
+	static vpType = 'Slot';
+
+	constructor(position, ...more) {
+		super(...forward(position, more[0],
+			position === undefined ? [] : [Array.isArray(position) ? position : [position, ...more]]));
+	}
+}
+
+export class Part extends SceneObject {
+	static vpType = 'Part';
+
+	constructor(...args) {
+		super(...forward(args[0], args[1], []));
+	}
+
+	// addSlot(x, y, z) or addSlot([x, y, z]); the slot is returned at once (its id is
+	// the one the server gives it: <part>/s<count>, counts from hello).
+	addSlot(position, ...more) {
+		const point = Array.isArray(position) ? position : [position ?? 0, more[0] ?? 0, more[1] ?? 0];
+		const session = this.vp.session;
+		const id = `${this.vp.id}/s${this.vp.slots++}`;
+		this.call('addSlot', point);
+		const slot = Slot.adopt(session, id, 'Slot');
+		slot.position.fromArray(point);
+		session.remember(slot);
+		this.add(slot);
+		return slot;
+	}
+
+	attachToSlot(parent, slot = 0) {
+		this.call('attachToSlot', parent, slot);
+		return this;
+	}
+
+	// True when a subclass overrides beginContact or endContact (only then are this
+	// part's contact changes kept for it).
+	get hearsContacts() {
+		return this.beginContact !== Part.prototype.beginContact || this.endContact !== Part.prototype.endContact;
+	}
+
+	beginContact(otherPart) {}
+
+	endContact(otherPart) {}
+}
+
+export class Motor extends Part {
+	static vpType = 'Motor';
+
+	constructor(axis, min, max, def) {
+		super(...forward(axis, min, [axis, min, max, def]));
+	}
+
+	setName(name) {
+		this.name = name;
+		this.call('setName', name);
+		return this;
+	}
+
+	getAngle() {
+		return this.node?.angle ?? this.vp.angle;
+	}
+
+	setAngle(angle) {
+		this.turnHere(angle);
+		this.call('setAngle', angle);
+	}
+
+	// Turn here at once as the server will (null and NaN ignored, the rest clamped).
+	turnHere(angle) {
+		const node = this.node;
+		if (!node || angle === null || angle === undefined || Number.isNaN(angle)) return;
+		node.angle = this.vp.angle = Math.min(fromWire(node.max), Math.max(fromWire(node.min), angle));
+		this.vp.session.turn(this);
+	}
+
+	flip(bool = true) {
+		this.call('flip', bool);
+		return this;
+	}
+}
+
+// MotorX(min, max, def, width, height) and its Y and Z kin.
+function named(type, Class) {
+	return Object.defineProperty(Class, 'name', { value: type });
+}
+
+function axisMotor(type) {
+	return named(type, class extends Motor {
+		static vpType = type;
+
+		constructor(min, max, def, width, height) {
+			super(...forward(min, max, [min, max, def, width, height]));
+		}
+	});
+}
+
+export const MotorX = axisMotor('MotorX');
+export const MotorY = axisMotor('MotorY');
+export const MotorZ = axisMotor('MotorZ');
+
+export class Ball extends Part {
+	static vpType = 'Ball';
+
+	constructor(radius, color) {
+		super(...forward(radius, color, [radius, color]));
+	}
+}
+
+export class Box extends Part {
+	static vpType = 'Box';
+
+	constructor(sizex, sizey, sizez, color) {
+		super(...forward(sizex, sizey, [sizex, sizey, sizez, color]));
+	}
+}
+
+export class EdgedFinger extends Part {
+	static vpType = 'EdgedFinger';
+
+	constructor(length, width, thickness) {
+		super(...forward(length, width, [length, width, thickness]));
+	}
+}
+
+export class EdgedTip extends EdgedFinger {
+	static vpType = 'EdgedTip';
+}
+
+export class EdgedPalm extends Part {
+	static vpType = 'EdgedPalm';
+
+	constructor(left, length, width, thickness) {
+		super(...forward(left, length, [left, length, width, thickness]));
+	}
+}
+
+// A part shaped by a mesh file; callback(part) runs once the server has made it (as
+// 1.0 ran it once the file had loaded).
+export class GLTFPart extends Part {
+	static vpType = 'GLTFPart';
+
+	constructor(filename, length, callback) {
+		super(...forward(filename, length, [filename, length]));
+		if (filename !== ARGS) this.whenMade(callback);
+	}
+
+	whenMade(callback) {
+		if (typeof callback === 'function') this.vp.session.sync().then(() => callback(this));
+	}
+
+	recolor(fromColor, toColor, eps) {
+		this.call('recolor', fromColor, toColor, eps);
+	}
+}
+
+export class RoundFinger extends GLTFPart {
+	static vpType = 'RoundFinger';
+}
+
+// A mesh part made for a left or a right hand: (left, filename, length, callback).
+function handedPart(type) {
+	return named(type, class extends GLTFPart {
+		static vpType = type;
+
+		constructor(left, filename, length, callback) {
+			super(...forward(left, filename, [left, filename, length]));
+			if (left !== ARGS) this.whenMade(callback);
+		}
+	});
+}
+
+export const RoundPalm = handedPart('RoundPalm');
+export const AnthroPalm = handedPart('AnthroPalm');
+export const AnthroThumb = handedPart('AnthroThumb');

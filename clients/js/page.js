@@ -1,0 +1,39 @@
+// A 1.0 page in the browser: connect to the server that served this module, join the
+// scene named by ?scene= (or a fresh one of the page's own) and show the viewer in the
+// page, fed by the client's own connection.
+
+import { GUI } from 'lil-gui';
+import { connect, useScene } from './runtime.js';
+
+function freshName() {
+	return `page-${Math.random().toString(36).slice(2, 10)}`;
+}
+
+export async function startPage(moduleUrl) {
+	const server = new URL(moduleUrl);
+	const viewerModule = (path) => import(new URL(`/web/viewer/${path}`, server).href);
+	const [{ mountViewer }, { readOptions }] = await Promise.all([viewerModule('viewer.js'), viewerModule('options.js')]);
+	const params = new URLSearchParams(window.location.search);
+	const scene = params.get('scene') || freshName();
+	const options = { ...readOptions(), scene, role: params.get('role') === 'viewer' ? 'viewer' : 'controller' };
+	const guis = new Map();   // robot id -> the page's lil-gui panel
+	const watchLink = params.get('scene') ? null : new URL(`/view?scene=${encodeURIComponent(scene)}`, server).href;
+	let session = null;
+	const viewer = mountViewer({
+		options, watchLink,
+		request: (message) => session.call(message.object, message.method, message.args, { wait: true }),
+		guiFor: (robotId) => guis.get(robotId) ?? null,
+	});
+	useScene(viewer.scene);
+	viewer.setState('connecting');
+	const url = `${server.protocol === 'https:' ? 'wss:' : 'ws:'}//${server.host}`;
+	session = await connect({ url, scene, role: options.role, onMessage: (message) => viewer.receive(message) });
+	session.makePanel = (robot, title) => {
+		const gui = robot.gui ?? new GUI({ title });
+		guis.set(robot.vp.id, gui);
+		robot.gui = gui;
+	};
+	viewer.setState('connected');
+	session.socket.addEventListener('close', () => viewer.setState('disconnected'));
+	return session;
+}

@@ -1,0 +1,147 @@
+// The manual's scene functions and the connection they run on: connect, setAnimation,
+// getTime, getScene, setCameraPosition, setCameraTarget.
+
+import * as THREE from 'three';
+import { addExactReads } from './exact.js';
+import { ConnectionLost } from './errors.js';
+import * as objects from './objects.js';
+import * as robots from './robot.js';
+import { Sensor } from './sensor.js';
+import { currentSession, setCurrentSession } from './session.js';
+import { openSession } from './transport.js';
+
+export const VERSION = '0.1.0';   // this client's (package.json; a test keeps them equal)
+export const IN_BROWSER = typeof window !== 'undefined' && typeof document !== 'undefined';
+const STARTED = performance.now();
+const SCENE_ID = 'scene';
+
+export const CLASSES = Object.freeze({
+	Slot: objects.Slot, Part: objects.Part, Motor: objects.Motor, MotorX: objects.MotorX,
+	MotorY: objects.MotorY, MotorZ: objects.MotorZ, Ball: objects.Ball, Box: objects.Box,
+	EdgedFinger: objects.EdgedFinger, EdgedTip: objects.EdgedTip, EdgedPalm: objects.EdgedPalm,
+	GLTFPart: objects.GLTFPart, RoundFinger: objects.RoundFinger, RoundPalm: objects.RoundPalm,
+	AnthroPalm: objects.AnthroPalm, AnthroThumb: objects.AnthroThumb, Sensor,
+	Robot: robots.Robot, EdgedHand: robots.EdgedHand, RoundHand: robots.RoundHand,
+	AnthroHand: robots.AnthroHand,
+});
+addExactReads(...Object.values(CLASSES));
+
+let scene = new THREE.Scene();   // the viewer's, once one is mounted (browser)
+let animation = null;            // {stop}
+let keeper = null;               // flushes directly written transforms without an animation
+
+// The WebSocket address of a scene: `url` is the server (ws://host:port) or already /ws.
+export function sceneUrl(url, { scene: name = 'default', role = 'controller' } = {}) {
+	const base = url.replace(/\/+$/, '');
+	const query = new URLSearchParams({ scene: name, role });
+	return `${/\/ws$/.test(base) ? base : `${base}/ws`}?${query}`;
+}
+
+// Connect to a scene of a server and make it the one new objects go to.
+// Node: connect({url, scene, role}) or the VP_URL environment variable.
+export async function connect({ url, scene: name = 'default', role = 'controller', onMessage } = {}) {
+	const server = url ?? globalThis.process?.env?.VP_URL ?? 'ws://127.0.0.1:8000';
+	const session = await openSession(sceneUrl(server, { scene: name, role }), CLASSES, onMessage);
+	setCurrentSession(session);
+	keepSyncing(session);
+	if (!IN_BROWSER) closeOnSignals();
+	return session;
+}
+
+// Ctrl-C (or a TERM) closes the connection properly and ends the process with 0.
+function closeOnSignals() {
+	for (const signal of ['SIGINT', 'SIGTERM']) {
+		if (process.listenerCount(signal) > 0) continue;   // the script handles it itself
+		process.once(signal, () => {
+			close();
+			setTimeout(() => process.exit(0), 1000).unref();
+		});
+	}
+}
+
+// Stop the animation and close the connection (the server removes what this client made).
+export function close() {
+	animation?.stop();
+	animation = null;
+	clearInterval(keeper);
+	keeper = null;
+	let session;
+	try {
+		session = currentSession();
+	} catch {
+		return;
+	}
+	session.flush();
+	session.socket.close(1000, 'closed by the client');
+	setCurrentSession(null);
+}
+
+// Resolves once the server has answered every request sent so far.
+export function sync() {
+	return currentSession().sync();
+}
+
+function keepSyncing(session) {
+	if (IN_BROWSER) {
+		const frame = () => { if (!session.closed) { session.flush(); requestAnimationFrame(frame); } };
+		requestAnimationFrame(frame);
+	} else {
+		keeper = setInterval(() => { if (!session.closed) session.flush(); }, 1000 / 60);
+		keeper.unref?.();
+	}
+}
+
+// Manual setAnimation(func, fps=30): func(time, dTime) fps times a second, seconds since
+// the import. Everything it sets leaves as one message per step.
+export function setAnimation(func, fps = 30) {
+	animation?.stop();
+	const period = 1000 / fps;
+	let last = getTime();
+	const step = () => {
+		const time = getTime();
+		func(time, time - last);
+		last = time;
+		try {
+			currentSession().flush();
+		} catch (error) {
+			if (!(error instanceof ConnectionLost)) throw error;
+		}
+	};
+	animation = IN_BROWSER ? browserLoop(step, period) : { stop: clearInterval.bind(null, setInterval(step, period)) };
+}
+
+function browserLoop(step, period) {
+	let running = true, due = performance.now();
+	const frame = (now) => {
+		if (!running) return;
+		if (now >= due - 1) {
+			step();
+			due = Math.max(due + period, now + period / 2);
+		}
+		requestAnimationFrame(frame);
+	};
+	requestAnimationFrame(frame);
+	return { stop: () => { running = false; } };
+}
+
+// Manual getTime(): seconds since the library was imported.
+export function getTime() {
+	return (performance.now() - STARTED) / 1000;
+}
+
+// Manual getScene(): the THREE.Scene that is drawn (in Node, one kept here).
+export function getScene() {
+	return scene;
+}
+
+export function useScene(drawn) {
+	scene = drawn;
+}
+
+export function setCameraPosition(...position) {
+	currentSession().call(SCENE_ID, 'setCameraPosition', position);
+}
+
+export function setCameraTarget(...target) {
+	currentSession().call(SCENE_ID, 'setCameraTarget', target);
+}

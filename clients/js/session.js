@@ -1,0 +1,292 @@
+// One client's conversation with one scene, without any socket (sans-I/O): the protocol
+// core, the mirror of the scene, the client's three.js objects (one Object3D per node,
+// parented and posed as on the server) and the outbox. A transport hands it the
+// server's texts (receive) and gives it a function that sends a text.
+//
+// Requests made during one task (one animation step, one page script) leave as one
+// WebSocket message, after the transforms the page wrote directly to its objects
+// (`part.position.x = …`) have been compared with what the server last knew.
+
+import * as THREE from 'three';
+import { ConnectionLost } from './errors.js';
+import { Mirror } from './mirror.js';
+import { ProtocolCore } from './protocol.js';
+
+const AXES = { x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) };
+const turn = new THREE.Quaternion();
+const base = new THREE.Quaternion();
+const TEXT_BYTES = 512 * 1024;   // well under the server's messageBytes (1 MiB)
+
+let current = null;
+
+// The session new objects go to: the last one connected.
+export function currentSession() {
+	if (!current) throw new ConnectionLost('not connected: await connect() first');
+	return current;
+}
+
+export function setCurrentSession(session) {
+	current = session;
+}
+
+export class Session {
+	// send(text): the transport; classes: type name -> class (for objects made elsewhere).
+	constructor({ send, classes = {}, onWarning = (text) => console.warn(`server: ${text}`) }) {
+		this.transmit = send;
+		this.classes = classes;
+		this.hello = null;
+		this.closed = null;
+		this.objects = new Map();        // id -> Object3D
+		this.root = new THREE.Group();   // objects without a parent on the server
+		this.nextName = 1;
+		this.outbox = [];
+		this.flushing = false;
+		this.listeners = [];             // (message) for every server message not an answer
+		this.mirror = new Mirror({ wants: (id) => this.hearsContacts(id) });
+		this.mirror.listeners.push((kind, id, fields) => this.mirrored(kind, id, fields));
+		this.core = new ProtocolCore({
+			onMessage: (message) => this.heard(message),
+			onChanges: (changes) => this.mirror.applyChanges(changes),
+			onWarning,
+		});
+		this.ready = new Promise((resolve, reject) => { this.welcome = { resolve, reject }; });
+	}
+
+	get clientId() { return this.hello?.client; }
+
+	// --- from the server ------------------------------------------------------------------
+
+	receive(text) {
+		this.core.receive(text);
+	}
+
+	heard(message) {
+		if (message.op === 'hello') this.hello = message;
+		else if (message.op === 'error' && !this.hello) this.welcome.reject(this.core.deferred.shift());
+		else this.mirror.apply(message);
+		if (message.op === 'snapshot') this.welcome.resolve(this);
+		if (message.op === 'frame') this.dispatchContacts();
+		for (const listener of this.listeners) listener(message);
+	}
+
+	// The connection closed: waiters hear it, later requests throw.
+	lost(reason) {
+		this.closed = reason;
+		const error = new ConnectionLost(reason);
+		this.core.lost(error);
+		this.welcome.reject(error);
+	}
+
+	// --- the objects ----------------------------------------------------------------------
+
+	newId() {
+		if (!this.hello) throw new ConnectionLost('not connected: await connect() first');
+		return `${this.clientId}.${this.nextName++}`;
+	}
+
+	// A new object made by this client: registered, then created on the server.
+	make(object, type, args) {
+		const id = this.newId();
+		this.register(object, id, type);
+		object.vp.slots = this.hello.slots[type] ?? 0;
+		this.send({ op: 'create', object: id, type, args: trimmed(args.map((a) => this.arg(a))) });
+	}
+
+	register(object, id, type) {
+		object.vp = { id, type, session: this, base: new THREE.Quaternion(), angle: 0,
+			known: new Float64Array(7), slots: 0 };
+		object.name = id;
+		this.objects.set(id, object);
+		this.root.add(object);
+		this.remember(object);
+	}
+
+	// The object for a node id: the one this client made, or one made now for it.
+	object(id) {
+		let object = this.objects.get(id);
+		const node = this.mirror.nodes.get(id);
+		if (!object && node) {
+			const Class = this.classes[node.type] ?? this.classes.Part;
+			object = Class.adopt(this, id, node.type);
+			this.pose(object, node);
+			this.place(object, node);
+		}
+		return object;
+	}
+
+	// Ids in readings and contacts: the object, or the id itself ("ground").
+	resolve(id) {
+		return this.object(id) ?? id;
+	}
+
+	mirrored(kind, id, fields) {
+		if (kind === 'removed') {
+			const object = this.objects.get(id);
+			this.objects.delete(id);
+			object?.removeFromParent();
+			return;
+		}
+		const object = this.object(id);
+		if (!object) return;
+		if (kind === 'added') {
+			object.vp.slots = Math.max(object.vp.slots, this.slotCount(fields));
+			this.pose(object, fields);
+			this.place(object, fields);
+			return;
+		}
+		if ('position' in fields || 'quaternion' in fields || 'angle' in fields || 'flipped' in fields) {
+			this.pose(object, this.mirror.nodes.get(id));
+		}
+		if ('parent' in fields || 'children' in fields) this.place(object, this.mirror.nodes.get(id));
+		if ('name' in fields && fields.name) object.name = fields.name;
+	}
+
+	slotCount(node) {
+		const prefix = `${node.id}/s`;
+		return node.children.filter((child) => child.startsWith(prefix)).length;
+	}
+
+	// An object posed as its node: position, base rotation and a motor's turn.
+	pose(object, node) {
+		if (node.position) object.position.fromArray(node.position);
+		if (node.quaternion) object.vp.base.fromArray(node.quaternion);
+		if (node.angle !== undefined) object.vp.angle = node.angle;
+		if (node.axis) object.vp.axis = node.axis;
+		if (node.flipped !== undefined) object.vp.flipped = node.flipped;
+		this.turn(object);
+	}
+
+	// The quaternion an object shows: its base rotation, a motor turned about its axis.
+	turn(object) {
+		const { base: rotation, axis, angle, flipped } = object.vp;
+		object.quaternion.copy(rotation);
+		if (axis) object.quaternion.multiply(turn.setFromAxisAngle(AXES[axis], flipped ? -angle : angle));
+		this.remember(object);
+	}
+
+	place(object, node) {
+		const parent = node.parent ? this.object(node.parent) : null;
+		if ((parent ?? this.root) !== object.parent) (parent ?? this.root).add(object);
+		for (const childId of node.children ?? []) {
+			const child = this.objects.get(childId);
+			if (child && child.parent !== object) object.add(child);
+		}
+	}
+
+	// --- transforms a page wrote directly -------------------------------------------------
+
+	remember(object) {
+		const known = object.vp.known;
+		object.position.toArray(known, 0);
+		object.quaternion.toArray(known, 3);
+	}
+
+	// Send what changed in every object's position and rotation since the server knew it.
+	syncTransforms() {
+		for (const object of this.objects.values()) {
+			const known = object.vp.known, p = object.position, q = object.quaternion;
+			if (p.x !== known[0] || p.y !== known[1] || p.z !== known[2]) {
+				this.send({ op: 'call', object: object.vp.id, method: 'setPosition', args: [p.toArray()] });
+			}
+			if (q.x !== known[3] || q.y !== known[4] || q.z !== known[5] || q.w !== known[6]) {
+				this.rotated(object);
+			}
+			this.remember(object);
+		}
+	}
+
+	// A page turned an object: its base rotation is what it shows less a motor's turn.
+	rotated(object) {
+		const { axis, angle, flipped } = object.vp;
+		base.copy(object.quaternion);
+		if (axis) base.multiply(turn.setFromAxisAngle(AXES[axis], flipped ? -angle : angle).invert());
+		object.vp.base.copy(base);
+		this.send({ op: 'call', object: object.vp.id, method: 'setQuaternion', args: [base.toArray()] });
+	}
+
+	// --- requests -------------------------------------------------------------------------
+
+	// An argument as it travels: objects as references, the rest as the codec says.
+	arg(value) {
+		if (value?.vp?.id) return { ref: value.vp.id };
+		if (Array.isArray(value)) return value.map((v) => this.arg(v));
+		return value;
+	}
+
+	call(object, method, args, { wait = false } = {}) {
+		return this.send({ op: 'call', object, method, args: args.map((a) => this.arg(a)) }, { wait });
+	}
+
+	// Queue a request; it leaves with the others of this task. With `wait`, a promise of
+	// its result.
+	send(message, { wait = false } = {}) {
+		if (this.closed) throw new ConnectionLost(this.closed);
+		this.core.raiseDeferred();
+		const { text, answer } = this.core.request(message, { wait });
+		this.outbox.push(text);
+		if (this.outbox.length === 1 && !this.flushing) queueMicrotask(() => this.flush());
+		return answer;
+	}
+
+	// Send the transforms written directly and every queued request, as few texts as fit.
+	flush() {
+		if (this.closed) return;
+		this.flushing = true;
+		try {
+			this.syncTransforms();
+		} finally {
+			this.flushing = false;
+		}
+		const texts = this.outbox.splice(0);
+		let group = [], bytes = 2;
+		for (const text of texts) {
+			if (group.length && (bytes + text.length > TEXT_BYTES || group.length >= this.maxPerText)) {
+				this.transmit(join(group));
+				group = [];
+				bytes = 2;
+			}
+			group.push(text);
+			bytes += text.length + 1;
+		}
+		if (group.length) this.transmit(join(group));
+	}
+
+	get maxPerText() {
+		return this.hello?.limits?.messagesPerText ?? 1000;
+	}
+
+	// Resolves once the server has answered everything sent so far; throws a kept error.
+	async sync() {
+		this.flush();
+		await this.core.settle();
+		if (this.closed) throw new ConnectionLost(this.closed);
+		this.core.raiseDeferred();
+	}
+
+	// --- contacts -------------------------------------------------------------------------
+
+	hearsContacts(id) {
+		const object = this.objects.get(id);
+		return Boolean(object?.hearsContacts);
+	}
+
+	dispatchContacts() {
+		for (const [kind, a, b] of this.mirror.events.splice(0)) {
+			for (const [self, other] of [[a, b], [b, a]]) {
+				const object = this.objects.get(self);
+				if (object?.hearsContacts) object[`${kind}Contact`](this.resolve(other));
+			}
+		}
+	}
+}
+
+function join(texts) {
+	return texts.length === 1 ? texts[0] : `[${texts.join(',')}]`;
+}
+
+// Arguments without trailing left-out ones (the server's defaults apply).
+export function trimmed(args) {
+	const out = args.map((a) => (a === undefined ? null : a));
+	while (out.length && out[out.length - 1] === null) out.pop();
+	return out;
+}

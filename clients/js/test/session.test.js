@@ -1,0 +1,52 @@
+// The client's objects against a real server (VP_URL): setters act here at once, direct
+// writes to three.js fields reach the server, addSlot answers at once with the server's id.
+
+import assert from 'node:assert/strict';
+import test from 'node:test';
+import * as Prosthetic from '../virtual-prosthetics.js';
+
+const URL_ = process.env.VP_URL;
+
+test('objects mirror the server and carry writes both ways', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-objects-${process.pid}` });
+	try {
+		const robot = new Prosthetic.Robot();
+		const motor = new Prosthetic.MotorZ(-0.5, 0.5);
+		const finger = new Prosthetic.EdgedFinger();
+		robot.attachChain(motor, finger);
+		const slot = finger.addSlot(0, 0.5, 0);          // no waiting, as in 1.0
+		const tip = new Prosthetic.Ball(0.1).attachToSlot(finger, slot);
+		robot.setPosition(1, 2, 3);
+		assert.deepEqual(robot.getPosition(), [1, 2, 3]);   // at once, from the mirror
+		await Prosthetic.sync();
+		assert.equal(slot.vp.id, `${finger.vp.id}/s1`);
+		assert.equal(session.mirror.nodes.get(tip.vp.id).parent, slot.vp.id);
+		assert.equal(tip.parent, slot, 'the three.js tree follows the server');
+		assert.deepEqual(robot.getMotors(), [motor]);
+		motor.setAngle(2);                                 // clamped here at once, as on the server
+		assert.equal(robot.getAngle(0), 0.5);
+		finger.position.x = 0.25;                          // written directly, three.js style
+		robot.scale.set(1, 1, 1);
+		await Prosthetic.sync();
+		assert.deepEqual(session.mirror.nodes.get(finger.vp.id).position, [0.25, 0, 0]);
+		assert.deepEqual(await robot.getAnglesExact(), [0.5]);
+		assert.deepEqual(await robot.getPartsExact(), robot.getParts());
+		const sensor = new Prosthetic.Sensor();
+		assert.equal(sensor.senseDistance(), Infinity);   // nothing sensed yet, as 1.0 says
+		assert.equal(await sensor.senseDistanceExact(), Infinity);
+	} finally {
+		Prosthetic.close();
+	}
+});
+
+test('an error of a request nobody waited for is thrown by the next call', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	await Prosthetic.connect({ url: URL_, scene: `js-errors-${process.pid}` });
+	try {
+		const part = new Prosthetic.Part();
+		part.setPosition(1e9, 0, 0);                      // out of range on the server
+		await assert.rejects(Prosthetic.sync(), (error) => error.code === 'out_of_range');
+		await Prosthetic.sync();                           // the error was reported once
+	} finally {
+		Prosthetic.close();
+	}
+});

@@ -1,0 +1,22 @@
+// Virtual Prosthetics 1.0's API against a Virtual Prosthetics server, in the browser and
+// in Node. As 1.0 did, it also exports all of three.js and lil-gui's GUI.
+//
+//   Browser: import * as Prosthetic from "http://HOST:8000/client/virtual-prosthetics.js";
+//            (connects to HOST, joins ?scene=NAME or a fresh scene, shows the viewer)
+//   Node:    import * as Prosthetic from "virtual-prosthetics";
+//            await Prosthetic.connect({ url: "ws://HOST:8000", scene: "NAME" });
+
+export * from 'three';
+export { GUI } from 'lil-gui';
+export { AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, GLTFPart, Motor,
+	MotorX, MotorY, MotorZ, Part, RoundFinger, RoundPalm, Slot } from './objects.js';
+export { AnthroHand, EdgedHand, RoundHand, Robot } from './robot.js';
+export { Sensor } from './sensor.js';
+export { ConnectionLost, ProtocolError, ServerError, VPError } from './errors.js';
+export { VERSION, close, connect, getScene, getTime, setAnimation, setCameraPosition,
+	setCameraTarget, sync } from './runtime.js';
+
+import { IN_BROWSER, VERSION } from './runtime.js';
+
+console.log(`Virtual Prosthetics 1.0 (client ${VERSION})`);
+if (IN_BROWSER) await (await import('./page.js')).startPage(import.meta.url);

@@ -1,0 +1,63 @@
+"""1.0 pages (web/examples, only the import line changed) in headless Chromium: their
+robots appear on the server and move, and a second browser watching the scene sees them."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+from .conftest import open_page, open_viewer, wait_until
+
+
+def _nodes(server, scene: str) -> list[dict]:
+    try:
+        return server.get(f"/api/scenes/{scene}/snapshot")["nodes"]
+    except Exception:  # the page has not joined yet
+        return []
+
+
+def _angles(server, scene: str) -> list[float]:
+    return [n["angle"] for n in _nodes(server, scene) if n["type"] == "MotorZ"]
+
+
+def _wait_for_robots(server, scene: str, count: int) -> None:
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline:
+        if sum(n["type"] == "Robot" for n in _nodes(server, scene)) == count:
+            return
+        time.sleep(0.2)
+    raise AssertionError(f"{count} robots never appeared in {scene}: {_nodes(server, scene)}")
+
+
+@pytest.mark.parametrize("example, robots, moving", [
+    ("simple-robot-2", 1, False), ("simple-robot-3", 1, True), ("simple-robot-4", 1, True)])
+def test_an_example_page_builds_its_robot_on_the_server(browser, pages, server, scene_name,
+                                                        example, robots, moving):
+    open_page(browser, pages, f"{server.http}/examples/{example}.html?scene={scene_name}")
+    _wait_for_robots(server, scene_name, robots)
+    first = _angles(server, scene_name)
+    time.sleep(0.6)
+    assert (_angles(server, scene_name) != first) == moving
+
+
+def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scene_name):
+    page = open_page(browser, pages, f"{server.http}/examples/digger.html?scene={scene_name}")
+    _wait_for_robots(server, scene_name, 3)
+    nodes = {n["id"]: n for n in _nodes(server, scene_name)}
+    positions = sorted(n["position"][2] for n in nodes.values() if n["type"] == "Robot")
+    assert positions == [-1, 0, 1]          # robotA at z=1, robotC at z=-1, as the manual says
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(viewer, "(ids) => ids.every((id) => window.VP.objects.has(id))", list(nodes))
+    # the page draws the same scene: the viewer inside it holds the same nodes
+    wait_until(page, "(ids) => window.VP && ids.every((id) => window.VP.objects.has(id))", list(nodes))
+    assert "connected" in page.inner_text("#status")
+
+
+def test_a_page_without_a_scene_gets_its_own_with_a_watch_link(browser, pages, server):
+    page = open_page(browser, pages, f"{server.http}/examples/simple-robot-2.html")
+    wait_until(page, "() => document.querySelector('#status a')", timeout=20_000)
+    link = page.get_attribute("#status a", "href")
+    scene = link.split("scene=")[1]
+    assert scene.startswith("page-")
+    _wait_for_robots(server, scene, 1)

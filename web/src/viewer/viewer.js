@@ -1,0 +1,80 @@
+// The viewer as a piece any page can mount: the picture, the status line, motor panels,
+// the gesture box and window.VP, fed the server's messages by whoever holds the
+// connection (the viewer page's own, or the JavaScript client's in a 1.0 page).
+
+import * as THREE from 'three';
+import { dispatch, makeHandlers } from './handlers.js';
+import { installHook } from './hook.js';
+import { Lasers } from './lasers.js';
+import { Logo } from './logo.js';
+import { Motion } from './motion.js';
+import { Overlays } from './overlays.js';
+import { MotorPanels } from './panel.js';
+import { Stage } from './stage.js';
+import { StatusLine } from './status.js';
+import { SceneTree } from './tree.js';
+
+const STYLESHEET = new URL('../viewer.css', import.meta.url).href;
+
+// The element with `id`, made (with `tag` and `className`) when the page has none.
+function element(id, tag, className) {
+	let found = document.getElementById(id);
+	if (!found) {
+		found = Object.assign(document.createElement(tag), { id, className });
+		document.body.append(found);
+	}
+	return found;
+}
+
+function linkStylesheet() {
+	if ([...document.styleSheets].some((sheet) => sheet.href === STYLESHEET)) return;
+	document.head.append(Object.assign(document.createElement('link'), { rel: 'stylesheet', href: STYLESHEET }));
+}
+
+// options: readOptions()'s; request(message) → promise of the answer's result;
+// guiFor(robotId): a lil-gui panel the page made for that robot (else one is made); watchLink: shown in the
+// status line (a page's own scene).
+export function mountViewer({ options, request, guiFor, watchLink = null }) {
+	linkStylesheet();
+	const status = element('status', 'div', 'status');
+	const gestureBox = element('gesture', 'pre', 'gesture');
+	gestureBox.hidden = true;
+	const stage = new Stage();
+	const root = new THREE.Group();
+	root.name = 'robots';
+	stage.scene.add(root);
+
+	const tree = new SceneTree(root);
+	const motion = new Motion(tree);
+	const view = {
+		tree, stage, motion,
+		overlays: new Overlays(tree, options),
+		lasers: new Lasers(tree, stage.scene),
+		hook: installHook(stage, tree, motion),
+		status: new StatusLine(status, options.scene, watchLink),
+	};
+	const logo = new Logo(stage.scene);
+	const handlers = makeHandlers(view);
+	const panels = new MotorPanels(tree, {
+		editable: options.role === 'controller',
+		setAngle: (motorId, angle) => request(
+			{ op: 'call', object: motorId, method: 'setAngle', args: [angle] }).catch(() => {}),
+		showGesture: (text) => { gestureBox.textContent = text; gestureBox.hidden = false; },
+		guiFor,
+	});
+
+	tree.on('loaded', () => stage.invalidate());
+	stage.beforeRender.push((now) => {
+		if (motion.step(now / 1000)) stage.invalidate();
+		if (logo.step(now, tree.objects.size === 0)) stage.invalidate();
+		view.lasers.step();
+		panels.step();
+	});
+	stage.afterRender.push(() => { view.hook.rendered++; });
+	return {
+		scene: stage.scene,
+		stage,
+		receive: (message) => dispatch(handlers, message),
+		setState: (state) => view.status.setState(state),
+	};
+}
