@@ -43,8 +43,6 @@ export class SceneObject extends THREE.Object3D {
 		}
 	}
 
-	get session() { return this.vp.session; }
-
 	get node() { return this.vp.session.mirror.nodes.get(this.vp.id); }
 
 	call(method, ...args) {

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import threading
 import warnings
-from typing import Any, Callable
+from typing import Any
 
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect as ws_connect
@@ -66,19 +66,14 @@ class Connection:
                 raise Timeout(f"no answer to {message['op']} within {ANSWER_TIMEOUT} s")
             if request.id not in self.core.answers:
                 self._check_open()
-            answer_or_error = self._result(request.id)
+            try:  # a ServerError is raised outside the lock, after the answer's warnings
+                result, error = self.core.result(request.id), None
+            except ServerError as caught:
+                result, error = None, caught
         self._warn()
-        return answer_or_error()
-
-    def _result(self, request_id: int) -> Callable[[], Any]:
-        # the ServerError is raised outside the lock, after the answer's warnings
-        try:
-            result = self.core.result(request_id)
-        except ServerError as error:
-            def fail(error: ServerError = error) -> Any:
-                raise error
-            return fail
-        return lambda: result
+        if error is not None:
+            raise error
+        return result
 
     def settle(self, timeout: float = ANSWER_TIMEOUT) -> None:
         """Wait until every request sent so far is answered; raise a kept error."""

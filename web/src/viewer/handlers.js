@@ -42,7 +42,6 @@ export function makeHandlers(view) {
 			if (message.contacts) overlays.contacts(message.contacts);
 			if (message.camera) stage.setCamera(message.camera);
 		},
-		ok() {},
 		error(message) {
 			console.warn(`server: ${message.code}: ${message.message}`);
 		},
