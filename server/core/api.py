@@ -15,7 +15,9 @@ within ±100 000 ·
 Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) · ``rgb`` a colour or
 [r, g, b] in 0…1 · ``asset`` a mesh filename (bundled or uploaded) ·
 ``contact`` a part reference or "ground" · ``quaternion`` [x, y, z, w], not of zero length
-(normalised).
+(normalised) · ``scale`` [x, y, z], each 0 to 1000 · ``geometry`` a Shape's geometry
+(:mod:`server.core.geometry`) · ``transforms`` {id: [px, py, pz, qx, qy, qz, qw] with
+sx, sy, sz optionally after}.
 
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
 or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z].
@@ -101,6 +103,9 @@ ROTATION = Method("setRotation", (Param("x", "number"), Param("y", "number"),
 # not in the manual: how the JavaScript client sends a rotation a page wrote to an
 # object's `quaternion` or `rotation` directly (three.js style)
 QUATERNION = Method("setQuaternion", (Param("quaternion", "quaternion"),))
+# not in the manual either: three.js `scale` and `visible`, written directly by pages
+SCALE = Method("setScale", (Param("scale", "scale"),))
+VISIBLE = Method("setVisible", (Param("visible", "bool"),))
 HAND_METHODS = (
     Method("flexFinger", (Param("index", "integer"), Param("angle", "angle"))),
     Method("flexFingers", (Param("angle", "angle"),)),
@@ -113,14 +118,15 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("setCameraPosition", (Param("position", "point"),)),
         Method("setCameraTarget", (Param("target", "point"),)),
         Method("getTime", returns="number", mutates=False),
+        Method("setTransforms", (Param("transforms", "transforms"),)),
     )),
     TypeSpec("Slot", None, (Param("position", "point", ORIGIN),),
-             (POSITION, ROTATION, QUATERNION)),
+             (POSITION, ROTATION, QUATERNION, SCALE)),
     TypeSpec("Part", None, methods=(
         Method("addSlot", (Param("position", "point", ORIGIN),), returns="ref"),
         Method("attachToSlot", (Param("parent", "node"), Param("slot", "slot", 0)),
                returns="self"),
-        POSITION, ROTATION, QUATERNION,
+        POSITION, ROTATION, QUATERNION, SCALE, VISIBLE,
     ), callbacks=("beginContact", "endContact")),
     TypeSpec("Motor", "Part", (Param("axis", "axis"), Param("min", "limit", -math.inf),
                                Param("max", "limit", math.inf), Param("def", "number", 0.0)),
@@ -159,7 +165,7 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("getSensors", returns="refs", mutates=False),
         Method("getPosition", returns="point", mutates=False),
         Method("setPosition", (Param("position", "point", None),)),
-        ROTATION, QUATERNION,
+        ROTATION, QUATERNION, SCALE, VISIBLE,
         Method("getAngle", (Param("index", "integer"),), returns="number", mutates=False),
         Method("setAngle", (Param("index", "integer"), Param("angle", "angle"))),
         Method("getAngles", returns="numbers", mutates=False),
@@ -175,6 +181,9 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
     *(TypeSpec(name, "GLTFPart", (Param("left", "bool"), Param("filename", "asset"),
                                   Param("length", "size", figures.ROUND_PALM_LENGTH)), slots=slots)
       for name, slots in (("RoundPalm", 5), ("AnthroPalm", 5), ("AnthroThumb", 1))),
+    TypeSpec("Shape", "Part", (Param("geometry", "geometry"),
+                               Param("color", "color", figures.DEFAULT_COLOR)),
+             (Method("setColor", (Param("color", "color"),)),)),
     TypeSpec("RoundHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
     TypeSpec("AnthroHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
 )}

@@ -107,6 +107,43 @@ def _quaternion(value: Any, resolve: Resolver, label: str) -> Quat:
     return tuple(c / norm for c in q)  # type: ignore[return-value]
 
 
+def _scale(value: Any, resolve: Resolver, label: str) -> Vec3:
+    """[x, y, z], each from 0 to MAX_SIZE (three.js allows more; a shape needs no more)."""
+    if not isinstance(value, list) or len(value) != 3:
+        raise WrongType(f"{label}: expected a scale [x, y, z], got {show(value)}")
+    scale = tuple(_number(item, label) for item in value)
+    if not all(0 <= s <= MAX_SIZE for s in scale):
+        raise OutOfRange(f"{label}: each scale lies between 0 and {MAX_SIZE:g}, got "
+                         f"{', '.join(show(s) for s in scale)}")
+    return scale  # type: ignore[return-value]
+
+
+def _geometry(value: Any, resolve: Resolver, label: str) -> dict[str, Any]:
+    if not isinstance(value, dict):  # the Shape checks the rest against the scene's limits
+        raise WrongType(f"{label}: expected a geometry {{\"kind\": …}}, got {show(value)}")
+    return value
+
+
+Transform = tuple[Node, Vec3, Quat, "Vec3 | None"]  # node, position, rotation, scale
+
+
+def _transforms(value: Any, resolve: Resolver, label: str) -> list[Transform]:
+    """{id: [px, py, pz, qx, qy, qz, qw] or the same and sx, sy, sz}, every id resolved."""
+    if not isinstance(value, dict):
+        raise WrongType(f"{label}: expected {{id: [px, py, pz, qx, qy, qz, qw(, sx, sy, sz)]}}, "
+                        f"got {show(value)}")
+    out = []
+    for object_id, numbers in value.items():
+        where = f"{label}, {object_id}"
+        if not isinstance(numbers, list) or len(numbers) not in (7, 10):
+            raise WrongType(f"{where}: expected 7 or 10 numbers, got {show(numbers)}")
+        node = resolve(object_id)
+        scale = _scale(numbers[7:], resolve, where) if len(numbers) == 10 else None
+        out.append((node, _vector(numbers[:3], where), _quaternion(numbers[3:7], resolve, where),
+                    scale))
+    return out
+
+
 def _coerce(param: Param, value: Any, resolve: Resolver, label: str) -> Any:
     return _KINDS[param.kind](value, resolve, label)
 
@@ -217,6 +254,9 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "laser": _laser,
     "contact": _contact,
     "quaternion": _quaternion,
+    "scale": _scale,
+    "geometry": _geometry,
+    "transforms": _transforms,
 }
 
 

@@ -8,6 +8,8 @@ from ..errors import Cycle, LimitExceeded
 from . import math3d
 from .math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
 
+UNIT_SCALE: Vec3 = (1.0, 1.0, 1.0)
+
 if TYPE_CHECKING:
     from .scene import Scene
 
@@ -30,7 +32,10 @@ class Node:
         self.slots: list[Slot] = []
         self.position: Vec3 = ORIGIN
         self.quaternion: Quat = IDENTITY
+        self.scale: Vec3 = UNIT_SCALE
+        self.visible = True  # drawn (a robot: in the scene, see Robot.set_position)
         self._world: Pose | None = None
+        self._world_scale: Vec3 = UNIT_SCALE
         scene.register(self)
 
     # --- state changes -----------------------------------------------------------------
@@ -137,17 +142,37 @@ class Node:
         return self.position, self.quaternion
 
     def world_pose(self) -> Pose:
-        """Pose in the scene, cached until this node or an ancestor changes."""
+        """Pose in the scene, cached until this node or an ancestor changes.
+
+        A parent's scale stretches where its children sit, as in three.js; their own
+        shapes take the product of the scales above (:meth:`world_scale`), which is
+        three.js's picture whenever no non-uniform scale sits above a turned child.
+        """
         if self._world is None:
             stale, node = [], self  # this node and its ancestors without a cached pose
             while node is not None and node._world is None:
                 stale.append(node)
                 node = node.parent
             for node in reversed(stale):
-                local = node.local_pose()
-                node._world = local if node.parent is None else math3d.compose(
-                    node.parent._world, local)  # type: ignore[arg-type]  # set just above
+                node._place_in_world()
         return self._world
+
+    def _place_in_world(self) -> None:
+        local, parent = self.local_pose(), self.parent
+        if parent is None:
+            self._world, self._world_scale = local, self.scale
+            return
+        above = parent._world_scale
+        if above != UNIT_SCALE:
+            local = (tuple(p * s for p, s in zip(local[0], above)), local[1])
+        self._world = math3d.compose(parent._world, local)  # type: ignore[arg-type]  # placed first
+        self._world_scale = above if self.scale == UNIT_SCALE else \
+            tuple(a * s for a, s in zip(above, self.scale))  # type: ignore[assignment]
+
+    def world_scale(self) -> Vec3:
+        """The product of this node's scale and its ancestors' (what its shape is stretched by)."""
+        self.world_pose()
+        return self._world_scale
 
     def invalidate(self) -> Iterator[Node]:
         """Drop the cached world poses of this subtree; yields the nodes that were clean.
@@ -176,15 +201,29 @@ class Node:
         """The rotation relative to the parent as a unit quaternion (not in the manual)."""
         self._assign("quaternion", tuple(quaternion))
 
+    def set_scale(self, scale: Vec3) -> None:
+        """Stretch the node's shape and where its descendants sit (three.js ``scale``)."""
+        self._assign("scale", tuple(scale))
+
+    def set_visible(self, visible: bool) -> None:
+        """Draw the node and its descendants or not (three.js ``visible``); rays and
+        contacts still meet its shapes, as 1.0's raycaster did."""
+        self._assign("visible", visible)
+
     # --- description ---------------------------------------------------------------------
 
     def describe(self) -> dict[str, Any]:
         """The node as the snapshot and ``added`` messages carry it."""
-        return {"id": self.id, "type": self.type_name,
-                "parent": self.parent.id if self.parent is not None else None,
-                "children": [child.id for child in self.children],
-                "position": list(self.position), "quaternion": list(self.quaternion),
-                **self.properties()}
+        described = {"id": self.id, "type": self.type_name,
+                     "parent": self.parent.id if self.parent is not None else None,
+                     "children": [child.id for child in self.children],
+                     "position": list(self.position), "quaternion": list(self.quaternion),
+                     **self.properties()}
+        if self.scale != UNIT_SCALE:  # left out when 1, 1, 1 (nearly always)
+            described["scale"] = list(self.scale)
+        if not self.visible:
+            described["visible"] = False
+        return described
 
     def properties(self) -> dict[str, Any]:
         """Type-specific fields of :meth:`describe`."""

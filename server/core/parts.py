@@ -17,6 +17,7 @@ class Part(Node):
     """A building element of a robot; the base part is invisible and has no shape."""
 
     type_name = "Part"
+    listed = True  # one of its robot's getParts()
 
     def __init__(self, scene: Scene, node_id: str) -> None:
         super().__init__(scene, node_id)

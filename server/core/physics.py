@@ -40,6 +40,7 @@ def _quiet_import():  # type: ignore[no-untyped-def]
 
 pybullet = _quiet_import()
 
+from .geometry import solid_points
 from .hulls import HAIR
 from .math3d import Pose, Vec3
 
@@ -106,7 +107,7 @@ class PhysicsWorld:
         self._filter(body)
         self._bodies[key] = body
         self._keys[body] = key
-        self._padding[body] = CONVEX_MARGIN if "points" in geometry else 0.0
+        self._padding[body] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
         self._placed[key] = (geometry, pose)
 
     def _shape(self, geometry: dict[str, Any]) -> int:
@@ -180,4 +181,6 @@ def _shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:
                 "halfExtents": [s / 2 for s in geometry["size"]]}
     if kind in ("convex", "mesh"):  # a mesh part's envelope: its hull's points
         return {"shapeType": pybullet.GEOM_MESH, "vertices": geometry["points"]}
+    if kind in ("cylinder", "triangles"):  # contacts measure a triangle mesh by its hull
+        return {"shapeType": pybullet.GEOM_MESH, "vertices": solid_points(geometry)}
     raise ValueError(f"no collision shape for geometry kind {kind!r}")

@@ -13,6 +13,7 @@ from typing import Any, Protocol, Sequence
 import numpy as np
 
 from .assets import AssetLibrary
+from .geometry import cylinder_points, triangle_arrays
 from .hulls import convex_hull
 
 ON_SURFACE = 1e-9  # a ray starting this close outside or inside a face starts on it
@@ -105,11 +106,13 @@ def hull(points: Sequence[Sequence[float]]) -> Convex:
 
 
 class Triangles:
-    """A mesh's triangles, placed as a mesh part places its file (offset, mirror)."""
+    """A mesh's triangles, placed as a mesh part places its file (offset, mirror, scale)."""
 
-    def __init__(self, vertices: np.ndarray, triangles: np.ndarray, offset: Sequence[float],
-                 mirror: bool) -> None:
-        placed = vertices * ([-1.0, 1.0, 1.0] if mirror else 1.0) + np.asarray(offset)
+    def __init__(self, vertices: np.ndarray, triangles: np.ndarray,
+                 offset: Sequence[float] = (0.0, 0.0, 0.0), mirror: bool = False,
+                 scale: Sequence[float] = (1.0, 1.0, 1.0)) -> None:
+        placed = (vertices * ([-1.0, 1.0, 1.0] if mirror else 1.0) + np.asarray(offset)) \
+            * np.asarray(scale)
         a, b, c = (placed[triangles[:, k]] for k in range(3))
         if mirror:  # a mirror turns faces inside out: two corners swap back
             b, c = c, b
@@ -153,7 +156,12 @@ def shape_of(geometry: dict[str, Any], assets: AssetLibrary) -> Shape:
         return box(geometry["size"])
     if kind == "convex":
         return hull(geometry["points"])
+    if kind == "cylinder":
+        return hull(cylinder_points(geometry))
+    if kind == "triangles":
+        return Triangles(*triangle_arrays(geometry))
     if kind == "mesh":  # the drawn triangles, not the envelope that contacts use
         mesh = assets.mesh(geometry["url"])
-        return Triangles(mesh.vertices, mesh.triangles, geometry["offset"], geometry["mirror"])
+        return Triangles(mesh.vertices, mesh.triangles, geometry["offset"], geometry["mirror"],
+                         geometry.get("scale", (1.0, 1.0, 1.0)))
     raise ValueError(f"rays do not meet geometry kind {kind!r}")

@@ -25,7 +25,6 @@ class Robot(Node):
 
     def __init__(self, scene: Scene, node_id: str) -> None:
         super().__init__(scene, node_id)
-        self.visible = True
         self.gui: str | None = None
         self._listing: tuple[int, list[Part]] | None = None
 
@@ -54,7 +53,8 @@ class Robot(Node):
         """Manual ``getParts()``: every part below the robot, motors included."""
         version = self.scene.tree_version
         if self._listing is None or self._listing[0] != version:
-            self._listing = (version, [n for n in self.walk() if isinstance(n, Part)])
+            self._listing = (version, [n for n in self.walk()
+                                      if isinstance(n, Part) and n.listed])
         return self._listing[1]
 
     def get_motors(self) -> list[Motor]:
@@ -78,6 +78,11 @@ class Robot(Node):
             return
         super().set_position(position)
         self._assign("visible", True)
+
+    def set_visible(self, visible: bool) -> None:
+        """Unlike a part, a robot out of sight is out of the scene (as ``setPosition()``
+        takes it): nothing meets its parts until it is visible again."""
+        self._assign("visible", visible)
 
     # --- angles ------------------------------------------------------------------------
 

@@ -16,12 +16,13 @@ from . import figures
 from .assets import AssetLibrary
 from .changes import ChangeSet
 from .contacts import ContactBook, ContactTracker, Overlaps
+from .geometry import scaled
 from .ids import IdBook
 from .journal import Journal
 from .limits import DEFAULT, Limits
-from .math3d import Vec3
+from .math3d import Quat, Vec3
 from .motor import Motor
-from .node import Node
+from .node import UNIT_SCALE, Node
 from .physics import PhysicsWorld
 from .raycast import RayTargets
 from .robot import Robot
@@ -33,7 +34,7 @@ if TYPE_CHECKING:
     from .sensor import Sensor
 
 log = logging.getLogger(__name__)
-_POSE_FIELDS = ("position", "quaternion", "angle", "flipped")
+_POSE_FIELDS = ("position", "quaternion", "angle", "flipped", "scale")
 
 
 def owner_of(node_id: str) -> str:
@@ -66,6 +67,7 @@ class Scene:
         self._pending = ChangeSet()
         self._recorders: list[ChangeSet] = [self._pending]
         self._physics_dirty: set[str] = set()
+        self._scales: dict[str, Vec3] = {}  # world scales of bodies not at 1, 1, 1
         self.watches = Watches(self.journal, limits.watched_sensors)
         self.contacts = ContactBook()  # as announced by the last tick
         self.failures = 0  # ticks whose contacts or sensing failed (a bug; logged)
@@ -272,12 +274,18 @@ class Scene:
     def _sync_body(self, node_id: str) -> None:
         node = self.nodes.get(node_id)
         wanted = node is not None and node.physical and self.in_scene(node)
+        if wanted and node_id in self.physics and \
+                self._scales.get(node_id, UNIT_SCALE) != node.world_scale():
+            self._forget_body(node_id)  # a shape of another size: made again
         if wanted and node_id in self.physics:
             pose = node.world_pose()
             self.physics.move(node_id, pose)
             self.rays.move(node_id, pose)
         elif wanted:
-            geometry, pose = node.geometry(), node.world_pose()
+            geometry, pose, scale = node.geometry(), node.world_pose(), node.world_scale()
+            if scale != UNIT_SCALE:
+                geometry = scaled(geometry, scale)
+                self._scales[node_id] = scale
             self.rays.add(node_id, geometry, pose)
             self.physics.add(node_id, geometry, pose)
         elif node_id in self.physics:
@@ -288,6 +296,7 @@ class Scene:
         self.tracker.placed(node_id)
 
     def _forget_body(self, node_id: str) -> None:
+        self._scales.pop(node_id, None)
         if node_id in self.physics:
             self.physics.remove(node_id)
             self.tracker.removed(node_id)
@@ -356,6 +365,20 @@ class Scene:
         self.camera[key] = tuple(value)
         for changes in self._recorders:
             changes.camera = True
+
+    def set_transforms(self, transforms: list[tuple[Node, Vec3, Quat, Vec3 | None]]) -> None:
+        """Place many objects at once: local position, rotation and (when given) scale
+        of each (not in the manual: how a client sends what a page wrote to its objects'
+        ``position``, ``quaternion`` and ``scale`` in one animation step, in one request)."""
+        limit = self.limits.transforms_per_call
+        if len(transforms) > limit:
+            raise LimitExceeded(f"setTransforms places at most {limit} objects, got "
+                                f"{len(transforms)}", limit="transformsPerCall", value=limit)
+        for node, position, quaternion, scale in transforms:
+            Node.set_position(node, position)  # a robot's own setPosition has more to it
+            node.set_quaternion(quaternion)
+            if scale is not None:
+                node.set_scale(scale)
 
     def get_time(self) -> float:
         """Manual ``getTime()``: seconds since the scene started."""

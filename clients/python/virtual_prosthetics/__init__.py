@@ -8,12 +8,14 @@
     vp.run(10)
 """
 
+from typing import Any
+
 from .animation import get_time, run, set_animation
 from .errors import (ConnectionLost, ProtocolError, ServerError, ServerWarning, Timeout,
                      VPError)
 from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip,
                       GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
-                      RoundPalm, Slot)
+                      RoundPalm, Shape, Slot)
 from .robots import AnthroHand, EdgedHand, RoundHand, Robot
 from .scene import Scene, connect, current_scene
 from .sensor import Sensor
@@ -23,6 +25,11 @@ from .uploads import upload_asset
 def set_camera_position(*position: float) -> None:
     """Manual ``setCameraPosition(x, y, z)``: every viewer's camera moves there."""
     current_scene().set_camera_position(*position)
+
+
+def set_transforms(transforms: dict[Any, list[float]]) -> None:
+    """Place many objects in one request (see :meth:`Scene.set_transforms`)."""
+    current_scene().set_transforms(transforms)
 
 
 def set_camera_target(*target: float) -> None:
@@ -35,5 +42,5 @@ __all__ = [
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Sensor",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
-    "set_animation", "set_camera_position", "set_camera_target", "upload_asset",
+    "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "Shape", "upload_asset",
 ]

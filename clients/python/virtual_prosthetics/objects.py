@@ -56,6 +56,19 @@ class Posed(Node):
         """The rotation as a quaternion [x, y, z, w] (not in the manual; normalised)."""
         self._call("setQuaternion", list(quaternion))
 
+    def set_scale(self, scale: list[float]) -> None:
+        """Stretch the object and what hangs below it, [x, y, z] (three.js ``scale``)."""
+        self._call("setScale", list(scale))
+
+
+class Shown(Posed):
+    """An object that can be hidden (three.js ``visible``)."""
+
+    def set_visible(self, visible: bool) -> None:
+        """Draw the object or not (a hidden part is still sensed; a hidden robot is out
+        of the scene)."""
+        self._call("setVisible", visible)
+
 
 class Slot(Posed):
     """Manual ``Slot()``, ``Slot([x, y, z])`` or ``Slot(x, y, z)``."""
@@ -66,7 +79,7 @@ class Slot(Posed):
         self._create(scene, *position)
 
 
-class Part(Posed):
+class Part(Shown):
     """Manual ``Part``: the base of every robot part (invisible, no shape)."""
 
     _type = "Part"
@@ -170,6 +183,22 @@ class Box(Part):
                  sizez: float | None = None, color: str | int | None = None, *,
                  scene: Scene | None = None) -> None:
         self._create(scene, sizex, sizey, sizez, color)
+
+
+class Shape(Part):
+    """A mesh of its own geometry, as a page adds one to its scene (not in the manual):
+    ``Shape({"kind": "box", "size": [1, 2, 1]}, "red")``; the kinds are box, sphere,
+    cylinder, hull and triangles (see the protocol's README)."""
+
+    _type = "Shape"
+
+    def __init__(self, geometry: dict[str, Any], color: str | int | None = None, *,
+                 scene: Scene | None = None) -> None:
+        self._create(scene, geometry, color)
+
+    def set_color(self, color: str | int) -> None:
+        """The colour every viewer draws the shape in."""
+        self._call("setColor", color)
 
 
 class EdgedFinger(Part):

@@ -5,12 +5,12 @@ from __future__ import annotations
 from typing import Any
 
 from . import objects
-from .objects import Node, Part, Posed
+from .objects import Node, Part, Shown
 from .scene import Scene
 from .sensor import Sensor
 
 
-class Robot(Posed):
+class Robot(Shown):
     """Manual ``Robot``: subclass it and build the robot in ``__init__``.
 
     The motors, in depth-first order of the tree as it is now, are the robot's degrees of
@@ -124,7 +124,7 @@ CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
     objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
     objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
     objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
-    objects.AnthroThumb, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
+    objects.AnthroThumb, objects.Shape, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
 
 
 def stand_in(scene: Scene, node_id: str, type_name: str) -> Node:

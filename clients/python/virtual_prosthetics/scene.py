@@ -179,6 +179,12 @@ class Scene:
         """Manual ``setCameraTarget``: turn every viewer's camera."""
         self.call(SCENE_ID, "setCameraTarget", target)
 
+    def set_transforms(self, transforms: dict[Any, list[float]]) -> None:
+        """Place many objects in one request: ``{obj: [px, py, pz, qx, qy, qz, qw]}``, with
+        ``sx, sy, sz`` after to scale too (not in the manual)."""
+        self.call(SCENE_ID, "setTransforms",
+                  ({getattr(key, "id", key): list(value) for key, value in transforms.items()},))
+
     def get_time(self) -> float:
         """Manual ``getTime()``: the server's scene time now."""
         self.connection.raise_deferred()

@@ -54,15 +54,16 @@ def test_api_json_is_valid_json_with_all_types():
     assert set(table["types"]) == set(api.TYPES)
 
 
-MESH_ARGS = {"GLTFPart": ["round-finger-8.glb"], "RoundFinger": ["round-finger-8.glb"],
+REQUIRED_ARGS = {"GLTFPart": ["round-finger-8.glb"], "RoundFinger": ["round-finger-8.glb"],
              "RoundPalm": [True, "round-palm.glb"], "AnthroPalm": [True, "anthro-palm.glb"],
-             "AnthroThumb": [True, "anthro-thumb.glb"], "Motor": ["x"]}
+             "AnthroThumb": [True, "anthro-thumb.glb"], "Motor": ["x"],
+             "Shape": [{"kind": "box", "size": [1, 1, 1]}]}
 
 
 def test_each_type_starts_with_the_slots_the_table_says(scene):
     # clients name the slot addSlot makes next from these counts, without a round trip
     operations = Operations(scene, "c1")
     for number, (name, count) in enumerate(api.slot_counts().items()):
-        operations.create(f"c1.{number}", name, MESH_ARGS.get(name, []))
+        operations.create(f"c1.{number}", name, REQUIRED_ARGS.get(name, []))
         slots = scene.nodes[f"c1.{number}"].slots
         assert [slot.id for slot in slots] == [f"c1.{number}/s{k}" for k in range(count)], name

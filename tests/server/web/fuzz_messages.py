@@ -85,6 +85,17 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
         "contact": st.one_of(ref, st.just("ground")),
         "quaternion": st.lists(numbers(-1, 1), min_size=4, max_size=4)
         .filter(lambda q: sum(c * c for c in q) > 1e-6),
+        "scale": st.lists(numbers(0, 3), min_size=3, max_size=3),
+        "geometry": st.one_of(
+            st.builds(lambda s: {"kind": "box", "size": s}, st.lists(numbers(0.01, 2), min_size=3, max_size=3)),
+            st.builds(lambda r: {"kind": "sphere", "radius": r}, numbers(0.01, 2)),
+            st.builds(lambda v: {"kind": "hull", "vertices": v},
+                      st.lists(numbers(-2, 2), min_size=12, max_size=30).filter(lambda v: len(v) % 3 == 0)),
+            st.builds(lambda v: {"kind": "triangles", "vertices": v},
+                      st.lists(numbers(-2, 2), min_size=9, max_size=9))),
+        "transforms": st.dictionaries(st.sampled_from(refs), st.lists(numbers(-1, 1), min_size=7, max_size=7)
+                                      .filter(lambda t: sum(c * c for c in t[3:]) > 1e-6), max_size=4)
+        if refs else st.just({}),
     }[kind]
 
 
