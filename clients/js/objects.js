@@ -185,6 +185,21 @@ export class Box extends Part {
 	}
 }
 
+// A mesh of its own geometry, as the server keeps the meshes a page adds to getScene()
+// (not in the manual; pages just add three.js meshes, see meshes.js). geometry: a SceneMesh
+// geometry of the protocol ({kind: 'box', size: [x, y, z]}, …).
+export class SceneMesh extends Part {
+	static vpType = 'SceneMesh';
+
+	constructor(geometry, color) {
+		super(...forward(geometry, color, [geometry, color]));
+	}
+
+	setColor(color) {
+		this.call('setColor', color);
+	}
+}
+
 export class EdgedFinger extends Part {
 	static vpType = 'EdgedFinger';
 

@@ -23,6 +23,7 @@ export async function startPage(moduleUrl) {
 		options, watchLink,
 		request: (message) => session.call(message.object, message.method, message.args, { wait: true }),
 		guiFor: (robotId) => guis.get(robotId) ?? null,
+		drawnElsewhere: (id) => session?.meshes.owns(id) ?? false,
 	});
 	useScene(viewer.scene);
 	viewer.setState('connecting');

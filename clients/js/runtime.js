@@ -8,6 +8,7 @@ import * as objects from './objects.js';
 import * as robots from './robot.js';
 import { Sensor } from './sensor.js';
 import { currentSession, setCurrentSession } from './session.js';
+import { PageMeshes } from './meshes.js';
 import { openSession } from './transport.js';
 
 export const VERSION = '0.1.0';   // this client's (package.json; a test keeps them equal)
@@ -22,7 +23,7 @@ export const CLASSES = Object.freeze({
 	GLTFPart: objects.GLTFPart, RoundFinger: objects.RoundFinger, RoundPalm: objects.RoundPalm,
 	AnthroPalm: objects.AnthroPalm, AnthroThumb: objects.AnthroThumb, Sensor,
 	Robot: robots.Robot, EdgedHand: robots.EdgedHand, RoundHand: robots.RoundHand,
-	AnthroHand: robots.AnthroHand,
+	AnthroHand: robots.AnthroHand, SceneMesh: objects.SceneMesh,
 });
 addExactReads(...Object.values(CLASSES));
 
@@ -42,6 +43,7 @@ export function sceneUrl(url, { scene: name = 'default', role = 'controller' } =
 export async function connect({ url, scene: name = 'default', role = 'controller', onMessage } = {}) {
 	const server = url ?? globalThis.process?.env?.VP_URL ?? 'ws://127.0.0.1:8000';
 	const session = await openSession(sceneUrl(server, { scene: name, role }), CLASSES, onMessage);
+	session.meshes = new PageMeshes(session, () => [scene, session.root]);
 	setCurrentSession(session);
 	keepSyncing(session);
 	if (!IN_BROWSER) closeOnSignals();

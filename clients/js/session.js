@@ -14,7 +14,9 @@ import { ProtocolCore } from './protocol.js';
 
 const AXES = { x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) };
 const turn = new THREE.Quaternion();
+const ONE = [1, 1, 1];
 const base = new THREE.Quaternion();
+const POSED = ['position', 'quaternion', 'angle', 'flipped', 'scale', 'visible'];
 const TEXT_BYTES = 512 * 1024;   // well under the server's messageBytes (1 MiB)
 
 let current = null;
@@ -94,7 +96,7 @@ export class Session {
 
 	register(object, id, type) {
 		object.vp = { id, type, session: this, base: new THREE.Quaternion(), angle: 0,
-			known: new Float64Array(7), slots: 0 };
+			known: new Float64Array(10), visible: true, slots: 0 };
 		object.name = id;
 		this.objects.set(id, object);
 		this.root.add(object);
@@ -134,7 +136,7 @@ export class Session {
 			this.place(object, fields);
 			return;
 		}
-		if ('position' in fields || 'quaternion' in fields || 'angle' in fields || 'flipped' in fields) {
+		if (POSED.some((field) => field in fields)) {
 			this.pose(object, this.mirror.nodes.get(id));
 		}
 		if ('parent' in fields || 'children' in fields) this.place(object, this.mirror.nodes.get(id));
@@ -153,6 +155,8 @@ export class Session {
 		if (node.angle !== undefined) object.vp.angle = node.angle;
 		if (node.axis) object.vp.axis = node.axis;
 		if (node.flipped !== undefined) object.vp.flipped = node.flipped;
+		object.scale.fromArray(node.scale ?? ONE);
+		object.visible = node.visible ?? true;
 		this.turn(object);
 	}
 
@@ -179,29 +183,39 @@ export class Session {
 		const known = object.vp.known;
 		object.position.toArray(known, 0);
 		object.quaternion.toArray(known, 3);
+		object.scale.toArray(known, 7);
+		object.vp.visible = object.visible;
 	}
 
-	// Send what changed in every object's position and rotation since the server knew it.
+	// Send, as one setTransforms, every object's position, rotation and scale that changed
+	// since the server knew it (the page's meshes too); visibility changes as setVisible.
 	syncTransforms() {
+		const transforms = {};
 		for (const object of this.objects.values()) {
-			const known = object.vp.known, p = object.position, q = object.quaternion;
-			if (p.x !== known[0] || p.y !== known[1] || p.z !== known[2]) {
-				this.send({ op: 'call', object: object.vp.id, method: 'setPosition', args: [p.toArray()] });
-			}
-			if (q.x !== known[3] || q.y !== known[4] || q.z !== known[5] || q.w !== known[6]) {
-				this.rotated(object);
-			}
+			if (differs(object.vp.known, object)) transforms[object.vp.id] = this.transform(object);
+			if (object.visible !== object.vp.visible) this.call(object.vp.id, 'setVisible', [object.visible]);
 			this.remember(object);
+		}
+		this.meshes?.sync(transforms);
+		const ids = Object.keys(transforms);
+		const most = this.hello?.limits?.transformsPerCall ?? 1000;
+		for (let start = 0; start < ids.length; start += most) {
+			const part = Object.fromEntries(ids.slice(start, start + most).map((id) => [id, transforms[id]]));
+			this.send({ op: 'call', object: 'scene', method: 'setTransforms', args: [part] });
 		}
 	}
 
-	// A page turned an object: its base rotation is what it shows less a motor's turn.
-	rotated(object) {
+	// A page moved or turned an object: its entry. The base rotation is what it shows
+	// less a motor's turn.
+	transform(object) {
 		const { axis, angle, flipped } = object.vp;
 		base.copy(object.quaternion);
 		if (axis) base.multiply(turn.setFromAxisAngle(AXES[axis], flipped ? -angle : angle).invert());
 		object.vp.base.copy(base);
-		this.send({ op: 'call', object: object.vp.id, method: 'setQuaternion', args: [base.toArray()] });
+		const entry = [...object.position.toArray(), ...base.toArray()];
+		const s = object.scale, known = object.vp.known;
+		if (s.x !== known[7] || s.y !== known[8] || s.z !== known[9]) entry.push(s.x, s.y, s.z);
+		return entry;
 	}
 
 	// --- requests -------------------------------------------------------------------------
@@ -278,6 +292,13 @@ export class Session {
 			}
 		}
 	}
+}
+
+// True when an object's position, rotation or scale differs from `known`.
+function differs(known, { position: p, quaternion: q, scale: s }) {
+	return p.x !== known[0] || p.y !== known[1] || p.z !== known[2]
+		|| q.x !== known[3] || q.y !== known[4] || q.z !== known[5] || q.w !== known[6]
+		|| s.x !== known[7] || s.y !== known[8] || s.z !== known[9];
 }
 
 function join(texts) {

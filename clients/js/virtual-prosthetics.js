@@ -8,7 +8,7 @@
 
 export * from 'three';
 export { GUI } from 'lil-gui';
-export { AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, GLTFPart, Motor,
+export { AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, GLTFPart, Motor, SceneMesh,
 	MotorX, MotorY, MotorZ, Part, RoundFinger, RoundPalm, Slot } from './objects.js';
 export { AnthroHand, EdgedHand, RoundHand, Robot } from './robot.js';
 export { Sensor } from './sensor.js';

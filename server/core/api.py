@@ -15,7 +15,7 @@ within ±100 000 ·
 Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) · ``rgb`` a colour or
 [r, g, b] in 0…1 · ``asset`` a mesh filename (bundled or uploaded) ·
 ``contact`` a part reference or "ground" · ``quaternion`` [x, y, z, w], not of zero length
-(normalised) · ``scale`` [x, y, z], each 0 to 1000 · ``geometry`` a Shape's geometry
+(normalised) · ``scale`` [x, y, z], each 0 to 1000 · ``geometry`` a SceneMesh's geometry
 (:mod:`server.core.geometry`) · ``transforms`` {id: [px, py, pz, qx, qy, qz, qw] with
 sx, sy, sz optionally after}.
 
@@ -181,7 +181,7 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
     *(TypeSpec(name, "GLTFPart", (Param("left", "bool"), Param("filename", "asset"),
                                   Param("length", "size", figures.ROUND_PALM_LENGTH)), slots=slots)
       for name, slots in (("RoundPalm", 5), ("AnthroPalm", 5), ("AnthroThumb", 1))),
-    TypeSpec("Shape", "Part", (Param("geometry", "geometry"),
+    TypeSpec("SceneMesh", "Part", (Param("geometry", "geometry"),
                                Param("color", "color", figures.DEFAULT_COLOR)),
              (Method("setColor", (Param("color", "color"),)),)),
     TypeSpec("RoundHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),

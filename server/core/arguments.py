@@ -119,7 +119,7 @@ def _scale(value: Any, resolve: Resolver, label: str) -> Vec3:
 
 
 def _geometry(value: Any, resolve: Resolver, label: str) -> dict[str, Any]:
-    if not isinstance(value, dict):  # the Shape checks the rest against the scene's limits
+    if not isinstance(value, dict):  # the SceneMesh checks the rest against the scene's limits
         raise WrongType(f"{label}: expected a geometry {{\"kind\": …}}, got {show(value)}")
     return value
 

@@ -1,6 +1,6 @@
-"""Shape geometry as data: what a page's mesh becomes on the server, and scaled shapes.
+"""SceneMesh geometry as data: what a page's mesh becomes on the server, and scaled shapes.
 
-A :class:`~server.core.shapes.Shape` is given its geometry in one of five forms (the
+A :class:`~server.core.scene_meshes.SceneMesh` is given its geometry in one of five forms (the
 ``geometry`` argument kind), as a three.js page has it:
 
 ``{"kind": "box", "size": [x, y, z]}`` · ``{"kind": "sphere", "radius": r}`` ·
@@ -35,7 +35,7 @@ _FIELDS = {"box": {"size"}, "sphere": {"radius"},
 
 
 def check(value: Any, label: str, max_vertices: int, max_triangles: int) -> dict[str, Any]:
-    """A shape geometry from its wire form, checked; what the Shape keeps and describes."""
+    """A shape geometry from its wire form, checked; what the SceneMesh keeps and describes."""
     if not isinstance(value, dict) or value.get("kind") not in _FIELDS:
         raise WrongType(f"{label}: expected a geometry {{\"kind\": one of "
                         f"{', '.join(_FIELDS)}, …}}, got {show(value)}")

@@ -39,7 +39,7 @@ class Limits:
     watched_sensors: int = 1_000
     contact_tests: int = 2_000            # pair tests per tick; more wait for later ticks
     contact_pairs: int = 32_000           # touching pairs recorded at once
-    # one Shape (a mesh a page added to its scene)
+    # one SceneMesh (a mesh a page added to its scene)
     shape_vertices: int = 10_000          # vertices of its geometry
     shape_triangles: int = 20_000         # triangles of a triangle mesh
     transforms_per_call: int = 10_000     # objects one setTransforms places

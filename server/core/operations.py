@@ -15,13 +15,13 @@ from .parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
 from .robot import Robot
 from .scene import Scene
 from .sensor import Sensor
-from .shapes import Shape
+from .scene_meshes import SceneMesh
 from .wire import encode_numbers
 
 NODE_CLASSES: dict[str, type[Node]] = {cls.type_name: cls for cls in (
     Slot, Part, Motor, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,
     Sensor, Robot, EdgedHand, GLTFPart, RoundFinger, RoundPalm, AnthroPalm, AnthroThumb,
-    RoundHand, AnthroHand, Shape)}
+    RoundHand, AnthroHand, SceneMesh)}
 SCENE_ID = "scene"
 
 

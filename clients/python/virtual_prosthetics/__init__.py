@@ -15,7 +15,7 @@ from .errors import (ConnectionLost, ProtocolError, ServerError, ServerWarning, 
                      VPError)
 from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip,
                       GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
-                      RoundPalm, Shape, Slot)
+                      RoundPalm, SceneMesh, Slot)
 from .robots import AnthroHand, EdgedHand, RoundHand, Robot
 from .scene import Scene, connect, current_scene
 from .sensor import Sensor
@@ -42,5 +42,5 @@ __all__ = [
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Sensor",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
-    "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "Shape", "upload_asset",
+    "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset",
 ]

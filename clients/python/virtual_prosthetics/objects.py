@@ -185,12 +185,12 @@ class Box(Part):
         self._create(scene, sizex, sizey, sizez, color)
 
 
-class Shape(Part):
+class SceneMesh(Part):
     """A mesh of its own geometry, as a page adds one to its scene (not in the manual):
-    ``Shape({"kind": "box", "size": [1, 2, 1]}, "red")``; the kinds are box, sphere,
+    ``SceneMesh({"kind": "box", "size": [1, 2, 1]}, "red")``; the kinds are box, sphere,
     cylinder, hull and triangles (see the protocol's README)."""
 
-    _type = "Shape"
+    _type = "SceneMesh"
 
     def __init__(self, geometry: dict[str, Any], color: str | int | None = None, *,
                  scene: Scene | None = None) -> None:

@@ -124,7 +124,7 @@ CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
     objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
     objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
     objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
-    objects.AnthroThumb, objects.Shape, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
+    objects.AnthroThumb, objects.SceneMesh, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
 
 
 def stand_in(scene: Scene, node_id: str, type_name: str) -> Node:

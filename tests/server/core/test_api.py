@@ -57,7 +57,7 @@ def test_api_json_is_valid_json_with_all_types():
 REQUIRED_ARGS = {"GLTFPart": ["round-finger-8.glb"], "RoundFinger": ["round-finger-8.glb"],
              "RoundPalm": [True, "round-palm.glb"], "AnthroPalm": [True, "anthro-palm.glb"],
              "AnthroThumb": [True, "anthro-thumb.glb"], "Motor": ["x"],
-             "Shape": [{"kind": "box", "size": [1, 1, 1]}]}
+             "SceneMesh": [{"kind": "box", "size": [1, 1, 1]}]}
 
 
 def test_each_type_starts_with_the_slots_the_table_says(scene):

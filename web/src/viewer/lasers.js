@@ -10,7 +10,9 @@ const origin = new THREE.Vector3(), direction = new THREE.Vector3(), tip = new T
 export class Lasers {
 	constructor(tree, scene) {
 		this.tree = tree;
-		this.scene = scene;
+		this.group = new THREE.Group();
+		this.group.name = 'lasers';
+		scene.add(this.group);
 		this.beams = new Map();   // sensor id -> {line, dot, distance}
 		tree.on('added', (object) => this.maybeAdd(object));
 		tree.on('removed', (object) => this.drop(object.name));
@@ -24,7 +26,7 @@ export class Lasers {
 			new THREE.LineBasicMaterial({ color, transparent: true, opacity: 0.5 }));
 		const dot = new THREE.Mesh(new THREE.SphereGeometry(0.015, 12, 6), new THREE.MeshBasicMaterial({ color }));
 		line.frustumCulled = false;
-		this.scene.add(line, dot);
+		this.group.add(line, dot);
 		this.beams.set(node.id, { line, dot, distance: Infinity, object });
 	}
 

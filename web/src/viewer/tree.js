@@ -4,14 +4,17 @@
 // server; nothing here recomputes physics.
 
 import * as THREE from 'three';
-import { buildShape, dispose } from './shapes.js';
+import { buildShape, dispose, paint } from './shapes.js';
 
 const AXES = { x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) };
 const turn = new THREE.Quaternion();
+const ONE = [1, 1, 1];
 
 export class SceneTree {
-	constructor(root) {
+	// drawnElsewhere(id): true for shapes the page draws itself (its own meshes)
+	constructor(root, drawnElsewhere = () => false) {
 		this.root = root;              // the THREE.Group all nodes hang from
+		this.drawnElsewhere = drawnElsewhere;
 		this.objects = new Map();      // id -> Object3D (userData.node: the description)
 		this.listeners = { added: [], removed: [], changed: [], loaded: [] };
 	}
@@ -39,7 +42,9 @@ export class SceneTree {
 		object.userData.node = { ...node };
 		object.userData.base = new THREE.Quaternion(...node.quaternion);
 		object.position.set(...node.position);
-		const shape = node.geometry ? buildShape(node.geometry, node.physical, node) : null;
+		object.scale.fromArray(node.scale ?? ONE);
+		const drawn = node.geometry && !(node.type === 'SceneMesh' && this.drawnElsewhere(node.id));
+		const shape = drawn ? buildShape(node.geometry, node.physical, node) : null;
 		if (shape) object.add(shape);
 		object.userData.shape = shape;
 		// a mesh file arrives later: the picture must be drawn again then
@@ -109,17 +114,19 @@ export class SceneTree {
 		if ('children' in fields) this.adopt(object, fields.children);
 		if ('parent' in fields) (this.objects.get(fields.parent) ?? this.root).add(object);
 		if ('visible' in fields) this.applyVisibility(object);
+		if ('scale' in fields) object.scale.fromArray(fields.scale);
+		if ('color' in fields && object.userData.shape) paint(object.userData.shape, fields.color);
 		if ('flipped' in fields) this.setAngle(object, object.userData.shownAngle ?? 0);
 		if ('recolors' in fields) object.userData.shape?.userData.recolor?.(fields.recolors);
 		this.emit('changed', object, fields);
 	}
 
-	// A robot taken out of the scene hides with all its parts; a hidden sensor hides its pad.
+	// A hidden object hides with all it carries, as in three.js; a hidden sensor hides
+	// only its pad (what it carries stays).
 	applyVisibility(object) {
-		const node = object.userData.node;
-		if (node.visible === undefined) return;
+		const node = object.userData.node, visible = node.visible ?? true;
 		const shape = object.userData.shape;
-		if (node.type === 'Sensor') { if (shape) shape.visible = node.visible; }
-		else object.visible = node.visible;
+		if (node.type === 'Sensor') { if (shape) shape.visible = visible; }
+		else object.visible = visible;
 	}
 }

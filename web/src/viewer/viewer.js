@@ -33,8 +33,8 @@ function linkStylesheet() {
 
 // options: readOptions()'s; request(message) → promise of the answer's result;
 // guiFor(robotId): a lil-gui panel the page made for that robot (else one is made); watchLink: shown in the
-// status line (a page's own scene).
-export function mountViewer({ options, request, guiFor, watchLink = null }) {
+// status line (a page's own scene); drawnElsewhere(id): true for the SceneMeshes a page draws itself.
+export function mountViewer({ options, request, guiFor, watchLink = null, drawnElsewhere }) {
 	linkStylesheet();
 	const status = element('status', 'div', 'status');
 	const gestureBox = element('gesture', 'pre', 'gesture');
@@ -44,7 +44,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null }) {
 	root.name = 'robots';
 	stage.scene.add(root);
 
-	const tree = new SceneTree(root);
+	const tree = new SceneTree(root, drawnElsewhere);
 	const motion = new Motion(tree);
 	const view = {
 		tree, stage, motion,
@@ -63,6 +63,8 @@ export function mountViewer({ options, request, guiFor, watchLink = null }) {
 		guiFor,
 	});
 
+	// what the viewer itself put in the scene is not a page's mesh to share (meshes.js)
+	for (const child of stage.scene.children) child.userData.vpLocal = true;
 	tree.on('loaded', () => stage.invalidate());
 	stage.beforeRender.push((now) => {
 		if (motion.step(now / 1000)) stage.invalidate();

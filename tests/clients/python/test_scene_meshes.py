@@ -1,4 +1,4 @@
-"""Shapes, scale, visibility and setTransforms from the Python client, against a real server."""
+"""SceneMeshes, scale, visibility and setTransforms from the Python client, against a real server."""
 
 from __future__ import annotations
 
@@ -20,8 +20,8 @@ def down_sensor(x=0.0, height=3.0):
 
 
 def test_a_shape_is_sensed_and_moved_with_set_transforms(scene, server, scene_name):
-    wall = vp.Shape({"kind": "box", "size": [1, 1, 1]}, "orange")
-    marker = vp.Shape({"kind": "sphere", "radius": 0.25})
+    wall = vp.SceneMesh({"kind": "box", "size": [1, 1, 1]}, "orange")
+    marker = vp.SceneMesh({"kind": "sphere", "radius": 0.25})
     sensor = down_sensor()
     assert sensor.sense_distance() == pytest.approx(2.5, abs=1e-4)  # the box's top at 0.5
     vp.set_transforms({wall: [5, 0, 0, 0, 0, 0, 1], marker: [0, 1, 0, 0, 0, 0, 1, 2, 2, 2]})

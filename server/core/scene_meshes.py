@@ -1,7 +1,7 @@
-"""Shapes: the meshes a page adds to its scene, as shared objects every viewer draws.
+"""SceneMeshes: the meshes a page adds to its scene, as shared objects every viewer draws.
 
 Not in the manual: 1.0 pages add plain three.js meshes (obstacles, markers) to
-``getScene()``, and 1.0's sensors met them. The JavaScript client makes a ``Shape`` of each
+``getScene()``, and 1.0's sensors met them. The JavaScript client makes a ``SceneMesh`` of each
 (:mod:`server.core.geometry` lists the geometries); rays and contacts meet it like any part.
 """
 
@@ -16,17 +16,17 @@ if TYPE_CHECKING:
     from .scene import Scene
 
 
-class Shape(Part):
-    """``Shape(geometry, color)``: a mesh of its own geometry and colour; no slots."""
+class SceneMesh(Part):
+    """``SceneMesh(geometry, color)``: a mesh of its own geometry and colour; no slots."""
 
-    type_name = "Shape"
+    type_name = "SceneMesh"
     physical = True
     listed = False  # not one of a robot's getParts(): 1.0 pages' meshes were not parts
 
     def __init__(self, scene: Scene, node_id: str, shape: dict[str, Any],
                  color: str | int = figures.DEFAULT_COLOR) -> None:
         limits = scene.limits  # checked before the node exists: a refusal leaves no trace
-        self.shape = geometry.check(shape, f"new Shape, argument 0 (geometry)",
+        self.shape = geometry.check(shape, f"new SceneMesh, argument 0 (geometry)",
                                     limits.shape_vertices, limits.shape_triangles)
         super().__init__(scene, node_id)
         self.color = color

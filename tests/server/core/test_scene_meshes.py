@@ -1,4 +1,4 @@
-"""Shapes (a page's meshes on the server): each geometry is drawn as given and met by rays
+"""SceneMeshes (a page's meshes on the server): each geometry is drawn as given and met by rays
 and contacts where it is; scale and visibility of any node."""
 
 import math
@@ -9,7 +9,7 @@ from server.core.operations import Operations
 from server.core.parts import Ball, Box, Part
 from server.core.robot import Robot
 from server.core.sensor import Sensor
-from server.core.shapes import Shape
+from server.core.scene_meshes import SceneMesh
 from server.errors import LimitExceeded
 
 DOWN = (math.pi, 0, 0)
@@ -24,7 +24,7 @@ def down_sensor(scene, height, x=0.0, name="s"):
 
 
 def shape(scene, geometry, at=(0, 0, 0), name="c1.1", color="red"):
-    made = Shape(scene, name, geometry, color)
+    made = SceneMesh(scene, name, geometry, color)
     made.set_position(at)
     return made
 
@@ -75,7 +75,7 @@ def test_a_hull_keeps_only_its_corners(scene):
 
 def test_a_shape_is_described_with_its_geometry_and_colour(scene):
     described = shape(scene, {"kind": "sphere", "radius": 0.5}, color=0x3366FF).describe()
-    assert described["type"] == "Shape" and described["physical"] is True
+    assert described["type"] == "SceneMesh" and described["physical"] is True
     assert described["geometry"] == {"kind": "sphere", "radius": 0.5, "color": 0x3366FF}
 
 
@@ -110,7 +110,7 @@ def test_shapes_are_not_among_a_robots_parts(scene):
     robot = Robot(scene, "r")
     box = Box(scene, "b")
     box.attach_to_slot(robot)
-    Shape(scene, "c1.1", BOX).attach_to_slot(box)
+    SceneMesh(scene, "c1.1", BOX).attach_to_slot(box)
     assert [p.id for p in robot.get_parts()] == ["b"]
 
 
@@ -133,7 +133,7 @@ def test_shapes_are_not_among_a_robots_parts(scene):
 def test_a_bad_geometry_is_refused_and_nothing_is_made(scene, geometry, words):
     operations = Operations(scene, "c1")
     with pytest.raises(Exception) as refused:
-        operations.create("c1.1", "Shape", [geometry])
+        operations.create("c1.1", "SceneMesh", [geometry])
     assert words in str(refused.value) and "geometry" in str(refused.value)
     assert "c1.1" not in scene.nodes and len(scene.physics) == 0
 
@@ -141,7 +141,7 @@ def test_a_bad_geometry_is_refused_and_nothing_is_made(scene, geometry, words):
 def test_a_geometry_over_the_vertex_limit_is_refused(scene):
     count = scene.limits.shape_vertices + 1
     with pytest.raises(Exception, match="at most"):
-        Shape(scene, "c1.1", {"kind": "hull", "vertices": [float(k % 7) for k in range(3 * count)]})
+        SceneMesh(scene, "c1.1", {"kind": "hull", "vertices": [float(k % 7) for k in range(3 * count)]})
     assert "c1.1" not in scene.nodes
 
 
@@ -225,7 +225,7 @@ def test_a_hidden_robot_is_out_of_the_scene(scene):
 def test_set_transforms_places_many_objects_in_one_call(scene):
     operations = Operations(scene, "c1")
     for k in range(3):
-        operations.create(f"c1.{k}", "Shape", [{"kind": "sphere", "radius": 0.1}])
+        operations.create(f"c1.{k}", "SceneMesh", [{"kind": "sphere", "radius": 0.1}])
     half = math.sqrt(0.5)
     operations.call("scene", "setTransforms", [{
         "c1.0": [1, 2, 3, 0, 0, 0, 1], "c1.1": [0, 1, 0, 0, 0, 1, 1],
