@@ -55,7 +55,8 @@ def check(value: Any, label: str, max_vertices: int, max_triangles: int) -> dict
     vertices = _vertices(value["vertices"], f"{label} vertices", max_vertices)
     if kind == "hull":
         corners = convex_hull(vertices)
-        return {"kind": "convex", "points": vertices[corners.vertices].tolist()}
+        # the hull's own points: a flat set was thickened by a hair (hulls.solid)
+        return {"kind": "convex", "points": corners.points[corners.vertices].tolist()}
     indices = _indices(value.get("indices"), len(vertices), f"{label} indices", max_triangles)
     return {"kind": "triangles", "vertices": vertices.ravel().tolist(), "indices": indices}
 

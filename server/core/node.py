@@ -214,16 +214,11 @@ class Node:
 
     def describe(self) -> dict[str, Any]:
         """The node as the snapshot and ``added`` messages carry it."""
-        described = {"id": self.id, "type": self.type_name,
-                     "parent": self.parent.id if self.parent is not None else None,
-                     "children": [child.id for child in self.children],
-                     "position": list(self.position), "quaternion": list(self.quaternion),
-                     **self.properties()}
-        if self.scale != UNIT_SCALE:  # left out when 1, 1, 1 (nearly always)
-            described["scale"] = list(self.scale)
-        if not self.visible:
-            described["visible"] = False
-        return described
+        return {"id": self.id, "type": self.type_name,
+                "parent": self.parent.id if self.parent is not None else None,
+                "children": [child.id for child in self.children],
+                "position": list(self.position), "quaternion": list(self.quaternion),
+                "scale": list(self.scale), "visible": self.visible, **self.properties()}
 
     def properties(self) -> dict[str, Any]:
         """Type-specific fields of :meth:`describe`."""

@@ -112,4 +112,4 @@ class Robot(Node):
         return [motor.id for motor in self.get_motors()]
 
     def properties(self) -> dict[str, Any]:
-        return {"visible": self.visible, "gui": self.gui, "motors": self.motors}
+        return {"gui": self.gui, "motors": self.motors}

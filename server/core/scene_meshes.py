@@ -36,4 +36,8 @@ class SceneMesh(Part):
         self._assign("color", color)
 
     def geometry(self) -> dict[str, Any]:
-        return {**self.shape, "color": self.color}
+        return self.shape
+
+    def properties(self) -> dict[str, Any]:
+        # the colour beside the geometry, not in it: setColor sends the colour alone
+        return {**super().properties(), "color": self.color}

@@ -34,10 +34,10 @@ class Sensor(Part):
             scene.watches.add(node_id, LASER)
 
     def geometry(self) -> dict[str, Any] | None:
-        return figures.sensor_pad() if self.visible else None
+        return figures.sensor_pad()  # drawn or not as `visible` says (it may change)
 
     def properties(self) -> dict[str, Any]:
-        return {**super().properties(), "visible": self.visible, "laserColor": self.laser_color}
+        return {**super().properties(), "laserColor": self.laser_color}
 
     def host(self) -> Part | None:
         """The part whose contacts this sensor reports: the nearest part above it."""

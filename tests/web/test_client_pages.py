@@ -69,3 +69,35 @@ def test_a_page_without_a_scene_gets_its_own_with_a_watch_link(browser, pages, s
     scene = link.split("scene=")[1]
     assert scene.startswith("page-")
     _wait_for_robots(server, scene, 1)
+
+
+def _meshes(server, scene: str) -> dict[str, dict]:
+    return {n["id"]: n for n in _nodes(server, scene) if n["type"] == "SceneMesh"}
+
+
+def test_the_custom_meshes_page_shares_its_meshes_and_senses_them(browser, pages, server,
+                                                                   scene_name):
+    page = open_page(browser, pages, f"{server.http}/examples/custom-meshes.html?scene={scene_name}")
+    _wait_for_robots(server, scene_name, 1)
+    deadline = time.monotonic() + 30
+    while len(_meshes(server, scene_name)) < 123 and time.monotonic() < deadline:
+        time.sleep(0.2)
+    meshes = _meshes(server, scene_name)
+    kinds = sorted(n["geometry"]["kind"] for n in meshes.values())
+    assert kinds.count("sphere") == 120 and {"box", "cylinder", "triangles"} <= set(kinds)
+    wall = next(n for n in meshes.values() if n["geometry"]["kind"] == "box")
+    assert wall["position"] == [2, 0.6, 0] and wall["geometry"]["size"] == [0.4, 1.2, 2.4]
+    # the markers move with the page's loop
+    markers = sorted(i for i, n in meshes.items() if n["geometry"]["kind"] == "sphere")
+    before = _meshes(server, scene_name)[markers[0]]["position"]
+    deadline = time.monotonic() + 20
+    while _meshes(server, scene_name)[markers[0]]["position"] == before and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert _meshes(server, scene_name)[markers[0]]["position"] != before
+    # the sweeping sensor measures the wall at some point of its sweep (1.64 m straight on)
+    wait_until(page, "() => /distance: 1\\.[6-9]/.test(document.getElementById('reading').textContent)",
+               timeout=30_000)
+    # a second browser draws the page's meshes; the page does not draw them twice
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(viewer, "(ids) => ids.every((id) => VP.objects.get(id)?.userData.shape)", markers)
+    assert page.evaluate("(ids) => ids.every((id) => !VP.objects.get(id)?.userData.shape)", markers)

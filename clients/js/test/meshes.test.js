@@ -27,7 +27,8 @@ test('a page\'s meshes are shared, sensed and follow the page', { skip: !URL_ &&
 		await Prosthetic.sync();
 		const { id, node } = serverNode(session, box);
 		assert.equal(node.type, 'SceneMesh');
-		assert.deepEqual(node.geometry, { kind: 'box', size: [2, 0.5, 2], color: 0xdc143c });
+		assert.deepEqual(node.geometry, { kind: 'box', size: [2, 0.5, 2] });
+		assert.equal(node.color, 0xdc143c);
 		assert.equal([...session.mirror.nodes.values()].filter((n) => n.type === 'SceneMesh').length, 1);
 		assert.ok(near(await sensor.senseDistanceExact(), 1.75), 'the box\'s top is at 1.25');
 
@@ -39,7 +40,7 @@ test('a page\'s meshes are shared, sensed and follow the page', { skip: !URL_ &&
 		const moved = session.mirror.nodes.get(id);
 		assert.deepEqual(moved.position, [0, 0.5, 0]);
 		assert.deepEqual(moved.scale, [1, 2, 1]);
-		assert.equal(moved.color, 0x000080);                  // an update of the field; geometry.color was the first
+		assert.equal(moved.color, 0x000080);
 		assert.equal(moved.visible, false);
 		assert.ok(near(await sensor.senseDistanceExact(), 2.0), 'top at 1.0, hidden but sensed as in 1.0');
 

@@ -31,7 +31,7 @@ def test_a_shape_is_sensed_and_moved_with_set_transforms(scene, server, scene_na
     shown = {n["id"]: n for n in snapshot["nodes"]}
     assert shown[wall.id]["position"] == [5, 0, 0]
     assert shown[marker.id]["scale"] == [2, 2, 2]
-    assert shown[wall.id]["geometry"]["color"] == "orange"
+    assert shown[wall.id]["color"] == "orange"
 
 
 def test_a_bad_transform_moves_nothing(scene):

@@ -76,7 +76,8 @@ def test_a_hull_keeps_only_its_corners(scene):
 def test_a_shape_is_described_with_its_geometry_and_colour(scene):
     described = shape(scene, {"kind": "sphere", "radius": 0.5}, color=0x3366FF).describe()
     assert described["type"] == "SceneMesh" and described["physical"] is True
-    assert described["geometry"] == {"kind": "sphere", "radius": 0.5, "color": 0x3366FF}
+    assert described["geometry"] == {"kind": "sphere", "radius": 0.5}
+    assert described["color"] == 0x3366FF
 
 
 def test_set_color_reaches_viewers_as_an_update(scene):
@@ -85,7 +86,7 @@ def test_set_color_reaches_viewers_as_an_update(scene):
     made.set_color("blue")
     frame = scene.tick(1 / 60)[-1]
     assert frame["updates"] == {"c1.1": {"color": "blue"}}
-    assert made.describe()["geometry"]["color"] == "blue"
+    assert made.describe()["color"] == "blue"
 
 
 def test_shapes_touch_parts_and_the_ground(scene):
@@ -190,9 +191,9 @@ def test_a_mesh_part_is_stretched_for_rays(scene):
     assert math.isfinite(before) and 3.0 - after == pytest.approx(3 * (3.0 - before), rel=1e-6)
 
 
-def test_scale_is_described_only_when_not_one(scene):
+def test_scale_is_described_and_its_changes_sent(scene):
     box = Box(scene, "b")
-    assert "scale" not in box.describe()
+    assert box.describe()["scale"] == [1.0, 1.0, 1.0]
     scene.tick(1 / 60)
     box.set_scale((2, 1, 1))
     assert scene.tick(1 / 60)[-1]["updates"] == {"b": {"scale": [2.0, 1.0, 1.0]}}
@@ -242,3 +243,9 @@ def test_set_transforms_over_the_limit_is_refused(scene):
     limit = scene.limits.transforms_per_call
     with pytest.raises(LimitExceeded, match="at most"):
         scene.set_transforms([(scene.nodes["c1.0"], (0, 0, 0), (0, 0, 0, 1), None)] * (limit + 1))
+
+
+def test_a_flat_hull_is_a_shape_rays_meet(scene):
+    # four points in the plane y = 1 (a page's PlaneGeometry sent as a hull)
+    shape(scene, {"kind": "hull", "vertices": [-1, 1, -1, 1, 1, -1, 1, 1, 1, -1, 1, 1]})
+    assert down_sensor(scene, 3.0).sense_distance() == pytest.approx(2.0, abs=1e-6)

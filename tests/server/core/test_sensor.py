@@ -57,7 +57,7 @@ def test_pad_and_laser_options(scene):
     coloured = Sensor(scene, "c", True, "#00ff00")
     assert plain.describe()["geometry"]["kind"] == "dome"
     assert plain.describe()["physical"] is False and plain.laser_color is None
-    assert "geometry" not in hidden.describe() and hidden.describe()["visible"] is False
+    assert hidden.describe()["visible"] is False  # its pad is described, and not drawn
     assert hidden.laser_color == "crimson" and coloured.laser_color == "#00ff00"
     assert scene.watches.ids() == ["b", "c"]  # frames carry what viewers draw lasers from
     assert LASER == "laser"

@@ -184,7 +184,12 @@ def check_scene(server: RunningServer, watcher: Watcher) -> None:
             low, high = (float(node[k]) for k in ("min", "max"))
             assert low <= node["angle"] <= high, node
     # changes made after tick n are in the snapshot and in frame n + 1
-    assert watcher.nodes_at(snapshot["seq"] + 1) == nodes, "the old viewer's scene is the new one's"
+    followed = watcher.nodes_at(snapshot["seq"] + 1)
+    differences = {i: {k: (followed.get(i, {}).get(k), nodes.get(i, {}).get(k))
+                       for k in set(followed.get(i, {})) | set(nodes.get(i, {}))
+                       if followed.get(i, {}).get(k) != nodes.get(i, {}).get(k)}
+                   for i in set(followed) | set(nodes) if followed.get(i) != nodes.get(i)}
+    assert not differences, f"the old viewer's scene is not the new one's: {differences}"
     assert not watcher.problems
 
 

@@ -2,6 +2,13 @@
 
 import { meshesLoading } from './meshes.js';
 
+const LOG = 2000;
+
+function keep(log, entry) {
+	if (log.length >= LOG) log.splice(0, log.length - LOG + 1);
+	log.push(entry);
+}
+
 export function installHook(stage, tree, motion) {
 	const hook = {
 		scene: stage.scene,    // the THREE.Scene
@@ -16,10 +23,21 @@ export function installHook(stage, tree, motion) {
 		angleTimes: new Map(), // motor id -> when its last new angle arrived (epoch ms)
 		client: null,
 		role: null,
+		// the last LOG frames handled [seq, epoch ms after handling] and pictures' draw times (ms)
+		frameLog: [],
+		renderLog: [],
+		longTasks: [],         // durations (ms) of main-thread tasks over 50 ms, as the browser saw them
 		frame(message) {
 			hook.seq = message.seq;
 			hook.time = message.time;
 			if (message.op === 'snapshot') hook.snapshots++; else hook.frames++;
+		},
+		handled(message) {
+			if (message.op === 'frame') keep(hook.frameLog, [message.seq, performance.timeOrigin + performance.now()]);
+		},
+		drew(ms) {
+			hook.rendered++;
+			keep(hook.renderLog, ms);
 		},
 		// The angle the server last gave a motor (what the picture moves towards).
 		angle(id) {
@@ -38,6 +56,10 @@ export function installHook(stage, tree, motion) {
 			return tree.objects.get(id)?.userData.shownAngle;
 		},
 	};
+	if (PerformanceObserver.supportedEntryTypes?.includes('longtask')) {
+		new PerformanceObserver((list) => { for (const entry of list.getEntries()) keep(hook.longTasks, entry.duration); })
+			.observe({ type: 'longtask' });
+	}
 	window.VP = hook;
 	return hook;
 }

@@ -1,25 +1,28 @@
 // The picture around the robots (parts.md, "Scene"): background and fog, the ground disc,
 // a shadow-casting directional light and a hemisphere light, the 30° camera with orbit
 // controls, and the render loop at the display's rate. A picture is drawn only when
-// something changed (invalidate), so an idle viewer costs no CPU or battery.
+// something changed (invalidate), so an idle viewer costs no CPU or battery, and no
+// sooner than the quality controller allows (quality.js), so that messages keep flowing
+// on software WebGL.
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { Quality, softwareWebGL } from './quality.js';
 
 const BACKGROUND = 'gainsboro';
 
 export class Stage {
 	constructor(container = document.body) {
-		const renderer = this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-		renderer.setPixelRatio(window.devicePixelRatio);
-		renderer.shadowMap.enabled = true;
-		renderer.shadowMap.type = THREE.VSMShadowMap;
+		const software = softwareWebGL();
+		// antialiasing is fixed when the context is made: software draws every sample
+		const renderer = this.renderer = new THREE.WebGLRenderer({ antialias: !software });
 		container.appendChild(renderer.domElement);
 
 		const scene = this.scene = new THREE.Scene();
 		scene.background = new THREE.Color(BACKGROUND);
 		scene.fog = new THREE.Fog(BACKGROUND, 100, 400);
-		scene.add(this.light(), new THREE.HemisphereLight('white', 'cornsilk', 0.6 * Math.PI));
+		this.sun = this.light();
+		scene.add(this.sun, new THREE.HemisphereLight('white', 'cornsilk', 0.6 * Math.PI));
 		scene.add(this.ground());
 
 		this.camera = new THREE.PerspectiveCamera(30, 1, 0.1, 1000);
@@ -32,7 +35,10 @@ export class Stage {
 		this.beforeRender = [];
 		this.afterRender = [];
 		this.needsRender = true;
-		this.resize();
+		this.wantedAt = performance.now();  // since when a picture is wanted
+		this.pictures = 0;                 // drawn so far (the status line counts them)
+		this.quality = new Quality(software, (level) => this.applyLevel(level));
+		this.applyLevel(this.quality.level);
 		window.addEventListener('resize', () => this.resize());
 		renderer.setAnimationLoop((time) => this.draw(time));
 	}
@@ -59,6 +65,21 @@ export class Stage {
 		return ground;
 	}
 
+	applyLevel(level) {
+		const { renderer, sun } = this;
+		renderer.setPixelRatio(level.pixelRatio ?? window.devicePixelRatio);
+		renderer.shadowMap.enabled = level.shadows !== null;
+		if (level.shadows !== null) {
+			renderer.shadowMap.type = level.shadows;
+			sun.shadow.mapSize.set(level.map, level.map);
+			sun.shadow.map?.dispose();
+			sun.shadow.map = null;            // made again at the new size and type
+		}
+		renderer.shadowMap.needsUpdate = true;
+		this.scene?.traverse((object) => { if (object.material) [].concat(object.material).forEach((m) => { m.needsUpdate = true; }); });
+		this.resize();
+	}
+
 	resize() {
 		const width = window.innerWidth, height = window.innerHeight;
 		this.camera.aspect = width / height;
@@ -68,6 +89,7 @@ export class Stage {
 	}
 
 	invalidate() {
+		if (!this.needsRender) this.wantedAt = performance.now();
 		this.needsRender = true;
 	}
 
@@ -87,6 +109,8 @@ export class Stage {
 		const started = performance.now();
 		this.renderer.render(this.scene, this.camera);
 		this.renderMs = performance.now() - started;
+		this.pictures++;
+		this.quality.drawn(this.wantedAt, started);
 		for (const step of this.afterRender) step(time);
 	}
 }

@@ -1,15 +1,20 @@
 // The status line: connection state, scene, frames per second from the server (the scene's
-// tick rate when all is well) and how many clients watch or drive the scene.
+// tick rate when all is well), pictures per second drawn here, and how many clients watch
+// or drive the scene.
 
 const COUNT_EVERY = 2000;   // ms between asks for the scene's client count
 
 export class StatusLine {
-	constructor(element, scene, watchLink = null) {
+	// pictures(): how many pictures the viewer has drawn so far
+	constructor(element, scene, watchLink = null, pictures = () => 0) {
 		this.element = element;
 		this.scene = scene;
 		this.watchLink = watchLink;   // a page's own scene: where others can watch it
 		this.state = 'connecting';
 		this.fps = null;   // until a second of frames has been counted
+		this.pictures = pictures;
+		this.pps = null;
+		this.drawnBefore = 0;
 		this.clients = null;
 		this.frames = 0;
 		this.since = null;   // counting starts with the first frame
@@ -28,6 +33,9 @@ export class StatusLine {
 		this.frames++;
 		if (now - this.since >= 1000) {
 			this.fps = Math.round(this.frames * 1000 / (now - this.since));
+			const drawn = this.pictures();
+			this.pps = Math.round((drawn - this.drawnBefore) * 1000 / (now - this.since));
+			this.drawnBefore = drawn;
 			this.frames = 0;
 			this.since = now;
 			this.show();
@@ -48,7 +56,7 @@ export class StatusLine {
 	}
 
 	show() {
-		const parts = [this.state, `scene ${this.scene}`, `${this.fps ?? '…'} frames/s`];
+		const parts = [this.state, `scene ${this.scene}`, `${this.fps ?? '…'} frames/s`, `${this.pps ?? '…'} pictures/s`];
 		if (this.clients) {
 			const { viewers, controllers } = this.clients;
 			parts.push(`${viewers} viewer${viewers === 1 ? '' : 's'}`);

@@ -44,7 +44,9 @@ export class SceneTree {
 		object.position.set(...node.position);
 		object.scale.fromArray(node.scale ?? ONE);
 		const drawn = node.geometry && !(node.type === 'SceneMesh' && this.drawnElsewhere(node.id));
-		const shape = drawn ? buildShape(node.geometry, node.physical, node) : null;
+		// a SceneMesh's colour travels beside its geometry (setColor sends it alone)
+		const geometry = node.color === undefined ? node.geometry : { ...node.geometry, color: node.color };
+		const shape = drawn ? buildShape(geometry, node.physical, node) : null;
 		if (shape) object.add(shape);
 		object.userData.shape = shape;
 		// a mesh file arrives later: the picture must be drawn again then

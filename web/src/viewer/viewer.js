@@ -51,7 +51,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		overlays: new Overlays(tree, options),
 		lasers: new Lasers(tree, stage.scene),
 		hook: installHook(stage, tree, motion),
-		status: new StatusLine(status, options.scene, watchLink),
+		status: new StatusLine(status, options.scene, watchLink, () => stage.pictures),
 	};
 	const logo = new Logo(stage.scene);
 	const handlers = makeHandlers(view);
@@ -72,11 +72,14 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		view.lasers.step();
 		panels.step();
 	});
-	stage.afterRender.push(() => { view.hook.rendered++; });
+	stage.afterRender.push(() => view.hook.drew(stage.renderMs));
 	return {
 		scene: stage.scene,
 		stage,
-		receive: (message) => dispatch(handlers, message),
+		receive: (message) => {
+			dispatch(handlers, message);
+			view.hook.handled(message);
+		},
 		setState: (state) => view.status.setState(state),
 	};
 }
