@@ -184,7 +184,8 @@ def check_scene(server: RunningServer, watcher: Watcher) -> None:
             low, high = (float(node[k]) for k in ("min", "max"))
             assert low <= node["angle"] <= high, node
     # changes made after tick n are in the snapshot and in frame n + 1
-    followed = watcher.nodes_at(snapshot["seq"] + 1)
+    # (a tick sends added, frame, removed under one seq: frame n + 2 comes after all of n + 1)
+    followed = watcher.nodes_at(snapshot["seq"] + 2)
     differences = {i: {k: (followed.get(i, {}).get(k), nodes.get(i, {}).get(k))
                        for k in set(followed.get(i, {})) | set(nodes.get(i, {}))
                        if followed.get(i, {}).get(k) != nodes.get(i, {}).get(k)}
