@@ -201,7 +201,7 @@ export class Session {
 		const most = this.hello?.limits?.transformsPerCall ?? 1000;
 		for (let start = 0; start < ids.length; start += most) {
 			const part = Object.fromEntries(ids.slice(start, start + most).map((id) => [id, transforms[id]]));
-			this.send({ op: 'call', object: 'scene', method: 'setTransforms', args: [part] });
+			this.call('scene', 'setTransforms', [part]);
 		}
 	}
 

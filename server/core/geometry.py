@@ -94,22 +94,23 @@ def _cylinder(value: dict[str, Any], label: str) -> dict[str, Any]:
             "height": _size(value["height"], f"{label} height"), "segments": segments}
 
 
-def _flat_numbers(value: Any, label: str, limit: int, kind: type) -> np.ndarray:
-    if not isinstance(value, list) or len(value) > limit:
-        raise (WrongType if not isinstance(value, list) else OutOfRange)(
-            f"{label}: expected a flat list of at most {limit} numbers, got "
-            f"{show(value) if not isinstance(value, list) else f'{len(value)} items'}")
+def _flat_numbers(value: Any, label: str, limit: int) -> np.ndarray:
+    expected = f"{label}: expected a flat list of at most {limit} numbers"
+    if not isinstance(value, list):
+        raise WrongType(f"{expected}, got {show(value)}")
+    if len(value) > limit:
+        raise OutOfRange(f"{expected}, got {len(value)} items")
     if not all(type(v) in (int, float) for v in value):  # no booleans, strings or lists
         bad = next(v for v in value if type(v) not in (int, float))
         raise WrongType(f"{label}: expected numbers, got {show(bad)}")
-    array = np.asarray(value, dtype=kind)
-    if kind is float and not np.isfinite(array).all():
+    array = np.asarray(value, dtype=float)
+    if not np.isfinite(array).all():
         raise OutOfRange(f"{label}: every number must be finite")
     return array
 
 
 def _vertices(value: Any, label: str, max_vertices: int) -> np.ndarray:
-    flat = _flat_numbers(value, label, 3 * max_vertices, float)
+    flat = _flat_numbers(value, label, 3 * max_vertices)
     if len(flat) % 3 or len(flat) < 9:
         raise BadArguments(f"{label}: x, y, z of at least 3 vertices, got {len(flat)} numbers")
     if np.abs(flat).max() > MAX_COORDINATE:
@@ -123,7 +124,7 @@ def _indices(value: Any, vertices: int, label: str, max_triangles: int) -> list[
             raise BadArguments(f"{label}: without indices the vertices come in threes, "
                                f"got {vertices}")
         value = list(range(vertices))
-    numbers = _flat_numbers(value, label, 3 * max_triangles, float)
+    numbers = _flat_numbers(value, label, 3 * max_triangles)
     if not (numbers == np.floor(numbers)).all():
         raise WrongType(f"{label}: expected whole numbers")
     flat = numbers.astype(np.int64)

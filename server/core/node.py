@@ -207,7 +207,8 @@ class Node:
 
     def set_visible(self, visible: bool) -> None:
         """Draw the node and its descendants or not (three.js ``visible``); rays and
-        contacts still meet its shapes, as 1.0's raycaster did."""
+        contacts still meet its shapes, as 1.0's raycaster did. A robot out of sight is
+        out of the scene instead (:meth:`Scene.in_scene`, as ``setPosition()`` takes it)."""
         self._assign("visible", visible)
 
     # --- description ---------------------------------------------------------------------

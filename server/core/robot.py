@@ -79,11 +79,6 @@ class Robot(Node):
         super().set_position(position)
         self._assign("visible", True)
 
-    def set_visible(self, visible: bool) -> None:
-        """Unlike a part, a robot out of sight is out of the scene (as ``setPosition()``
-        takes it): nothing meets its parts until it is visible again."""
-        self._assign("visible", visible)
-
     # --- angles ------------------------------------------------------------------------
 
     def get_angle(self, index: int) -> float:

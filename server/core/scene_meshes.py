@@ -26,7 +26,7 @@ class SceneMesh(Part):
     def __init__(self, scene: Scene, node_id: str, shape: dict[str, Any],
                  color: str | int = figures.DEFAULT_COLOR) -> None:
         limits = scene.limits  # checked before the node exists: a refusal leaves no trace
-        self.shape = geometry.check(shape, f"new SceneMesh, argument 0 (geometry)",
+        self.shape = geometry.check(shape, "new SceneMesh, argument 0 (geometry)",
                                     limits.shape_vertices, limits.shape_triangles)
         super().__init__(scene, node_id)
         self.color = color

@@ -33,7 +33,6 @@ export function softwareWebGL() {
 
 export class Quality {
 	constructor(software, apply) {
-		this.software = software;
 		this.apply = apply;               // (level) → the renderer and light take it
 		this.index = software ? 2 : 0;
 		this.waits = [];
