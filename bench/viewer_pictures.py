@@ -46,6 +46,7 @@ def page_figures(page, seconds: float, arrivals: dict[int, float]) -> dict[str, 
             "late_ms_max": round(lateness[-1], 1),
             "late_pct": round(100 * sum(x > LATE_MS for x in lateness) / len(lateness), 2),
             "long_tasks": len(long_tasks), "long_task_max_ms": round(max(long_tasks, default=0), 1),
+            "level": page.evaluate("() => VP.quality.level.name"),
             "status": page.evaluate("() => document.getElementById('status').textContent")}
 
 

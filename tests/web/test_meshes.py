@@ -59,3 +59,41 @@ def test_an_uploaded_glb_is_drawn_and_recoloured_in_every_viewer(browser, pages,
         wait_until(page, "(id) => VP.objects.get(id).userData.node.recolors?.length === 1 "
                          "&& VP.drawn()", part.id)
         assert blueish(Picture(page.screenshot()).at(centre))
+
+
+TRIANGLES = """(id) => { let n = 0; VP.objects.get(id).traverse((c) => {
+                 if (c.isMesh && c.geometry.getAttribute('color')) n += c.geometry.index.count / 3; });
+               return n; }"""
+# hold the viewer at one drawing level (quality.js LEVELS: 0 full, 4 lower)
+LEVEL = "(index) => { const q = VP.quality; q.drawn = () => {}; q.index = index; q.apply(q.level); }"
+FULL, LOWER = 0, 4
+
+
+def test_coarse_levels_draw_mesh_files_simplified_in_the_same_place_and_colours(
+        browser, pages, server, scene, scene_name):
+    """Software WebGL spends its time on triangles: coarse levels draw a mesh file with
+    fewer, and the part still looks the same colour in the same place, recolours included."""
+    name = vp.upload_asset(coloured_ball((0.1, 0.8, 0.1)))
+    part = vp.GLTFPart(name, 0, callback=lambda p: None)
+    part.set_position(0, 1, 0)
+    vp.set_camera_position(*CAMERA[0])
+    vp.set_camera_target(*CAMERA[1])
+    scene.sync()
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(page, LOADED, part.id)
+    page.evaluate(LEVEL, FULL)
+    full = page.evaluate(TRIANGLES, part.id)
+    assert full == 1280                                    # the icosphere as uploaded
+    page.evaluate(LEVEL, LOWER)
+    assert page.evaluate(TRIANGLES, part.id) < full / 2
+    centre = project((0, 1, 0), *CAMERA, Picture(page.screenshot()).size)
+    wait_until(page, "() => VP.drawn()")
+    assert greenish(Picture(page.screenshot()).at(centre))
+    part.recolor([0.1, 0.8, 0.1], "blue", 0.05)
+    scene.sync()
+    wait_until(page, "(id) => VP.objects.get(id).userData.node.recolors?.length === 1 && VP.drawn()", part.id)
+    assert blueish(Picture(page.screenshot()).at(centre))
+    page.evaluate(LEVEL, FULL)                            # back in full, in the new colour
+    assert page.evaluate(TRIANGLES, part.id) == full
+    wait_until(page, "() => VP.drawn()")
+    assert blueish(Picture(page.screenshot()).at(centre))

@@ -14,6 +14,7 @@ export function installHook(stage, tree, motion) {
 		scene: stage.scene,    // the THREE.Scene
 		camera: stage.camera,
 		renderer: stage.renderer,
+		quality: stage.quality, // the drawing level (quality.js) and how it adapts
 		objects: tree.objects, // object id -> Object3D (userData.node: the server's description)
 		seq: 0,                // the last frame's (or snapshot's) sequence number
 		time: 0,               // and its scene time

@@ -1,20 +1,27 @@
 // Parts drawn from mesh files (GLTFPart and the round and anthropomorphic hand parts):
 // each file is loaded once and shared; every part gets its own copy of the geometry's
-// colours, so that recolor() on one part changes that part alone.
+// colours, so that recolor() on one part changes that part alone. Each file also comes
+// simplified (simplify.js), which coarse drawing levels use.
 
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
+import { simplified } from './simplify.js';
+
+const REDUCED_SHARE = 0.06;  // of a file's triangles wanted at reduced detail
+const REDUCE_ABOVE = 500;    // triangles; smaller geometry is drawn as it is
 
 const loader = new GLTFLoader();
 const files = new Map();  // url -> Promise of [BufferGeometry] in the file's frame
 let loading = 0;          // mesh parts still waiting for their file
+let simple = false;       // whether mesh parts are drawn simplified now
 
 // How many mesh parts are not drawn yet because their file is still loading.
 export function meshesLoading() {
 	return loading;
 }
 
+// Each mesh of a file as [full, reduced] geometries (the same one twice when small).
 function load(url) {
 	if (!files.has(url)) {
 		files.set(url, loader.loadAsync(url).then((gltf) => {
@@ -23,10 +30,24 @@ function load(url) {
 			gltf.scene.traverse((child) => {
 				if (child.isMesh) geometries.push(child.geometry.clone().applyMatrix4(child.matrixWorld));
 			});
-			return geometries;
+			return Promise.all(geometries.map(async (full) => [full, await reduced(full)]));
 		}));
 	}
 	return files.get(url);
+}
+
+function reduced(geometry) {
+	const triangles = (geometry.index?.count ?? geometry.getAttribute('position').count) / 3;
+	return triangles <= REDUCE_ABOVE ? geometry : simplified(geometry, REDUCED_SHARE);
+}
+
+// Draw every mesh part below `root` (and those made later) simplified or in full.
+export function setMeshDetail(root, reduce) {
+	simple = reduce;
+	root.traverse((object) => {
+		const forms = object.userData.forms;
+		if (forms) object.geometry = forms[reduce ? forms.length - 1 : 0].geometry;
+	});
 }
 
 // [r, g, b] are the file's own (linear) components, as 1.0's recolor took them; names
@@ -59,16 +80,17 @@ export function mesh(g, node) {
 	let recolors = node?.recolors ?? [];
 	loading++;
 	const ready = load(g.url).then((geometries) => {
-		for (const source of geometries) {
-			const geometry = source.clone();
-			const original = source.getAttribute('color')?.clone();
-			const material = new THREE.MeshPhongMaterial({ vertexColors: Boolean(original), shininess: 40 });
-			const part = new THREE.Mesh(geometry, material);
+		for (const sources of geometries) {
+			// this part's own copy of each form, with the form's own original colours
+			const forms = [...new Set(sources)].map((source) => ({
+				geometry: source.clone(), original: source.getAttribute('color')?.clone() }));
+			const material = new THREE.MeshPhongMaterial({ vertexColors: Boolean(forms[0].original), shininess: 40 });
+			const part = new THREE.Mesh(forms[simple ? forms.length - 1 : 0].geometry, material);
 			part.castShadow = part.receiveShadow = true;
-			part.userData.original = original;
+			part.userData.forms = forms;
 			parts.push(part);
 			holder.add(part);
-			recolor(geometry, original, recolors);
+			for (const form of forms) recolor(form.geometry, form.original, recolors);
 		}
 	}).catch((error) => console.warn(`mesh ${g.url} did not load:`, error))
 		.finally(() => { loading--; });
@@ -78,7 +100,9 @@ export function mesh(g, node) {
 		envelope: g.points ? () => new ConvexGeometry(g.points.map((p) => new THREE.Vector3(...p))) : null,
 		recolor: (latest) => {
 			recolors = latest;
-			for (const part of parts) recolor(part.geometry, part.userData.original, recolors);
+			for (const part of parts) {
+				for (const form of part.userData.forms) recolor(form.geometry, form.original, recolors);
+			}
 		},
 	};
 }

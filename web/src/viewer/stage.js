@@ -8,6 +8,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { Quality, softwareWebGL } from './quality.js';
+import { setMeshDetail } from './meshes.js';
 
 const BACKGROUND = 'gainsboro';
 
@@ -76,7 +77,8 @@ export class Stage {
 			sun.shadow.map = null;            // made again at the new size and type
 		}
 		renderer.shadowMap.needsUpdate = true;
-		this.scene?.traverse((object) => { if (object.material) [].concat(object.material).forEach((m) => { m.needsUpdate = true; }); });
+		setMeshDetail(this.scene, level.reduced);
+		this.scene.traverse((object) => { if (object.material) [].concat(object.material).forEach((m) => { m.needsUpdate = true; }); });
 		this.resize();
 	}
 
