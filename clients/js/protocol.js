@@ -17,9 +17,9 @@ export class ProtocolCore {
 		this.onWarning = onWarning;
 		this.nextId = 1;
 		this.waiting = new Map();  // id -> { resolve, reject }
-		this.unanswered = new Set();
+		this.unanswered = new Set(); // ids, oldest first
 		this.deferred = [];        // ServerErrors of requests nobody waited for
-		this.settled = [];         // resolvers called once nothing is unanswered
+		this.settled = [];         // [id, resolve]: called once every request up to id is answered
 	}
 
 	// The text to send for `message` with a fresh id; with `wait`, also a promise of
@@ -66,7 +66,10 @@ export class ProtocolCore {
 		} else if (waiter) {
 			waiter.resolve(message.result);
 		}
-		if (this.unanswered.size === 0) for (const resolve of this.settled.splice(0)) resolve();
+		const oldest = this.unanswered.values().next().value ?? Infinity;
+		const due = this.settled.filter(([id]) => id < oldest);
+		this.settled = this.settled.filter(([id]) => id >= oldest);
+		for (const [, resolve] of due) resolve();
 	}
 
 	// Throw the first kept error of a request nobody waited for.
@@ -74,10 +77,11 @@ export class ProtocolCore {
 		if (this.deferred.length) throw this.deferred.shift();
 	}
 
-	// A promise that resolves once every request sent so far is answered.
+	// A promise that resolves once every request sent so far is answered (later ones
+	// need not be: a page sending every frame still gets there).
 	settle() {
 		if (this.unanswered.size === 0) return Promise.resolve();
-		return new Promise((resolve) => this.settled.push(resolve));
+		return new Promise((resolve) => this.settled.push([this.nextId - 1, resolve]));
 	}
 
 	// The connection is gone: every waiter hears it.
@@ -85,6 +89,6 @@ export class ProtocolCore {
 		for (const { reject } of this.waiting.values()) reject(error);
 		this.waiting.clear();
 		this.unanswered.clear();
-		for (const resolve of this.settled.splice(0)) resolve();
+		for (const [, resolve] of this.settled.splice(0)) resolve();
 	}
 }

@@ -27,20 +27,31 @@ export class Robot extends SceneObject {
 		this.call('addGUI', title);
 	}
 
+	// The objects of the nodes select(mirror) gives. The server builds and orders a robot's
+	// parts, so a list taken before it has answered this client's earlier requests (the
+	// robot built in the same task, as 1.0 pages do: `motors = hand.getMotors()`) fills
+	// in when it has; a list taken later is the robot as it is then.
+	listed(select) {
+		const { core, mirror } = this.vp.session;
+		const list = this.objectsOf(select(mirror));
+		if (core.unanswered.size) core.settle().then(() => list.splice(0, list.length, ...this.objectsOf(select(mirror))));
+		return list;
+	}
+
 	objectsOf(nodes) {
 		return nodes.map((node) => this.vp.session.object(node.id));
 	}
 
 	getParts() {
-		return this.objectsOf(this.vp.session.mirror.parts(this.vp.id));
+		return this.listed((mirror) => mirror.parts(this.vp.id));
 	}
 
 	getMotors() {
-		return this.objectsOf(this.vp.session.mirror.motors(this.vp.id));
+		return this.listed((mirror) => mirror.motors(this.vp.id));
 	}
 
 	getSensors() {
-		return this.objectsOf(this.vp.session.mirror.parts(this.vp.id).filter((n) => n.type === 'Sensor'));
+		return this.listed((mirror) => mirror.parts(this.vp.id).filter((n) => n.type === 'Sensor'));
 	}
 
 	getPosition() {
@@ -56,12 +67,12 @@ export class Robot extends SceneObject {
 	}
 
 	setAngle(index, angle) {
-		this.getMotors()[index]?.turnHere(angle);
+		this.objectsOf(this.vp.session.mirror.motors(this.vp.id))[index]?.turnHere(angle);
 		this.call('setAngle', index, angle);
 	}
 
 	setAngles(...angles) {
-		const motors = this.getMotors();
+		const motors = this.objectsOf(this.vp.session.mirror.motors(this.vp.id));
 		angles.forEach((angle, index) => motors[index]?.turnHere(angle));
 		this.call('setAngles', ...angles);
 	}

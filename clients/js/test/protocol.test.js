@@ -66,6 +66,25 @@ test('settle waits for every answer; changes, warnings and other messages go to 
 		warnings: ['attached to c1.1 itself'] });
 });
 
+test('settle waits for what was sent before it, not for requests sent after', async () => {
+	const core = new ProtocolCore();
+	core.request({ op: 'call' });                    // 1
+	core.request({ op: 'call' });                    // 2
+	const order = [];
+	const first = core.settle().then(() => order.push('up to 2'));
+	core.request({ op: 'call' });                    // 3: a page sending every frame
+	const second = core.settle().then(() => order.push('up to 3'));
+	core.receive('{"op":"ok","id":2}');
+	await Promise.resolve();
+	assert.deepEqual(order, []);                     // 1 is still unanswered
+	core.receive('{"op":"ok","id":1}');
+	await first;
+	core.request({ op: 'call' });                    // 4, never answered here
+	core.receive('{"op":"ok","id":3}');
+	await second;
+	assert.deepEqual(order, ['up to 2', 'up to 3']);
+});
+
 test('unknown or broken server messages fail loudly', () => {
 	const core = new ProtocolCore();
 	assert.throws(() => core.receive('{"op":"surprise"}'), ProtocolError);
