@@ -3,6 +3,8 @@ robots appear on the server and move, and a second browser watching the scene se
 
 from __future__ import annotations
 
+import json
+import math
 import time
 
 import pytest
@@ -18,7 +20,7 @@ def _nodes(server, scene: str) -> list[dict]:
 
 
 def _angles(server, scene: str) -> list[float]:
-    return [n["angle"] for n in _nodes(server, scene) if n["type"] == "MotorZ"]
+    return [n["angle"] for n in _nodes(server, scene) if n["type"].startswith("Motor")]
 
 
 def _moves(server, scene: str, expected: bool) -> bool:
@@ -34,26 +36,47 @@ def _moves(server, scene: str, expected: bool) -> bool:
 def _wait_for_robots(server, scene: str, count: int) -> None:
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:
-        if sum(n["type"] == "Robot" for n in _nodes(server, scene)) == count:
+        if len(_robots(server, scene)) == count:
             return
         time.sleep(0.2)
-    raise AssertionError(f"{count} robots never appeared in {scene}: {_nodes(server, scene)}")
+    raise AssertionError(f"{count} robots never appeared in {scene}: "
+                         f"{[n['type'] for n in _nodes(server, scene)]}")
+
+
+def _robots(server, scene: str) -> list[dict]:
+    """Robots and hands (the nodes that list motors)."""
+    return [n for n in _nodes(server, scene) if "motors" in n]
+
+
+def _seen_by_a_viewer(browser, pages, server, scene: str) -> None:
+    """A second browser watching the scene holds every node the server has, meshes drawn."""
+    ids = [n["id"] for n in _nodes(server, scene)]
+    viewer = open_viewer(browser, pages, server, f"scene={scene}")
+    wait_until(viewer, "(ids) => ids.every((id) => VP.objects.has(id))", ids)
+    meshes = [i for i, n in _meshes(server, scene).items() if n["visible"]]
+    wait_until(viewer, "(ids) => ids.every((id) => VP.objects.get(id).userData.shape)", meshes)
 
 
 @pytest.mark.parametrize("example, robots, moving", [
-    ("simple-robot-2", 1, False), ("simple-robot-3", 1, True), ("simple-robot-4", 1, True)])
+    ("simple-robot-2", 1, False), ("simple-robot-3", 1, True), ("simple-robot-4", 1, True),
+    ("edged-hand", 2, True), ("round-hand", 2, True), ("anthro-hand", 2, True)])
 def test_an_example_page_builds_its_robot_on_the_server(browser, pages, server, scene_name,
                                                         example, robots, moving):
     open_page(browser, pages, f"{server.http}/examples/{example}.html?scene={scene_name}")
     _wait_for_robots(server, scene_name, robots)
     assert _moves(server, scene_name, moving) == moving
+    if example.endswith("hand"):
+        hands = _robots(server, scene_name)
+        assert sorted(n["position"][0] for n in hands) == [-2, 2]
+        assert {n["type"] for n in hands} == {example.split("-")[0].capitalize() + "Hand"}
+        _seen_by_a_viewer(browser, pages, server, scene_name)
 
 
 def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scene_name):
     page = open_page(browser, pages, f"{server.http}/examples/digger.html?scene={scene_name}")
     _wait_for_robots(server, scene_name, 3)
     nodes = {n["id"]: n for n in _nodes(server, scene_name)}
-    positions = sorted(n["position"][2] for n in nodes.values() if n["type"] == "Robot")
+    positions = sorted(n["position"][2] for n in _robots(server, scene_name))
     assert positions == [-1, 0, 1]          # robotA at z=1, robotC at z=-1, as the manual says
     viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(viewer, "(ids) => ids.every((id) => window.VP.objects.has(id))", list(nodes))
@@ -101,3 +124,96 @@ def test_the_custom_meshes_page_shares_its_meshes_and_senses_them(browser, pages
     viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(viewer, "(ids) => ids.every((id) => VP.objects.get(id)?.userData.shape)", markers)
     assert page.evaluate("(ids) => ids.every((id) => !VP.objects.get(id)?.userData.shape)", markers)
+
+
+def _reading(page) -> str:
+    return page.inner_text("#reading")
+
+
+def _sensor_page(browser, pages, server, scene: str, example: str):
+    page = open_page(browser, pages, f"{server.http}/examples/{example}.html?scene={scene}")
+    _wait_for_robots(server, scene, 1)
+    return page
+
+
+def test_the_distance_page_measures_the_ground_and_the_step_it_added(browser, pages, server,
+                                                                     scene_name):
+    page = _sensor_page(browser, pages, server, scene_name, "sensor-distance")
+    # 1.5 above the ground, 0.9 above the 0.6-high step (a page mesh)
+    wait_until(page, "() => /least 0\\.(89|90|91)\\d*, most 1\\.(49|50)/.test("
+                     "document.getElementById('reading').textContent)", timeout=30_000)
+    _seen_by_a_viewer(browser, pages, server, scene_name)
+
+
+def test_the_touch_page_feels_the_box_and_lets_go(browser, pages, server, scene_name):
+    page = _sensor_page(browser, pages, server, scene_name, "sensor-touch")
+    wait_until(page, "() => /most 1\\.00/.test(document.getElementById('reading').textContent)",
+               timeout=30_000)
+    wait_until(page, "() => /touch: 0\\.00/.test(document.getElementById('reading').textContent)")
+    # the page recolours its box while touched: the server has both colours in turn
+    box = next(iter(_meshes(server, scene_name).values()))
+    colours = {box["color"]}
+    deadline = time.monotonic() + 20
+    while len(colours) < 2 and time.monotonic() < deadline:
+        colours.add(_meshes(server, scene_name)[box["id"]]["color"])
+        time.sleep(0.05)
+    assert len(colours) == 2, colours
+    _seen_by_a_viewer(browser, pages, server, scene_name)
+
+
+def test_the_position_page_reads_a_circle_and_leaves_a_trail(browser, pages, server, scene_name):
+    page = _sensor_page(browser, pages, server, scene_name, "sensor-position")
+    wait_until(page, "() => /position: \\[/.test(document.getElementById('reading').textContent)",
+               timeout=30_000)
+    points = set()
+    deadline = time.monotonic() + 20
+    while len(points) < 5 and time.monotonic() < deadline:
+        points.add(tuple(json.loads(_reading(page).removeprefix("position: "))))
+        time.sleep(0.2)
+    assert len(points) >= 5
+    # the arm turns about the vertical axis through the origin: one radius, one height
+    radii = [math.hypot(x, z) for x, _, z in points]
+    assert max(radii) - min(radii) < 0.01 and radii[0] > 0.5, points
+    assert len({round(y, 2) for _, y, _ in points}) == 1, points
+    height = next(iter(points))[1]
+    # the trail: page meshes the server places where the sensor was (the page's first
+    # frames, before the server has answered for the arm, read the origin: those dots
+    # are moved on once the trail has gone round)
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline:
+        trail = [n["position"] for n in _meshes(server, scene_name).values() if n["visible"]]
+        if len(trail) == 40 and [0, 0, 0] not in trail:
+            break
+        time.sleep(0.2)
+    assert all(abs(math.hypot(x, z) - radii[0]) < 0.01 and abs(y - height) < 0.01 for x, y, z in trail), trail
+    _seen_by_a_viewer(browser, pages, server, scene_name)
+
+
+def test_the_collision_page_feels_the_ball_and_counts_contacts(browser, pages, server, scene_name):
+    page = _sensor_page(browser, pages, server, scene_name, "sensor-collision")
+    wait_until(page, "() => /collision: true, objects: [1-9]\\d*, ball: true/.test("
+                     "document.getElementById('reading').textContent)", timeout=30_000)
+    wait_until(page, "() => /hits: [1-9].*begun: [1-9]\\d*, ended: [1-9]/.test("
+                     "document.getElementById('reading').textContent)", timeout=30_000)
+    _seen_by_a_viewer(browser, pages, server, scene_name)
+
+
+def test_the_motor_panel_page_moves_its_arm_and_a_viewer_follows(browser, pages, server,
+                                                                 scene_name):
+    page = _sensor_page(browser, pages, server, scene_name, "motor-panel")
+    wait_until(page, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Arm'")
+    labels = page.evaluate("() => [...document.querySelectorAll('.lil-gui .lil-controller.lil-number "
+                           ".lil-name')].map((e) => e.textContent)")
+    assert labels == ["turn", "shoulder", "2", "3"]
+    field = page.locator(".lil-gui .lil-controller.lil-number input").nth(1)
+    field.fill("1.2")
+    field.press("Enter")
+    shoulder = [n for n in _nodes(server, scene_name) if n["type"] == "MotorZ"][0]
+    deadline = time.monotonic() + 10
+    while _nodes(server, scene_name) and time.monotonic() < deadline:
+        if {n["id"]: n for n in _nodes(server, scene_name)}[shoulder["id"]]["angle"] == 1.2:
+            break
+        time.sleep(0.1)
+    assert {n["id"]: n for n in _nodes(server, scene_name)}[shoulder["id"]]["angle"] == 1.2
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(viewer, "(id) => VP.angle(id) === 1.2", shoulder["id"])

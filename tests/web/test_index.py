@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from .conftest import open_page, wait_until
 
 
@@ -11,3 +13,11 @@ def test_the_index_lists_the_scenes_with_links_to_watch(browser, pages, server):
     row = page.locator("#scenes tbody tr", has_text="default").first
     assert row.locator("a", has_text="watch").get_attribute("href") == "/view?scene=default"
     assert "control" in row.inner_text()
+
+
+def test_every_example_page_is_linked_from_the_index(browser, pages, server):
+    examples = sorted(f"/examples/{p.name}" for p in (Path(__file__).parents[2] / "web" / "examples").glob("*.html"))
+    page = open_page(browser, pages, f"{server.http}/")
+    links = page.evaluate("() => [...document.querySelectorAll('a')].map((a) => a.getAttribute('href'))")
+    assert [e for e in examples if e not in links] == []
+    assert len(examples) >= 14
