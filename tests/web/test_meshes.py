@@ -37,13 +37,18 @@ def blueish(colour):
     return b > 90 and b > 1.5 * r and b > 1.2 * g
 
 
-def test_an_uploaded_glb_is_drawn_and_recoloured_in_every_viewer(browser, pages, server, scene, scene_name):
-    name = vp.upload_asset(coloured_ball((0.1, 0.8, 0.1)))
-    part = vp.GLTFPart(name, 0, callback=lambda p: None)
+def green_ball_in_view(scene) -> vp.GLTFPart:
+    """An uploaded green ball at (0, 1, 0), in the middle of the camera's picture."""
+    part = vp.GLTFPart(vp.upload_asset(coloured_ball((0.1, 0.8, 0.1))), 0, callback=lambda p: None)
     part.set_position(0, 1, 0)
     vp.set_camera_position(*CAMERA[0])
     vp.set_camera_target(*CAMERA[1])
     scene.sync()
+    return part
+
+
+def test_an_uploaded_glb_is_drawn_and_recoloured_in_every_viewer(browser, pages, server, scene, scene_name):
+    part = green_ball_in_view(scene)
     first = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(first, LOADED, part.id)
     picture = Picture(first.screenshot())
@@ -73,12 +78,7 @@ def test_coarse_levels_draw_mesh_files_simplified_in_the_same_place_and_colours(
         browser, pages, server, scene, scene_name):
     """Software WebGL spends its time on triangles: coarse levels draw a mesh file with
     fewer, and the part still looks the same colour in the same place, recolours included."""
-    name = vp.upload_asset(coloured_ball((0.1, 0.8, 0.1)))
-    part = vp.GLTFPart(name, 0, callback=lambda p: None)
-    part.set_position(0, 1, 0)
-    vp.set_camera_position(*CAMERA[0])
-    vp.set_camera_target(*CAMERA[1])
-    scene.sync()
+    part = green_ball_in_view(scene)
     page = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(page, LOADED, part.id)
     page.evaluate(LEVEL, FULL)

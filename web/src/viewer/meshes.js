@@ -12,7 +12,7 @@ const REDUCED_SHARE = 0.06;  // of a file's triangles wanted at reduced detail
 const REDUCE_ABOVE = 500;    // triangles; smaller geometry is drawn as it is
 
 const loader = new GLTFLoader();
-const files = new Map();  // url -> Promise of [BufferGeometry] in the file's frame
+const files = new Map();  // url -> Promise of [[full, reduced] BufferGeometry] in the file's frame
 let loading = 0;          // mesh parts still waiting for their file
 let simple = false;       // whether mesh parts are drawn simplified now
 
