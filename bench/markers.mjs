@@ -47,7 +47,7 @@ async function run(count) {
 	lags.sort((a, b) => a - b);
 	return { markers: count, clientStepsPerS: +((steps - stepsBefore) / elapsed).toFixed(1),
 		serverTicksPerS: +((after.ticks - before.ticks) / elapsed).toFixed(1),
-		tickMsMean: after.tickMsMean, tickMsMax: after.tickMsMax,
+		tickMsP50: after.tickMsP50, tickMsP95: after.tickMsP95, tickMsMax: after.tickMsMax,
 		lagStepsMedian: lags[lags.length >> 1] ?? null, lagStepsMax: lags.at(-1) ?? null };
 }
 

@@ -20,7 +20,8 @@ from ..core.messages import PROTOCOL_VERSION
 from ..core.robot import Robot
 from ..core.scene import Scene
 from ..core.sensor import Sensor
-from ..errors import UnknownObject, UnknownScene, VPError
+from ..errors import OutOfRange, UnknownObject, UnknownScene, VPError
+from . import prometheus
 from .hub import Hubs, SceneHub
 
 router = APIRouter(prefix="/api")
@@ -121,11 +122,18 @@ async def contacts(request: Request, scene: str) -> Response:
     return await _read(request, scene, reports.contacts_report)
 
 
-@router.get("/metrics", summary="Tick timing, CPU, connections and queue lengths per scene")
-async def metrics(request: Request) -> dict[str, Any]:
+@router.get("/metrics", summary="Per scene, over the last 10 s: tick duration p50/p95/max, "
+                                 "ticks, requests and CPU per second; totals, connections and "
+                                 "queues (format=prometheus: Prometheus's text format)")
+async def metrics(request: Request, format: str = "json") -> Any:
+    if format not in ("json", "prometheus"):
+        raise OutOfRange(f"format must be json or prometheus, got {format[:40]!r}", format=format)
     hubs = _hubs(request)
-    return {"scenesRemoved": hubs.removed,
-            "scenes": {name: await _scene_metrics(hub) for name, hub in list(hubs.scenes.items())}}
+    figures = {"scenesRemoved": hubs.removed,
+               "scenes": {name: await _scene_metrics(hub) for name, hub in list(hubs.scenes.items())}}
+    if format == "prometheus":
+        return Response(prometheus.exposition(figures), media_type=prometheus.CONTENT_TYPE)
+    return figures
 
 
 async def _scene_metrics(hub: SceneHub) -> dict[str, Any]:

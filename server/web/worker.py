@@ -15,7 +15,7 @@ command                                   events it causes
 ``("text", cid, text)``                   ``("answers", cid, [answers], bytes_applied)``
 ``("leave", cid)``                        the client's objects deleted (seen in frames)
 ``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)``
-``("metrics", n)``                        ``("reply", n, True, tick statistics)``
+``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
 ``("stop",)``                             the process ends
 each tick                                 ``("frame", [messages])`` for every client
 ========================================  =============================================
@@ -27,7 +27,6 @@ import logging
 import signal
 import time
 from collections import deque
-from dataclasses import dataclass, field
 from multiprocessing.connection import Connection as Pipe
 from typing import Any, Callable
 
@@ -40,31 +39,12 @@ from ..core.wire import encode_numbers
 from ..errors import InternalError, VPError
 from . import heap
 from .outbox import Outgoing
+from .scene_metrics import SceneMetrics
 
 log = logging.getLogger(__name__)
 Animator = Callable[[Scene, float], None]
 SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
-
-
-@dataclass
-class TickStats:
-    """How long recent ticks took (a window of the last 600), for /api/metrics."""
-
-    count: int = 0
-    failures: int = 0
-    recent: deque[float] = field(default_factory=lambda: deque(maxlen=600))
-
-    def add(self, ms: float) -> None:
-        self.count += 1
-        self.recent.append(ms)
-
-    def summary(self) -> dict[str, float]:
-        """Counts, and last, mean and max tick duration over the window (milliseconds)."""
-        recent = list(self.recent) or [0.0]
-        return {"ticks": self.count, "tickFailures": self.failures, "tickMsLast": recent[-1],
-                "tickMsMean": sum(recent) / len(recent), "tickMsMax": max(recent),
-                "cpuSeconds": time.process_time()}
 
 
 def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
@@ -88,7 +68,7 @@ class SceneWorker:
                  animator: Animator | None) -> None:
         self.scene = scene
         self.tick_rate = tick_rate
-        self.stats = TickStats()
+        self.metrics = SceneMetrics()
         self._pipe = pipe
         self._animator = animator
         self._sessions: dict[int, Session] = {}
@@ -156,9 +136,10 @@ class SceneWorker:
 
     def _text(self, cid: int, text: str | bytes) -> None:
         session = self._sessions.get(cid)
+        now = time.monotonic()
         answers = [] if session is None else [
-            Outgoing(answer["op"], encoded)
-            for answer, encoded in session.receive_encoded(text, time.monotonic())]
+            Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
+        self.metrics.served(now, len(answers))
         self._events.append(("answers", cid, answers, len(text)))
 
     def _leave(self, cid: int) -> None:
@@ -178,7 +159,8 @@ class SceneWorker:
         self._events.append(reply)
 
     def _metrics(self, number: int) -> None:
-        self._events.append(("reply", number, True, self.stats.summary()))
+        summary = self.metrics.summary(time.monotonic(), time.process_time())
+        self._events.append(("reply", number, True, summary))
 
     def _stop(self) -> None:
         self._stopping = True
@@ -191,14 +173,15 @@ class SceneWorker:
                 self._animator(self.scene, self.scene.time + dt)
             messages = self._resynced() + [Outgoing.of(m) for m in self.scene.tick(dt)]
         except Exception:  # the scene kept what it had not sent; clients resync later
-            self.stats.failures += 1
+            self.metrics.tick_failures += 1
             self._resync = True
             log.exception("tick of scene %s failed", self.scene.name)
             return
         if messages:
             self._events.append(("frame", messages))
         self._flush()
-        self.stats.add((time.perf_counter() - started) * 1000)
+        self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
+                            time.process_time())
 
     def _resynced(self) -> list[Outgoing]:
         """After a failed tick, a fresh snapshot first: every client rebuilds from it."""

@@ -3,6 +3,7 @@
 import json
 import time
 import urllib.error
+import urllib.request
 
 import pytest
 from websockets.sync.client import connect
@@ -107,6 +108,33 @@ def test_metrics_report_ticks(server):
     first = server.get("/api/metrics")["scenes"]["default"]["ticks"]
     time.sleep(0.2)
     assert server.get("/api/metrics")["scenes"]["default"]["ticks"] > first
+
+
+def test_metrics_give_recent_tick_percentiles_and_request_rates(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
+        client = json.loads(ws.recv(timeout=10))["client"]
+        request_all(ws, [{"op": "create", "object": f"{client}.r", "type": "Robot"}]
+                    + [{"op": "call", "object": f"{client}.r", "method": "setPosition",
+                        "args": [[n / 100, 0, 0]]} for n in range(200)])
+        figures = server.get("/api/metrics")["scenes"][scene_name]
+    assert figures["requests"] == 201
+    assert figures["requestsPerSecond"] > 0
+    assert figures["tickMsP50"] <= figures["tickMsP95"] <= figures["tickMsMax"]
+    assert 0 < figures["ticksPerSecond"] and figures["windowSeconds"] > 0
+    assert 0 <= figures["cpuPercent"] and figures["cpuSeconds"] > 0
+
+
+def test_metrics_in_prometheus_text(server):
+    with urllib.request.urlopen(f"{server.http}/api/metrics?format=prometheus", timeout=10) as response:
+        assert response.headers["Content-Type"].startswith("text/plain; version=0.0.4")
+        lines = response.read().decode().splitlines()
+    ticks = next(line for line in lines if line.startswith('vp_ticks_total{scene="default"}'))
+    assert float(ticks.split()[-1]) > 0
+    assert "# TYPE vp_tick_ms_p95 gauge" in lines
+    with pytest.raises(urllib.error.HTTPError) as caught:
+        server.get("/api/metrics?format=xml")
+    assert caught.value.code == 400
+    assert json.loads(caught.value.read())["code"] == "out_of_range"
 
 
 def test_robots_with_unlimited_motors_report_and_impossible_limits_are_refused(server, scene_name):
