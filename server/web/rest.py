@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import time
-from typing import Any, Callable
+from typing import Any, Callable, Literal
 
 from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
@@ -20,7 +20,7 @@ from ..core.messages import PROTOCOL_VERSION
 from ..core.robot import Robot
 from ..core.scene import Scene
 from ..core.sensor import Sensor
-from ..errors import OutOfRange, UnknownObject, UnknownScene, VPError
+from ..errors import UnknownObject, UnknownScene, VPError
 from . import prometheus
 from .hub import Hubs, SceneHub
 
@@ -122,12 +122,11 @@ async def contacts(request: Request, scene: str) -> Response:
     return await _read(request, scene, reports.contacts_report)
 
 
-@router.get("/metrics", summary="Per scene, over the last 10 s: tick duration p50/p95/max, "
+@router.get("/metrics", responses={200: {"content": {"application/json": {}, "text/plain": {}}}},
+            summary="Per scene, over the last 10 s: tick duration p50/p95/max, "
                                  "ticks, requests and CPU per second; totals, connections and "
                                  "queues (format=prometheus: Prometheus's text format)")
-async def metrics(request: Request, format: str = "json") -> Any:
-    if format not in ("json", "prometheus"):
-        raise OutOfRange(f"format must be json or prometheus, got {format[:40]!r}", format=format)
+async def metrics(request: Request, format: Literal["json", "prometheus"] = "json") -> Any:
     hubs = _hubs(request)
     figures = {"scenesRemoved": hubs.removed,
                "scenes": {name: await _scene_metrics(hub) for name, hub in list(hubs.scenes.items())}}

@@ -133,8 +133,8 @@ def test_metrics_in_prometheus_text(server):
     assert "# TYPE vp_tick_ms_p95 gauge" in lines
     with pytest.raises(urllib.error.HTTPError) as caught:
         server.get("/api/metrics?format=xml")
-    assert caught.value.code == 400
-    assert json.loads(caught.value.read())["code"] == "out_of_range"
+    assert caught.value.code == 422
+    assert "format" in json.loads(caught.value.read())["detail"][0]["loc"]
 
 
 def test_robots_with_unlimited_motors_report_and_impossible_limits_are_refused(server, scene_name):
