@@ -9,6 +9,7 @@ import socket
 import subprocess
 import sys
 import time
+import urllib.error
 import urllib.request
 from dataclasses import dataclass
 from itertools import count
@@ -41,6 +42,19 @@ class RunningServer:
         """GET a REST path; the decoded JSON body (raises HTTPError for 4xx/5xx)."""
         with urllib.request.urlopen(self.http + path, timeout=10) as response:
             return json.loads(response.read())
+
+    def nodes(self, scene: str) -> list[dict[str, Any]]:
+        """The scene's nodes as its snapshot lists them; none while the scene is not there."""
+        try:
+            return self.get(f"/api/scenes/{scene}/snapshot")["nodes"]
+        except urllib.error.HTTPError as error:
+            if error.code == 404:
+                return []
+            raise
+
+    def robots(self, scene: str) -> list[dict[str, Any]]:
+        """The scene's robots and hands (the nodes that list motors)."""
+        return [n for n in self.nodes(scene) if "motors" in n]
 
 
 def free_port() -> int:

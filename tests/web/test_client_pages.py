@@ -12,15 +12,8 @@ import pytest
 from .conftest import open_page, open_viewer, wait_until
 
 
-def _nodes(server, scene: str) -> list[dict]:
-    try:
-        return server.get(f"/api/scenes/{scene}/snapshot")["nodes"]
-    except Exception:  # the page has not joined yet
-        return []
-
-
 def _angles(server, scene: str) -> list[float]:
-    return [n["angle"] for n in _nodes(server, scene) if n["type"].startswith("Motor")]
+    return [n["angle"] for n in server.nodes(scene) if n["type"].startswith("Motor")]
 
 
 def _moves(server, scene: str, expected: bool) -> bool:
@@ -36,21 +29,17 @@ def _moves(server, scene: str, expected: bool) -> bool:
 def _wait_for_robots(server, scene: str, count: int) -> None:
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:
-        if len(_robots(server, scene)) == count:
+        if len(server.robots(scene)) == count:
             return
         time.sleep(0.2)
     raise AssertionError(f"{count} robots never appeared in {scene}: "
-                         f"{[n['type'] for n in _nodes(server, scene)]}")
+                         f"{[n['type'] for n in server.nodes(scene)]}")
 
-
-def _robots(server, scene: str) -> list[dict]:
-    """Robots and hands (the nodes that list motors)."""
-    return [n for n in _nodes(server, scene) if "motors" in n]
 
 
 def _seen_by_a_viewer(browser, pages, server, scene: str) -> None:
     """A second browser watching the scene holds every node the server has, meshes drawn."""
-    ids = [n["id"] for n in _nodes(server, scene)]
+    ids = [n["id"] for n in server.nodes(scene)]
     viewer = open_viewer(browser, pages, server, f"scene={scene}")
     wait_until(viewer, "(ids) => ids.every((id) => VP.objects.has(id))", ids)
     meshes = [i for i, n in _meshes(server, scene).items() if n["visible"]]
@@ -66,7 +55,7 @@ def test_an_example_page_builds_its_robot_on_the_server(browser, pages, server, 
     _wait_for_robots(server, scene_name, robots)
     assert _moves(server, scene_name, moving) == moving
     if example.endswith("hand"):
-        hands = _robots(server, scene_name)
+        hands = server.robots(scene_name)
         assert sorted(n["position"][0] for n in hands) == [-2, 2]
         assert {n["type"] for n in hands} == {example.split("-")[0].capitalize() + "Hand"}
         _seen_by_a_viewer(browser, pages, server, scene_name)
@@ -75,8 +64,8 @@ def test_an_example_page_builds_its_robot_on_the_server(browser, pages, server, 
 def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scene_name):
     page = open_page(browser, pages, f"{server.http}/examples/digger.html?scene={scene_name}")
     _wait_for_robots(server, scene_name, 3)
-    nodes = {n["id"]: n for n in _nodes(server, scene_name)}
-    positions = sorted(n["position"][2] for n in _robots(server, scene_name))
+    nodes = {n["id"]: n for n in server.nodes(scene_name)}
+    positions = sorted(n["position"][2] for n in server.robots(scene_name))
     assert positions == [-1, 0, 1]          # robotA at z=1, robotC at z=-1, as the manual says
     viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(viewer, "(ids) => ids.every((id) => window.VP.objects.has(id))", list(nodes))
@@ -95,7 +84,7 @@ def test_a_page_without_a_scene_gets_its_own_with_a_watch_link(browser, pages, s
 
 
 def _meshes(server, scene: str) -> dict[str, dict]:
-    return {n["id"]: n for n in _nodes(server, scene) if n["type"] == "SceneMesh"}
+    return {n["id"]: n for n in server.nodes(scene) if n["type"] == "SceneMesh"}
 
 
 def test_the_custom_meshes_page_shares_its_meshes_and_senses_them(browser, pages, server,
@@ -208,12 +197,12 @@ def test_the_motor_panel_page_moves_its_arm_and_a_viewer_follows(browser, pages,
     field = page.locator(".lil-gui .lil-controller.lil-number input").nth(1)
     field.fill("1.2")
     field.press("Enter")
-    shoulder = [n for n in _nodes(server, scene_name) if n["type"] == "MotorZ"][0]
+    shoulder = [n for n in server.nodes(scene_name) if n["type"] == "MotorZ"][0]
     deadline = time.monotonic() + 10
-    while _nodes(server, scene_name) and time.monotonic() < deadline:
-        if {n["id"]: n for n in _nodes(server, scene_name)}[shoulder["id"]]["angle"] == 1.2:
+    while server.nodes(scene_name) and time.monotonic() < deadline:
+        if {n["id"]: n for n in server.nodes(scene_name)}[shoulder["id"]]["angle"] == 1.2:
             break
         time.sleep(0.1)
-    assert {n["id"]: n for n in _nodes(server, scene_name)}[shoulder["id"]]["angle"] == 1.2
+    assert {n["id"]: n for n in server.nodes(scene_name)}[shoulder["id"]]["angle"] == 1.2
     viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(viewer, "(id) => VP.angle(id) === 1.2", shoulder["id"])

@@ -35,7 +35,7 @@ def all_parts(server, scene_name):
 
 
 def snapshot_counts(server, scene_name):
-    nodes = server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]
+    nodes = server.nodes(scene_name)
     return (sum(n["type"] == "Slot" for n in nodes), sum(bool(n.get("physical")) for n in nodes),
             len(nodes))
 

@@ -22,19 +22,8 @@ def test_the_javascript_client_tests_pass(server):
     assert "# pass 0" not in result.stdout
 
 
-def _nodes(server, scene: str) -> list[dict]:
-    try:
-        return server.get(f"/api/scenes/{scene}/snapshot")["nodes"]
-    except Exception:  # the scene is not there yet
-        return []
-
-
-def _robots(server, scene: str) -> list[dict]:
-    return [n for n in _nodes(server, scene) if n["type"] == "Robot"]
-
-
 def _angles(server, scene: str) -> list[float]:
-    return [n["angle"] for n in _nodes(server, scene) if n["type"] == "MotorZ"]
+    return [n["angle"] for n in server.nodes(scene) if n["type"] == "MotorZ"]
 
 
 @pytest.mark.parametrize("step, robots, moving", [(2, 1, False), (3, 1, True), (4, 1, True),
@@ -45,9 +34,9 @@ def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 20
-        while len(_robots(server, scene_name)) < robots and time.monotonic() < deadline:
+        while len(server.robots(scene_name)) < robots and time.monotonic() < deadline:
             time.sleep(0.1)
-        assert len(_robots(server, scene_name)) == robots
+        assert len(server.robots(scene_name)) == robots
         first = _angles(server, scene_name)
         time.sleep(0.5)
         assert (_angles(server, scene_name) != first) == moving
@@ -58,6 +47,6 @@ def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
     assert node.returncode == 0, err
     assert "Virtual Prosthetics 1.0" in out
     deadline = time.monotonic() + 5
-    while _robots(server, scene_name) and time.monotonic() < deadline:
+    while server.robots(scene_name) and time.monotonic() < deadline:
         time.sleep(0.1)
-    assert _robots(server, scene_name) == []
+    assert server.robots(scene_name) == []

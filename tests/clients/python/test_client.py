@@ -123,7 +123,7 @@ def test_a_missing_slot_index_attaches_to_the_parent_and_warns(server, scene, sc
     marker = vp.Slot(0, 3, 0)
     box = vp.Box().attach_to_slot(palm, marker)
     scene.sync()
-    nodes = {n["id"]: n for n in server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]}
+    nodes = {n["id"]: n for n in server.nodes(scene_name)}
     assert nodes[ball.id]["parent"] == palm.id and nodes[box.id]["parent"] == marker.id
     assert nodes[palm.id]["children"] == [f"{palm.id}/s{k}" for k in range(5)] + [ball.id, marker.id]
 

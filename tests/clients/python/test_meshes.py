@@ -16,7 +16,7 @@ def test_gltf_part_callback_runs_once_made_and_recolor_reaches_the_scene(server,
                        callback=lambda p: (ready.append(p), p.recolor([0, 0.21, 1], "red")))
     assert ready == [part]
     scene.sync()
-    node = next(n for n in server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]
+    node = next(n for n in server.nodes(scene_name)
                 if n["id"] == part.id)
     assert node["geometry"]["url"] == "/assets/gltf/round-palm.glb"
     assert node["recolors"] == [[[0.0, 0.21, 1.0], "red", 0.01]]
@@ -26,11 +26,11 @@ def test_gltf_part_callback_runs_once_made_and_recolor_reaches_the_scene(server,
                                       "http://example.com/x.glb", "..%2fetc%2fpasswd.glb",
                                       "assets\\gltf\\round-palm.glb", "round-palm.glb\n"])
 def test_forbidden_filenames_are_refused_and_nothing_is_made(server, scene, scene_name, filename):
-    before = server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]
+    before = server.nodes(scene_name)
     with pytest.raises(vp.ServerError) as caught:
         vp.GLTFPart(filename, callback=lambda p: None)
     assert caught.value.code in ("forbidden", "bad_message")
-    assert server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"] == before
+    assert server.nodes(scene_name) == before
 
 
 def test_a_missing_mesh_file_is_an_unknown_asset(scene):
@@ -59,7 +59,7 @@ def test_an_uploaded_glb_makes_mesh_parts_in_any_scene(server, scene, scene_name
     sensor = vp.Sensor()
     sensor.set_position(3, 3, 0)
     sensor.set_rotation(math.pi, 0, 0)
-    nodes = {n["id"]: n for n in server.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]}
+    nodes = {n["id"]: n for n in server.nodes(scene_name)}
     assert nodes[decoration.id]["geometry"]["url"] == f"/api/assets/{name}"
     assert 20 <= len(nodes[finger.id]["geometry"]["points"]) <= 80
     top = 1 + 0.4 + ball.vertices[:, 1].max()  # the mesh is raised by length/2 = 0.4

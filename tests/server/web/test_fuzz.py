@@ -195,7 +195,7 @@ def check_scene(server: RunningServer, watcher: Watcher) -> None:
 
 
 def gone(server: RunningServer, client: str) -> bool:
-    nodes = server.get(f"/api/scenes/{SCENE}/snapshot")["nodes"]
+    nodes = server.nodes(SCENE)
     return not any(node["id"].startswith(client + ".") for node in nodes)
 
 

@@ -62,7 +62,7 @@ def test_a_scene_whose_process_dies_takes_no_other_scene_with_it(server, scene_n
             doomed.recv(timeout=10)
         seqs = [next_message(other, "frame")["seq"] for _ in range(5)]
         assert seqs == sorted(set(seqs))
-        assert [n["id"] for n in server.get(f"/api/scenes/{scene_name}o/snapshot")["nodes"]] == [
+        assert [n["id"] for n in server.nodes(f"{scene_name}o")] == [
             f"{other_hello['client']}.b"]
     again, _, snapshot = open_client(server, scene_name + "d")  # the scene starts afresh
     with again:
