@@ -45,9 +45,9 @@ def bench(sensors: int) -> dict[str, float]:
         for hand in hands:
             hand.flex_fingers(0.4 + 0.8 * (0.5 + 0.5 * math.sin(n / 20)))
         started = time.perf_counter()
-        scene.sync_physics()
+        scene.bodies.sync()
         placed = time.perf_counter()
-        scene.overlaps()
+        scene.bodies.overlaps()
         touched = time.perf_counter()
         scene.watched_readings()
         sensed = time.perf_counter()
@@ -58,7 +58,7 @@ def bench(sensors: int) -> dict[str, float]:
         sensing_ms.append((sensed - touched) * 1000)
         tick_ms.append((done - sensed) * 1000 + (placed - started) * 1000)
         sizes.append(len(text))
-    contacts = len(scene.contacts.current.pairs)
+    contacts = len(scene.bodies.contacts.current.pairs)
     scene.close()
     return {"sensors": sensors, "contacts_now": contacts,
             "contacts_ms": statistics.mean(contacts_ms),

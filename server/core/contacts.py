@@ -18,15 +18,15 @@ import numpy as np
 from .physics import GROUND, TOUCH_TOLERANCE, Vec3
 
 Pair = tuple[str, str]
-_BLOCK = 256  # bodies whose candidates are found in one array operation
+_BLOCK = 1024  # bodies whose candidates are found in one array operation (bounds memory)
 
 
 class Bodies(Protocol):
     """What the tracker needs of the physics world."""
 
-    def aabb(self, key: str) -> tuple[Vec3, Vec3]: ...
+    def aabbs(self, keys: list[str]) -> list[tuple[Vec3, Vec3]]: ...
 
-    def touching(self, key_a: str, key_b: str) -> bool: ...
+    def touching_many(self, key: str, others: list[str]) -> list[bool]: ...
 
 
 def pair(a: str, b: str) -> Pair:
@@ -70,18 +70,19 @@ class ContactTracker:
 
     # --- bodies --------------------------------------------------------------------------
 
-    def placed(self, key: str) -> None:
-        """A body was added or moved: its contacts must be measured again."""
-        low, high = self._bodies.aabb(key)
-        row = self._rows.get(key)
-        if row is None:
-            row = self._rows[key] = len(self._keys)
+    def placed(self, keys: list[str]) -> None:
+        """Bodies were added or moved: their contacts must be measured again."""
+        boxes = np.array(self._bodies.aabbs(keys), dtype=float).reshape(len(keys), 2, 3)
+        new = [key for key in keys if key not in self._rows]
+        for key in new:
+            self._rows[key] = len(self._keys)
             self._keys.append(key)
-            self._low = np.vstack([self._low, low]) if row else np.array([low], dtype=float)
-            self._high = np.vstack([self._high, high]) if row else np.array([high], dtype=float)
-        else:
-            self._low[row], self._high[row] = low, high
-        self._dirty[key] = None
+        if new:
+            grown = np.empty((len(new), 3))
+            self._low, self._high = np.vstack([self._low, grown]), np.vstack([self._high, grown])
+        rows = [self._rows[key] for key in keys]
+        self._low[rows], self._high[rows] = boxes[:, 0], boxes[:, 1]
+        self._dirty.update(dict.fromkeys(keys))
 
     def removed(self, key: str) -> None:
         """A body left the world: its pairs end now (nothing for a body never placed)."""
@@ -131,24 +132,52 @@ class ContactTracker:
         for other in list(self._partners.get(key, ())):
             if other not in near and other not in skip:
                 self._set(key, other, False)
-        for other in candidates:
-            if other not in skip:
-                self.tests += 1
-                self._set(key, other, self._bodies.touching(key, other))
+        tested = [other for other in candidates if other not in skip] if skip else candidates
+        self.tests += len(tested)
+        for other, touching in zip(tested, self._bodies.touching_many(key, tested)):
+            self._set(key, other, touching)
 
     def _candidates(self, keys: list[str]) -> list[list[str]]:
         """For each body, the bodies whose boxes overlap its box, and the ground if near."""
         rows = np.array([self._rows[k] for k in keys])
-        low, high = self._low[rows], self._high[rows]
-        tolerance = TOUCH_TOLERANCE
-        overlap = np.all(self._low[None, :, :] <= high[:, None, :] + tolerance, axis=2) & \
-            np.all(self._high[None, :, :] >= low[:, None, :] - tolerance, axis=2)
-        overlap[np.arange(len(keys)), rows] = False
-        found = [[self._keys[j] for j in np.flatnonzero(line)] for line in overlap]
-        for i, bottom in enumerate(low[:, 1]):
-            if bottom <= tolerance:
+        mine, others = self._sweep(rows)
+        cut = np.searchsorted(mine, np.arange(len(rows) + 1))
+        names = [self._keys[j] for j in others.tolist()]
+        found = [names[cut[i]:cut[i + 1]] for i in range(len(rows))]
+        for i, bottom in enumerate(self._low[rows, 1].tolist()):
+            if bottom <= TOUCH_TOLERANCE:
                 found[i].append(GROUND)
         return found
+
+    def _sweep(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Pairs (index into ``rows``, row) of overlapping boxes, sorted by both.
+
+        Sweep and prune: along the axis where it leaves the fewest, only the bodies whose
+        lower edge lies within reach are compared on all three axes.
+        """
+        low, high, tolerance = self._low, self._high, TOUCH_TOLERANCE
+        ranges = [self._ranges(rows, axis) for axis in range(3)]
+        order, first, counts = min(ranges, key=lambda r: int(r[2].sum()))
+        mine = np.repeat(np.arange(len(rows)), counts)
+        offsets = np.arange(len(mine)) - np.repeat(np.cumsum(counts) - counts - first, counts)
+        others = order[offsets]
+        a, b = rows[mine], others
+        apart = (low[b] > high[a] + tolerance) | (high[b] < low[a] - tolerance)
+        keep = (a != b) & ~(apart[:, 0] | apart[:, 1] | apart[:, 2])
+        mine, others = mine[keep], others[keep]
+        order = np.lexsort((others, mine))
+        return mine[order], others[order]
+
+    def _ranges(self, rows: np.ndarray, axis: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Along one axis: the rows by lower edge, and per row of ``rows`` the first and the
+        number of those whose box may overlap its box (lower edge within the widest box)."""
+        low, high = self._low[:, axis], self._high[:, axis]
+        order = np.argsort(low, kind="stable")
+        starts = low[order]
+        reach = float((high - low).max()) + TOUCH_TOLERANCE
+        first = np.searchsorted(starts, low[rows] - reach, "left")
+        last = np.searchsorted(starts, high[rows] + TOUCH_TOLERANCE, "right")
+        return order, first, last - first
 
     def _set(self, a: str, b: str, touching: bool) -> None:
         partners = self._partners

@@ -129,9 +129,15 @@ class PhysicsWorld:
 
     def move(self, key: str, pose: Pose) -> None:
         """Place the body of ``key`` at a world pose."""
-        pybullet.resetBasePositionAndOrientation(self._bodies[key], pose[0], pose[1],
-                                                 physicsClientId=self._client)
-        self._placed[key] = (self._placed[key][0], pose)
+        self.move_many([key], [pose])
+
+    def move_many(self, keys: list[str], poses: list[Pose]) -> None:
+        """Place the bodies of ``keys`` at their world poses."""
+        reset, client = pybullet.resetBasePositionAndOrientation, self._client
+        bodies, placed = self._bodies, self._placed
+        for key, pose in zip(keys, poses):
+            reset(bodies[key], pose[0], pose[1], physicsClientId=client)
+            placed[key] = (placed[key][0], pose)
 
     def needs_rebuild(self) -> bool:
         """True when enough bodies were removed that a fresh client would free memory."""
@@ -160,16 +166,30 @@ class PhysicsWorld:
         low, high = pybullet.getAABB(self._bodies[key], physicsClientId=self._client)
         return tuple(low), tuple(high)
 
+    def aabbs(self, keys: list[str]) -> list[tuple[Vec3, Vec3]]:
+        """The world boxes of the bodies of ``keys`` (as :meth:`aabb`), in order."""
+        get, bodies, client = pybullet.getAABB, self._bodies, self._client
+        return [get(bodies[key], physicsClientId=client) for key in keys]
+
     def touching(self, key_a: str, key_b: str) -> bool:
         """True when the exact shapes of two bodies (or a body and the ground) touch.
 
         Convex shapes are padded by ``CONVEX_MARGIN``, which the distance is measured against.
         """
-        a = self._ground if key_a == GROUND else self._bodies[key_a]
-        b = self._ground if key_b == GROUND else self._bodies[key_b]
-        padding = self._padding[a] + self._padding[b]
-        points = pybullet.getClosestPoints(a, b, TOUCH_TOLERANCE, physicsClientId=self._client)
-        return any(point[8] <= TOUCH_TOLERANCE - padding for point in points)
+        return self.touching_many(key_a, [key_b])[0]
+
+    def touching_many(self, key: str, others: list[str]) -> list[bool]:
+        """For each of ``others``: does it touch ``key`` (as :meth:`touching`)?"""
+        closest, client, padding = pybullet.getClosestPoints, self._client, self._padding
+        bodies, ground, tolerance = self._bodies, self._ground, TOUCH_TOLERANCE
+        a = ground if key == GROUND else bodies[key]
+        out = []
+        for other in others:
+            b = ground if other == GROUND else bodies[other]
+            reach = tolerance - padding[a] - padding[b]
+            out.append(any(point[8] <= reach
+                           for point in closest(a, b, tolerance, physicsClientId=client)))
+        return out
 
 
 def _shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:

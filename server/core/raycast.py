@@ -69,6 +69,10 @@ class RayTargets:
         """Place ``key``'s shape at a world pose (taken in when rays are next cast)."""
         self._moved[key] = pose
 
+    def move_many(self, keys: list[str], poses: list[Pose]) -> None:
+        """Place the shapes of ``keys`` at their world poses (as :meth:`move`)."""
+        self._moved.update(zip(keys, poses))
+
     def _place_moved(self) -> None:
         """Rotations, positions and sphere centres of the moved rows, in one go."""
         if not self._moved:

@@ -21,7 +21,7 @@ def scene_summary(scene: Scene) -> dict[str, Any]:
     """Name, clock, object and robot counts of a scene."""
     return {"name": scene.name, "time": scene.time, "seq": scene.seq,
             "objects": len(scene.nodes), "robots": len(robots(scene)),
-            "bodies": len(scene.physics),
+            "bodies": len(scene.bodies),
             "camera": {k: list(v) for k, v in scene.camera.items()}}
 
 
@@ -70,4 +70,4 @@ def sensor_report(sensor: Sensor, other: str | None = None) -> dict[str, Any]:
 
 def contacts_report(scene: Scene) -> dict[str, Any]:
     """The pairs touching at the last tick."""
-    return {"seq": scene.seq, "time": scene.time, "contacts": scene.contacts.wire()}
+    return {"seq": scene.seq, "time": scene.time, "contacts": scene.bodies.contacts.wire()}

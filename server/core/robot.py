@@ -26,7 +26,7 @@ class Robot(Node):
     def __init__(self, scene: Scene, node_id: str) -> None:
         super().__init__(scene, node_id)
         self.gui: str | None = None
-        self._listing: tuple[int, list[Part]] | None = None
+        self._listing: tuple[int, list[Part], list[Motor]] | None = None
 
     # --- chains ------------------------------------------------------------------------
 
@@ -51,15 +51,19 @@ class Robot(Node):
 
     def get_parts(self) -> list[Part]:
         """Manual ``getParts()``: every part below the robot, motors included."""
-        version = self.scene.tree_version
-        if self._listing is None or self._listing[0] != version:
-            self._listing = (version, [n for n in self.walk()
-                                      if isinstance(n, Part) and n.listed])
-        return self._listing[1]
+        return self._listed()[0]
 
     def get_motors(self) -> list[Motor]:
         """Manual ``getMotors()``: the motors in depth-first order; index = position."""
-        return [p for p in self.get_parts() if isinstance(p, Motor)]
+        return self._listed()[1]
+
+    def _listed(self) -> tuple[list[Part], list[Motor]]:
+        """Parts and motors, listed again only when the scene's tree changed."""
+        version = self.scene.tree_version
+        if self._listing is None or self._listing[0] != version:
+            parts = [n for n in self.walk() if isinstance(n, Part) and n.listed]
+            self._listing = (version, parts, [p for p in parts if isinstance(p, Motor)])
+        return self._listing[1], self._listing[2]
 
     def get_sensors(self) -> list[Part]:
         """Manual ``getSensors()``: the sensors below the robot."""

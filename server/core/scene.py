@@ -9,29 +9,23 @@ from __future__ import annotations
 import logging
 from collections import Counter
 from contextlib import contextmanager
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import Any, Iterator
 
 from ..errors import DuplicateId, LimitExceeded, UnknownObject
 from . import figures
 from .assets import AssetLibrary
 from .changes import ChangeSet
-from .contacts import ContactBook, ContactTracker, Overlaps
-from .geometry import scaled
 from .ids import IdBook
 from .journal import Journal
 from .limits import DEFAULT, Limits
 from .math3d import Quat, Vec3
 from .motor import Motor
-from .node import UNIT_SCALE, Node
-from .physics import PhysicsWorld
-from .raycast import RayTargets
+from .node import Node
 from .robot import Robot
-from .sensing import Reading, read_sensors
+from .scene_bodies import SceneBodies
+from .sensing import Reading
 from .watches import Watches
 from .wire import encode_numbers
-
-if TYPE_CHECKING:
-    from .sensor import Sensor
 
 log = logging.getLogger(__name__)
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped", "scale")
@@ -54,11 +48,8 @@ class Scene:
         self.ids = IdBook(self.journal, limits.client_names)
         self.owned: Counter[str] = Counter()  # objects per owner
         self.physical = 0  # physical parts, in the scene or not
-        self.physics = PhysicsWorld()
         self.assets = assets or AssetLibrary()
-        self.rays = RayTargets(self.assets)
-        self.tracker = ContactTracker(self.physics, limits.contact_tests,
-                                      limits.contact_pairs)
+        self.bodies = SceneBodies(self.nodes, self.in_scene, limits, self.assets, name)
         self.time = 0.0
         self.seq = 0
         self.tree_version = 0
@@ -66,15 +57,12 @@ class Scene:
                                         "target": figures.CAMERA_TARGET}
         self._pending = ChangeSet()
         self._recorders: list[ChangeSet] = [self._pending]
-        self._physics_dirty: set[str] = set()
-        self._scales: dict[str, Vec3] = {}  # world scales of bodies not at 1, 1, 1
         self.watches = Watches(self.journal, limits.watched_sensors)
-        self.contacts = ContactBook()  # as announced by the last tick
         self.failures = 0  # ticks whose contacts or sensing failed (a bug; logged)
 
     def close(self) -> None:
         """Release the physics world."""
-        self.physics.close()
+        self.bodies.close()
 
     # --- registry ------------------------------------------------------------------------
 
@@ -91,7 +79,7 @@ class Scene:
         self.journal.record(lambda: self._drop(node))
         for changes in self._recorders:
             changes.born[node.id] = None
-        self._physics_dirty.add(node.id)
+        self.bodies.mark((node.id,))
 
     def _check_room(self, node: Node) -> None:
         limits, owner = self.limits, owner_of(node.id)
@@ -118,7 +106,7 @@ class Scene:
     def _drop(self, node: Node) -> None:
         del self.nodes[node.id]
         self._count(node, -1)
-        self._physics_dirty.add(node.id)
+        self.bodies.mark((node.id,))
 
     def get(self, node_id: str) -> Node:
         """The node with this id, or :class:`UnknownObject`."""
@@ -144,7 +132,7 @@ class Scene:
     def _revive(self, node: Node) -> None:
         self.nodes[node.id] = node
         self._count(node, 1)
-        self._physics_dirty.add(node.id)
+        self.bodies.mark((node.id,))
 
     def roots(self) -> list[Node]:
         """Nodes without a parent, in the order they were made."""
@@ -164,7 +152,7 @@ class Scene:
         if field in _POSE_FIELDS or field == "parent":
             self._moved(node)
         if field == "visible":
-            self._physics_dirty.update(n.id for n in node.walk())
+            self.bodies.mark(n.id for n in node.walk())
 
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
@@ -181,9 +169,7 @@ class Scene:
         self.node_changed(node, "parent")
 
     def _moved(self, node: Node) -> None:
-        for changed in node.invalidate():
-            if changed.physical:
-                self._physics_dirty.add(changed.id)
+        self.bodies.mark(changed.id for changed in node.invalidate() if changed.physical)
 
     def warn(self, message: str) -> None:
         """Tell whoever made the current request something that did not fail but may surprise."""
@@ -247,94 +233,25 @@ class Scene:
     def _sense(self) -> dict[str, Any]:
         """This tick's contact changes, watched readings and the limits that held work back."""
         out: dict[str, Any] = {}
-        began, ended = self.contacts.update(self.overlaps())
+        bodies = self.bodies
+        began, ended = bodies.contacts.update(bodies.overlaps())
         if began or ended:
             out["contacts"] = {"begin": [list(p) for p in began], "end": [list(p) for p in ended]}
         readings = self.watched_readings()
         if readings:
             out["sensors"] = {i: reading.wire() for i, reading in readings.items()}
-        limited = {"contactTests": self.tracker.deferred, "contactPairs": self.tracker.unrecorded}
+        tracker = bodies.tracker
+        limited = {"contactTests": tracker.deferred, "contactPairs": tracker.unrecorded}
         if any(limited.values()):
             out["limited"] = {k: v for k, v in limited.items() if v}
         return out
-
-    def sync_physics(self) -> None:
-        """Create, move or remove collision bodies and ray shapes of every changed part."""
-        for node_id in self._physics_dirty:
-            try:
-                self._sync_body(node_id)
-            except Exception:  # a bug: this part is left out, the scene goes on
-                self.failures += 1
-                log.exception("part %s of scene %s could not be placed", node_id, self.name)
-                self._forget_body(node_id)
-        self._physics_dirty.clear()
-        if self.physics.needs_rebuild():
-            self.physics.rebuild()
-
-    def _sync_body(self, node_id: str) -> None:
-        node = self.nodes.get(node_id)
-        wanted = node is not None and node.physical and self.in_scene(node)
-        if wanted and node_id in self.physics and \
-                self._scales.get(node_id, UNIT_SCALE) != node.world_scale():
-            self._forget_body(node_id)  # a shape of another size: made again
-        if wanted and node_id in self.physics:
-            pose = node.world_pose()
-            self.physics.move(node_id, pose)
-            self.rays.move(node_id, pose)
-        elif wanted:
-            geometry, pose, scale = node.geometry(), node.world_pose(), node.world_scale()
-            if scale != UNIT_SCALE:
-                geometry = scaled(geometry, scale)
-                self._scales[node_id] = scale
-            self.rays.add(node_id, geometry, pose)
-            self.physics.add(node_id, geometry, pose)
-        elif node_id in self.physics:
-            self._forget_body(node_id)
-            return
-        else:
-            return
-        self.tracker.placed(node_id)
-
-    def _forget_body(self, node_id: str) -> None:
-        self._scales.pop(node_id, None)
-        if node_id in self.physics:
-            self.physics.remove(node_id)
-            self.tracker.removed(node_id)
-        if node_id in self.rays:
-            self.rays.remove(node_id)
-
-    # --- contacts and sensors ------------------------------------------------------------
-
-    def overlaps(self) -> Overlaps:
-        """The pairs touching now, as far as one update's budget of tests measures."""
-        self.sync_physics()
-        self.tracker.update()
-        return self.tracker.overlaps()
-
-    def touching(self, part: Node | None, exact: bool = True) -> list[str]:
-        """Ids of what ``part`` touches, sorted ("ground" for the ground).
-
-        Exact: measured now. Otherwise as of the last tick (watched readings use that).
-        """
-        if part is None:
-            return []
-        if exact:
-            self.sync_physics()
-            self.tracker.settle(part.id)
-        return list(self.tracker.overlaps().of(part.id))
-
-    def read_sensors(self, sensors: list[Sensor], exact: bool = True) -> dict[str, Reading]:
-        """Readings of ``sensors`` for the scene as it is now."""
-        self.sync_physics()
-        return read_sensors(self.rays, sensors,
-                            lambda sensor: self.touching(sensor.host(), exact))
 
     def watched_readings(self) -> dict[str, Reading]:
         """Readings of every watched sensor (frames carry them); forgets deleted ones."""
         ids = self.watches.ids()
         self.watches.forget(i for i in ids if i not in self.nodes)
         sensors = [self.nodes[i] for i in ids if i in self.nodes]
-        return self.read_sensors(sensors, exact=False)  # type: ignore[arg-type]
+        return self.bodies.read(sensors, exact=False)  # type: ignore[arg-type]
 
     @staticmethod
     def in_scene(node: Node) -> bool:
@@ -347,7 +264,7 @@ class Scene:
         nodes = [encode_numbers(n.describe()) for root in self.roots() for n in root.walk()]
         return {"op": "snapshot", "scene": self.name, "seq": self.seq, "time": self.time,
                 "camera": {k: list(v) for k, v in self.camera.items()}, "nodes": nodes,
-                "contacts": self.contacts.wire()}
+                "contacts": self.bodies.contacts.wire()}
 
     # --- scene calls (the manual's Scene API) --------------------------------------------
 

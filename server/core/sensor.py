@@ -48,7 +48,7 @@ class Sensor(Part):
 
     def reading(self) -> Reading:
         """All readings at once, for the scene as it is now."""
-        return self.scene.read_sensors([self])[self.id]
+        return self.scene.bodies.read([self])[self.id]
 
     def sense_distance(self) -> float:
         """Manual ``senseDistance()``: to the first body along +Y, past 0.05; or Infinity."""
@@ -64,7 +64,7 @@ class Sensor(Part):
 
     def sense_objects(self) -> list[str]:
         """Manual ``senseObjects()``: ids of what the sensor's part touches ("ground" too)."""
-        return self.scene.touching(self.host())
+        return self.scene.bodies.touching(self.host())
 
     def sense_collision(self) -> bool:
         """Manual ``senseCollision()``: whether the sensor's part touches anything."""

@@ -1,8 +1,10 @@
 """Contacts: the tracker's bounded measuring, and the book's begin and end diffs."""
 
+import random
+
 import pytest
 
-from server.core.contacts import ContactBook, ContactTracker, Overlaps
+from server.core.contacts import ContactBook, ContactTracker, Overlaps, pair
 from server.core.physics import GROUND, PhysicsWorld
 
 
@@ -38,7 +40,7 @@ def place(world, tracker, key, position, geometry=CUBE):
         world.move(key, (position, IDENTITY))
     else:
         world.add(key, geometry, (position, IDENTITY))
-    tracker.placed(key)
+    tracker.placed([key])
 
 
 def test_tracker_measures_moved_bodies_and_the_ground(world):
@@ -84,3 +86,22 @@ def test_pairs_beyond_the_cap_are_counted_not_kept(world):
         place(world, tracker, f"b{k}", (0, 5, 0))
     tracker.update()
     assert len(tracker.overlaps().pairs) == 10 and tracker.unrecorded == 5
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_every_touching_pair_is_found_whatever_the_boxes_sizes(world, seed):
+    """The tracker only measures pairs whose boxes overlap (sweep and prune): it must
+    still find exactly the pairs that a test of every pair finds, a long slab included."""
+    rng = random.Random(seed)
+    tracker = ContactTracker(world, tests_per_update=100_000, max_pairs=100_000)
+    keys = [f"b{i}" for i in range(60)]
+    for key in keys:
+        size = [rng.uniform(0.1, 2) for _ in range(3)]
+        place(world, tracker, key, [rng.uniform(-3, 3) for _ in range(3)],
+              {"kind": "box", "size": size})
+    place(world, tracker, "slab", (0, 1, 0), {"kind": "box", "size": [20, 0.1, 0.3]})
+    tracker.update()
+    everything = [*keys, "slab", GROUND]
+    expected = {pair(a, b) for i, a in enumerate(everything) for b in everything[i + 1:]
+                if a != GROUND and world.touching(a, b)}
+    assert tracker.overlaps().pairs == expected and len(expected) > 30

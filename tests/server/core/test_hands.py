@@ -70,7 +70,7 @@ def test_open_hand_fingertips_are_above_the_palm(scene):
 def test_a_hand_at_rest_touches_nothing(scene):
     hand = EdgedHand(scene, "h", True)
     hand.set_position((0, 1, 0))
-    assert scene.overlaps().pairs == frozenset()
+    assert scene.bodies.overlaps().pairs == frozenset()
 
 
 def test_a_finger_flexed_into_its_palm_touches_it_and_stops_on_unflexing(scene):
@@ -79,8 +79,8 @@ def test_a_finger_flexed_into_its_palm_touches_it_and_stops_on_unflexing(scene):
     palm, index_base = hand.get_parts()[0], hand.get_parts()[10]
     assert (palm.type_name, index_base.type_name) == ("EdgedPalm", "EdgedFinger")
     hand.flex_finger(1, 1.2)
-    assert scene.overlaps().pairs == {(palm.id, index_base.id)}
+    assert scene.bodies.overlaps().pairs == {(palm.id, index_base.id)}
     hand.flex_finger(1, 0)  # straight again: Bullet's cached contact points must not linger
-    assert scene.overlaps().pairs == frozenset()
+    assert scene.bodies.overlaps().pairs == frozenset()
     hand.flex_finger(0, 1.5)
-    assert scene.touching(palm) == [hand.get_parts()[3].id]  # the thumb's base
+    assert scene.bodies.touching(palm) == [hand.get_parts()[3].id]  # the thumb's base

@@ -72,4 +72,4 @@ def test_motor_y_slot_sits_on_top_of_a_custom_height(scene):
 def test_motors_are_not_physical(scene):
     MotorZ(scene, "m")
     scene.tick(0.01)
-    assert len(scene.physics) == 0
+    assert len(scene.bodies.physics) == 0

@@ -64,13 +64,13 @@ def test_angles_by_index(scene):
 def test_set_position_without_arguments_takes_robot_out_of_the_scene(scene):
     robot, _ = chain(scene)
     scene.tick(0.01)
-    assert set(scene.physics._bodies) == {"r.f1", "r.f2"}
+    assert set(scene.bodies.physics._bodies) == {"r.f1", "r.f2"}
     robot.set_position()
     scene.tick(0.01)
-    assert len(scene.physics) == 0 and "r" in scene.nodes
+    assert len(scene.bodies.physics) == 0 and "r" in scene.nodes
     robot.set_position((0, 1, 0))
     scene.tick(0.01)
-    assert len(scene.physics) == 2 and robot.get_position() == (0, 1, 0)
+    assert len(scene.bodies.physics) == 2 and robot.get_position() == (0, 1, 0)
 
 
 def test_set_rotation_turns_the_whole_robot(scene):

@@ -93,7 +93,7 @@ def test_mesh_envelopes_are_a_few_dozen_hull_points_and_mirror_with_the_part(sce
 def _touching_within(scene, hand):
     """Pairs of the hand's own parts that touch (sorted ids)."""
     parts = {p.id for p in hand.get_parts() if p.physical}
-    return {tuple(sorted((a, b))) for a in parts for b in scene.touching(scene.get(a)) if b in parts}
+    return {tuple(sorted((a, b))) for a in parts for b in scene.bodies.touching(scene.get(a)) if b in parts}
 
 
 @pytest.mark.parametrize("kind", [RoundHand, AnthroHand])
@@ -125,7 +125,7 @@ def test_finger_segments_never_touch_their_neighbours_whatever_the_joint_angle(s
         assert type(below) is type(above) is RoundFinger
         for step in range(11):
             motor.set_angle(motor.min + (motor.max - motor.min) * step / 10)
-            assert above.id not in scene.touching(below), (motor.id, motor.get_angle())
+            assert above.id not in scene.bodies.touching(below), (motor.id, motor.get_angle())
 
 
 @pytest.mark.parametrize("kind, fingers", [(RoundHand, 5), (AnthroHand, 4)])
@@ -134,7 +134,7 @@ def test_a_fist_touches_its_palm_left_and_right_alike(scene, kind, fingers):
     for x, hand in zip((-3, 3), hands):
         hand.set_position((x, 2, 0))  # apart, and off the ground
         hand.flex_fingers(math.pi / 2)
-    touched = [sorted(i.split("/")[1] for i in scene.touching(hand.get_parts()[0]))
+    touched = [sorted(i.split("/")[1] for i in scene.bodies.touching(hand.get_parts()[0]))
                for hand in hands]
     assert touched[0] == touched[1]  # the right hand is the left one's mirror image
     assert len(touched[0]) >= fingers  # every folded finger (not its thumb, for anthro)
@@ -150,7 +150,7 @@ def test_two_hands_pressed_palm_to_palm_touch(scene, kind):
     for half_gap, touching in ((0.16, False), (0.1505, False), (0.1495, True), (0.1, True)):
         left.set_position((0, 1, half_gap))   # palms are 0.3 thick: faces at ±0.15
         right.set_position((0, 1, -half_gap))
-        assert (palms[1].id in scene.touching(palms[0])) is touching, half_gap
+        assert (palms[1].id in scene.bodies.touching(palms[0])) is touching, half_gap
 
 
 @pytest.mark.parametrize("length", [0.001, 0.01, 0.05, 3.0, 1000.0])

@@ -1,4 +1,4 @@
-"""The scene: ids, transactions, the change feed, ticks and the collision world."""
+"""The scene: ids, transactions, the change feed, ticks, contacts and readings in frames."""
 
 import math
 
@@ -88,33 +88,6 @@ def test_snapshot_lists_parents_before_children_and_encodes_infinity(scene):
     assert (motor["min"], motor["max"]) == ("-Infinity", "Infinity")
 
 
-def test_collision_bodies_follow_the_motors(scene):
-    robot = Robot(scene, "r")
-    finger = EdgedFinger(scene, "f", 1)
-    motor = MotorZ(scene, "m")
-    robot.attach_chain(motor, finger)
-    robot.set_position((0, 1, 0))
-    motor.set_angle(math.pi / 2)
-    scene.tick(0.1)
-    position, orientation = scene.physics.pose("f")
-    assert position == pytest.approx((0, 1, 0), abs=1e-6)
-    assert orientation == pytest.approx(math3d.axis_angle("z", math.pi / 2), abs=1e-6)
-
-
-def test_a_ray_hits_the_finger_where_the_tree_puts_it(scene):
-    robot = Robot(scene, "r")
-    motor = MotorZ(scene, "m")
-    robot.attach_chain(motor, EdgedFinger(scene, "f", 1, 0.3, 0.3))
-    robot.set_position((0, 1, 0))
-    motor.set_angle(math.pi / 2)  # the finger now lies along -X at height 1
-    scene.tick(0.1)
-    # straight down at x = -0.5: the finger's upper face is 0.15 above its axis
-    [(key, distance)] = scene.rays.first_hits((-0.5, 3, 0), (0, -1, 0), [0], 10)
-    assert key == "f" and distance == pytest.approx(3 - 1.15, abs=1e-12)
-    [(key, distance)] = scene.rays.first_hits((0.5, 3, 0), (0, -1, 0), [0], 10)
-    assert key == "ground" and distance == 3
-
-
 def test_camera_changes_are_reported(scene):
     scene.set_camera_position((1, 2, 3))
     [frame] = scene.tick(0.1)
@@ -193,4 +166,4 @@ def test_parts_without_volume_are_still_met_by_rays_and_contacts(scene, make):
     scene.tick(0.1)
     assert scene.failures == 0
     assert distance <= 0.5 + 1e-6  # the part (or, for a point, the floor at its origin)
-    assert "floor" in scene.touching(part)
+    assert "floor" in scene.bodies.touching(part)

@@ -93,18 +93,18 @@ def test_shapes_touch_parts_and_the_ground(scene):
     ball = Ball(scene, "ball", 0.5)
     ball.set_position((0, 2, 0))
     shape(scene, BOX, at=(0, 1.5, 0))  # top at 1.75: inside the ball
-    assert scene.touching(ball) == ["c1.1"]
+    assert scene.bodies.touching(ball) == ["c1.1"]
     low = shape(scene, {"kind": "sphere", "radius": 0.2}, at=(5, 0.1, 0), name="c1.2")
-    assert scene.touching(low) == ["ground"]
+    assert scene.bodies.touching(low) == ["ground"]
 
 
 def test_a_triangle_mesh_touches_by_its_hull(scene):
     shape(scene, SQUARE)
     ball = Ball(scene, "ball", 0.2)
     ball.set_position((0.5, 0.7, 0.5))  # 0.1 below the square
-    assert scene.touching(ball) == []
+    assert scene.bodies.touching(ball) == []
     ball.set_position((0.5, 0.9, 0.5))  # through it
-    assert scene.touching(ball) == ["c1.1"]
+    assert scene.bodies.touching(ball) == ["c1.1"]
 
 
 def test_shapes_are_not_among_a_robots_parts(scene):
@@ -136,7 +136,7 @@ def test_a_bad_geometry_is_refused_and_nothing_is_made(scene, geometry, words):
     with pytest.raises(Exception) as refused:
         operations.create("c1.1", "SceneMesh", [geometry])
     assert words in str(refused.value) and "geometry" in str(refused.value)
-    assert "c1.1" not in scene.nodes and len(scene.physics) == 0
+    assert "c1.1" not in scene.nodes and len(scene.bodies.physics) == 0
 
 
 def test_a_geometry_over_the_vertex_limit_is_refused(scene):
@@ -155,10 +155,10 @@ def test_scale_stretches_a_parts_shape_for_rays_and_contacts(scene):
     assert sensor.sense_distance() == pytest.approx(1.5, abs=1e-12)
     box.set_scale((1, 3, 1))  # top at 2.5
     assert sensor.sense_distance() == pytest.approx(0.5, abs=1e-12)
-    assert scene.touching(box) == ["ground"]  # bottom at -0.5
+    assert scene.bodies.touching(box) == ["ground"]  # bottom at -0.5
     box.set_scale((1, 1, 1))
     assert sensor.sense_distance() == pytest.approx(1.5, abs=1e-12)
-    assert scene.touching(box) == []
+    assert scene.bodies.touching(box) == []
 
 
 def test_a_parents_scale_moves_its_children_and_stretches_their_shapes(scene):

@@ -45,7 +45,7 @@ def test_overlapping_boxes_no_longer_crash_and_report_every_contact(scene, sessi
     frames = [m for _ in range(12) for m in scene.tick(1 / 60) if m["op"] == "frame"]
     assert frames[0]["limited"]["contactTests"] > 0  # the tick says it is behind
     assert "limited" not in frames[-1]
-    assert len(scene.contacts.current.pairs) == 160 * 159 // 2 + 160  # boxes and ground
+    assert len(scene.bodies.contacts.current.pairs) == 160 * 159 // 2 + 160  # boxes and ground
 
 
 def test_a_scene_holds_a_bounded_number_of_bodies_and_objects():
