@@ -11,7 +11,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 HOST ?= 127.0.0.1
 PORT ?= 8000
 
-.PHONY: run test bench install clean
+.PHONY: run test bench bench-quick bench-browser install clean
 
 run: install
 	$(BIN)/vp-server --host $(HOST) --port $(PORT)
@@ -19,10 +19,19 @@ run: install
 test: install $(CHROMIUM)
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
+# Every figure of bench/results.json, written with bench/RESULTS.md (a few minutes; run it
+# on a quiet machine). bench-quick runs the same code on tiny scenes (the test suite does).
 bench: install
-	$(BIN)/python bench/tick.py
-	$(BIN)/python bench/sensing.py
+	$(BIN)/python -m bench.run
+
+BENCH_OUT ?= $(or $(TMPDIR),/tmp)/vp-bench-quick
+bench-quick: install
+	$(BIN)/python -m bench.run --quick --out $(BENCH_OUT)
+
+# The browser and flood measures (separate: they take minutes and a browser).
+bench-browser: install $(CHROMIUM)
 	$(BIN)/python bench/viewer_latency.py
+	$(BIN)/python bench/viewer_pictures.py
 	$(BIN)/python bench/flood.py
 
 install: $(PY_STAMP) $(JS_STAMP)

@@ -111,7 +111,7 @@ class PhysicsWorld:
         self._placed[key] = (geometry, pose)
 
     def _shape(self, geometry: dict[str, Any]) -> int:
-        arguments = _shape_arguments(geometry)
+        arguments = shape_arguments(geometry)
         key = tuple((name, tuple(map(tuple, v)) if name == "vertices" else
                      tuple(v) if isinstance(v, list) else v) for name, v in arguments.items())
         shape = self._shapes.get(key)
@@ -192,7 +192,8 @@ class PhysicsWorld:
         return out
 
 
-def _shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:
+def shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:
+    """``createCollisionShape`` arguments for a part geometry (the bench's floor uses them too)."""
     kind = geometry["kind"]
     if kind == "sphere":  # Bullet refuses a sphere of radius 0: a point gets a hair's
         return {"shapeType": pybullet.GEOM_SPHERE, "radius": max(geometry["radius"], HAIR)}

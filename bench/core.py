@@ -1,0 +1,210 @@
+"""In-process measures (no sockets): the core's tick against bare PyBullet, sensing,
+requests, frame size and how many animated hands fit in a 60 Hz tick.
+
+Each scene is built and animated with the protocol operations of :mod:`bench.scenes`
+through a :class:`Session`, as a client's messages would be.
+"""
+
+from __future__ import annotations
+
+import gc
+import json
+import math
+import time
+from typing import Any, Callable
+
+from server.core import figures
+from server.core.geometry import scaled
+from server.core.limits import DEFAULT
+from server.core.messages import encode
+from server.core.node import UNIT_SCALE
+from server.core.scene import Scene
+from server.core.sensor import Sensor
+from server.core.session import Session
+
+from . import scenes
+from .floor import BareWorld
+from .stats import Figure, figure
+
+LIMITS = DEFAULT.with_values(["opsPerSecond=1000000000", "bytesPerSecond=1000000000",
+                              "watchedSensors=100000"])
+PERIOD = 1 / 60
+
+
+class Bench:
+    """A scene built and animated through one session."""
+
+    def __init__(self, ops: list[dict[str, Any]]) -> None:
+        self.scene = Scene("bench", LIMITS)
+        self.session = Session(self.scene, "c1")
+        self.send(ops)
+        self.scene.tick(PERIOD)
+        gc.collect()
+        gc.freeze()  # as the server's scene processes do (server.web.heap)
+
+    def send(self, ops: list[dict[str, Any]]) -> None:
+        """Apply operations as one batch message (the answers must be ok)."""
+        [answer] = self.session.receive(json.dumps({"op": "batch", "id": 1, "ops": ops}))
+        assert answer["op"] == "ok", answer
+
+    def bodies(self) -> list[Any]:
+        """The physical parts that have bodies, in a fixed order."""
+        return [node for node in self.scene.nodes.values() if node.id in self.scene.bodies.physics]
+
+    def close(self) -> None:
+        self.scene.close()
+        gc.unfreeze()
+
+
+def tick_against_floor(name: str, ops: list[dict[str, Any]],
+                       step: Callable[[int], list[dict[str, Any]]], ticks: int) -> dict[str, Any]:
+    """Our tick (with the frame's encoding) and bare PyBullet placing, detecting and reading
+    contacts for the same shapes at the same poses; applying each step's operations apart."""
+    bench = Bench(ops)
+    bodies = bench.bodies()
+    apply_ms, tick_ms, poses = [], [], []
+    for n in range(ticks):
+        started = time.perf_counter()
+        bench.send(step(n))
+        applied = time.perf_counter()
+        encode(bench.scene.tick(PERIOD)[-1])
+        apply_ms.append((applied - started) * 1000)
+        tick_ms.append((time.perf_counter() - applied) * 1000)
+        poses.append([body.world_pose() for body in bodies])
+    geometries = [_collision_geometry(body) for body in bodies]
+    bench.close()
+    floor_ms = _floor(geometries, poses)
+    return {"scene": name, "bodies": len(bodies), "apply_ms": figure(apply_ms), "tick_ms": figure(tick_ms),
+            "floor_ms": figure(floor_ms),
+            "ratio": figure(tick_ms).median / figure(floor_ms).median}
+
+
+def _collision_geometry(node: Any) -> dict[str, Any]:
+    scale = node.world_scale()
+    return node.geometry() if scale == UNIT_SCALE else scaled(node.geometry(), scale)
+
+
+def _floor(geometries: list[dict[str, Any]], poses: list[list[Any]]) -> list[float]:
+    world = BareWorld(geometries, poses[0])
+    times = []
+    for tick_poses in poses + poses:  # the first round warms up
+        started = time.perf_counter()
+        world.step(tick_poses)
+        times.append((time.perf_counter() - started) * 1000)
+    world.close()
+    return times[len(poses):]
+
+
+def sensing(hands: int, sensors: int, ticks: int) -> dict[str, Any]:
+    """Watched sensors on the fingertips of hands-``hands`` (every finger moving): the
+    sensing step of each tick, and the same rays cast by bare PyBullet in one batch."""
+    bench = Bench(scenes.hands("c1", hands))
+    scene = bench.scene
+    tips = [n for n in scene.nodes.values() if n.type_name == "EdgedTip"]
+    for k in range(sensors):
+        sensor = Sensor(scene, f"c1.s{k}")
+        sensor.attach_to_slot(tips[k % len(tips)])
+        sensor.set_rotation(0.1 * (k // len(tips)), 0, 0)
+        sensor.watch(client="c1")
+    scene.tick(PERIOD)
+    world = BareWorld([_collision_geometry(b) for b in bench.bodies()],
+                      [b.world_pose() for b in bench.bodies()])
+    ours, floor, sizes = [], [], []
+    for n in range(ticks):
+        bench.send(scenes.hand_step("c1", hands, n))
+        scene.bodies.overlaps()  # contacts first: sensing is measured alone
+        started = time.perf_counter()
+        readings = scene.watched_readings()
+        ours.append((time.perf_counter() - started) * 1000)
+        floor.append(_bare_rays(world, scene, bench))
+        sizes.append(len(encode(scene.tick(PERIOD)[-1])))
+        assert len(readings) == sensors
+    world.close()
+    bench.close()
+    return {"sensors": sensors, "sensing_ms": figure(ours), "floor_ms": figure(floor),
+            "ratio": figure(ours).median / max(figure(floor).median, 1e-9),
+            "frame_bytes": figure(sizes)}
+
+
+def _bare_rays(world: BareWorld, scene: Scene, bench: Bench) -> float:
+    world.step([b.world_pose() for b in bench.bodies()])
+    origins, ends = [], []
+    for node_id in scene.watches.ids():
+        (x, y, z), (qx, qy, qz, qw) = scene.nodes[node_id].world_pose()
+        up = (2 * (qx * qy - qw * qz), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz + qw * qx))
+        origins.append((x, y, z))
+        ends.append(tuple(p + figures.SENSOR_RANGE * d for p, d in zip((x, y, z), up)))
+    started = time.perf_counter()
+    world.rays(origins, ends)
+    return (time.perf_counter() - started) * 1000
+
+
+def requests(count: int) -> dict[str, Any]:
+    """``setAngles`` of 20 angles through a session, against decoding and encoding the same
+    texts with the standard library alone (what any JSON server does at least)."""
+    bench = Bench([{"op": "create", "object": "c1.h", "type": "EdgedHand"}])
+    texts = [json.dumps({"op": "call", "id": i, "object": "c1.h", "method": "setAngles",
+                         "args": [math.sin(i + k) for k in range(20)]}) for i in range(count)]
+    receive, now = bench.session.receive_encoded, time.monotonic
+    started = time.perf_counter()
+    for text in texts:
+        receive(text, now())
+    ours = count / (time.perf_counter() - started)
+    started = time.perf_counter()
+    for text in texts:
+        json.dumps(json.loads(text))
+    bare = count / (time.perf_counter() - started)
+    bench.close()
+    return {"requests": count, "per_second": ours, "json_only_per_second": bare,
+            "ratio": ours / bare}
+
+
+def frame_bytes(ticks: int) -> dict[str, Any]:
+    """Frames of two hands (x = ±2, as the manual's examples place them) whose every motor
+    moves every tick."""
+    bench = Bench([{"op": "create", "object": "c1.l", "type": "EdgedHand", "args": [True]},
+                   {"op": "call", "object": "c1.l", "method": "setPosition", "args": [-2, 0, 0]},
+                   {"op": "create", "object": "c1.r", "type": "EdgedHand", "args": [False]},
+                   {"op": "call", "object": "c1.r", "method": "setPosition", "args": [2, 0, 0]}])
+    sizes = []
+    for n in range(ticks):
+        bench.send([{"op": "call", "object": hand, "method": "setAngles",
+                     "args": [-0.2 + 0.15 * math.sin(n / 10 + k) for k in range(20)]}
+                    for hand in ("c1.l", "c1.r")])
+        frame = bench.scene.tick(PERIOD)[-1]
+        assert len(frame["angles"]) == 40  # every motor within its limits, every tick
+        sizes.append(len(encode(frame).encode()))
+    bench.close()
+    return {"frame_bytes": figure(sizes)}
+
+
+def max_hands(counts: list[int], ticks: int) -> dict[str, Any]:
+    """For each count of animated hands, applying a step and ticking; the largest count
+    whose median fits in one 60 Hz period (16.7 ms)."""
+    rows, fits = [], 0
+    for count in counts:
+        bench = Bench(scenes.hands("c1", count))
+        times = []
+        for n in range(ticks):
+            started = time.perf_counter()
+            bench.send(scenes.hand_step("c1", count, n))
+            encode(bench.scene.tick(PERIOD)[-1])
+            times.append((time.perf_counter() - started) * 1000)
+        bench.close()
+        step = figure(times)
+        rows.append({"hands": count, "step_ms": step})
+        if step.median > PERIOD * 1000:
+            break
+        fits = count
+    return {"rows": rows, "max_hands": fits}
+
+
+def as_json(value: Any) -> Any:
+    """Figures as plain dictionaries, for results.json."""
+    if isinstance(value, Figure):
+        return value.as_dict()
+    if isinstance(value, dict):
+        return {k: as_json(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [as_json(v) for v in value]
+    return value

@@ -1,0 +1,182 @@
+"""Measures of a running server from outside: its tick while a client drives it, latency
+from one client to another, many viewers, and two busy scenes side by side.
+
+Every client runs in a process of its own at a lower priority (:mod:`bench.drive`,
+:mod:`bench.viewers`): on this 2-core machine they share the cores with the server, as
+they would not on the clients' machines.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+import threading
+import time
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any, Iterator
+
+from websockets.exceptions import ConnectionClosed
+from websockets.sync.client import connect
+
+from tests.conftest import RunningServer, start_server, stop_server
+
+from .drive import build
+from .stats import figure
+
+ROOT = Path(__file__).resolve().parents[1]
+LIMITS = ("--limit", "opsPerSecond=100000000", "--limit", "bytesPerSecond=1000000000",
+          "--limit", "connectionsPerAddress=2000", "--limit", "connections=2000")
+NICE = ("nice", "-n", "10")
+
+
+@contextmanager
+def server() -> Iterator[RunningServer]:
+    """A server without the demo scene, rate limits lifted (the bench sends fast on purpose)."""
+    running = start_server("--no-demo", *LIMITS)
+    try:
+        yield running
+    finally:
+        stop_server(running)
+
+
+@contextmanager
+def driving(running: RunningServer, scene: str, kind: str, count: int,
+            seconds: float) -> Iterator[subprocess.Popen[str]]:
+    """A driver animating a scene (at most ``seconds``); entered once the scene is built,
+    stopped on leaving."""
+    process = subprocess.Popen([*NICE, sys.executable, "-m", "bench.drive", running.ws, scene,
+                                kind, str(count), str(seconds)], cwd=ROOT,
+                               stdout=subprocess.PIPE, text=True)
+    try:
+        assert process.stdout is not None and json.loads(process.stdout.readline())["ready"]
+        yield process
+    finally:
+        process.terminate()
+        process.wait(timeout=30)
+
+
+def scene_metrics(running: RunningServer, scene: str) -> dict[str, Any]:
+    """The scene's figures from /api/metrics (its last 10 seconds)."""
+    return running.get("/api/metrics")["scenes"][scene]
+
+
+def tick_outside(running: RunningServer, count: int, seconds: float) -> dict[str, Any]:
+    """hands-``count`` driven at 60 Hz: the server's own tick figures and its tick rate."""
+    scene = f"hands{count}"
+    with driving(running, scene, "hands", count, seconds):
+        time.sleep(seconds * 0.9)
+        metrics = scene_metrics(running, scene)
+    return {"hands": count, "tick_ms_p50": metrics["tickMsP50"], "tick_ms_p95": metrics["tickMsP95"],
+            "ticks_per_second": metrics["ticksPerSecond"], "cpu_percent": metrics["cpuPercent"]}
+
+
+def latency(running: RunningServer, rounds: int) -> dict[str, Any]:
+    """From one client's setAngle to another client's frame carrying it, ``rounds`` times."""
+    scene = "latency"
+    with connect(f"{running.ws}/ws?scene={scene}", max_size=None) as setter:
+        me = json.loads(setter.recv(timeout=30))["client"]
+        motor = f"{me}.m"
+        build(setter, [{"op": "create", "object": f"{me}.r", "type": "Robot"},
+                       {"op": "create", "object": motor, "type": "MotorZ"},
+                       {"op": "create", "object": f"{me}.f", "type": "EdgedFinger"},
+                       {"op": "call", "object": f"{me}.r", "method": "attachChain",
+                        "args": [{"ref": motor}, {"ref": f"{me}.f"}]}])
+        threading.Thread(target=_drain, args=(setter,), daemon=True).start()
+        with connect(f"{running.ws}/ws?scene={scene}&role=viewer", max_size=None) as watcher:
+            times = [_one_change(setter, watcher, motor, k) for k in range(rounds)]
+    period_ms = 1000 / 60
+    result = figure(times)
+    p99 = sorted(times)[max(0, math.ceil(0.99 * len(times)) - 1)]
+    return {"rounds": rounds, "ms": result, "p99_ms": p99, "p99_in_periods": p99 / period_ms}
+
+
+def _one_change(setter: Any, watcher: Any, motor: str, k: int) -> float:
+    angle = 0.001 * (k % 1000) + 0.0005
+    sent = time.monotonic()
+    setter.send(json.dumps({"op": "call", "object": motor, "method": "setAngle", "args": [angle]}))
+    while time.monotonic() < sent + 10:
+        message = json.loads(watcher.recv(timeout=10))
+        if message["op"] == "frame" and message.get("angles", {}).get(motor) == angle:
+            return (time.monotonic() - sent) * 1000
+    raise TimeoutError(f"no frame carried angle {angle} of {motor} within 10 s")
+
+
+def _drain(ws: Any) -> None:
+    try:
+        while True:
+            ws.recv()
+    except ConnectionClosed:
+        pass
+
+
+def viewers(running: RunningServer, counts: list[int], seconds: float) -> list[dict[str, Any]]:
+    """Viewer connections on hands-10 while it is driven at 60 Hz: per count, frames per
+    second (lowest, median), late frames, server CPU; then each count again with one more
+    connection that never reads."""
+    scene = "viewed"
+    runs = [(count, stall) for count in counts for stall in (False, True)]
+    rows = []
+    with driving(running, scene, "hands", 10, 3600):
+        for count, stall in runs:
+            rows.append(_viewer_run(running, scene, count, seconds, stall))
+    return rows
+
+
+def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
+                stall: bool) -> dict[str, Any]:
+    command = [*NICE, sys.executable, "-m", "bench.viewers", running.ws, scene, str(count),
+               str(seconds), *(["--stalled"] if stall else [])]
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, text=True)
+    cpu_before, started = server_cpu_seconds(running), time.monotonic()
+    out, _ = process.communicate(timeout=seconds + 120)
+    cpu = (server_cpu_seconds(running) - cpu_before) / (time.monotonic() - started)
+    found = json.loads(out)["viewers"]
+    frames = sum(v["frames"] for v in found)
+    fps = [v["fps"] for v in found]
+    return {"viewers": count, "stalled": stall, "fps_min": min(fps),
+            "fps_median": figure(fps).median,
+            "late_pct": 100 * sum(v["late"] for v in found) / max(1, frames),
+            "skipped_pct": 100 * sum(v["skipped"] for v in found) / max(1, frames),
+            "server_cores": cpu}
+
+
+def server_cpu_seconds(running: RunningServer) -> float:
+    """CPU seconds (user + system) of the server and every process under it."""
+    ticks = 0
+    for pid in _tree(running.process.pid):
+        try:
+            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        ticks += int(fields[11]) + int(fields[12])
+    return ticks / 100  # clock ticks (USER_HZ, 100 on Linux)
+
+
+def _tree(root: int) -> list[int]:
+    children: dict[int, list[int]] = {}
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            parent = int(stat.read_text().rsplit(")", 1)[1].split()[1])
+        except (OSError, IndexError, ValueError):
+            continue
+        children.setdefault(parent, []).append(int(stat.parent.name))
+    found, todo = [], [root]
+    while todo:
+        pid = todo.pop()
+        found.append(pid)
+        todo += children.get(pid, [])
+    return found
+
+
+def two_scenes(running: RunningServer, count: int, seconds: float) -> dict[str, Any]:
+    """Two scenes of hands-``count`` driven at once: each one's tick and tick rate."""
+    with driving(running, "busy1", "hands", count, seconds), \
+            driving(running, "busy2", "hands", count, seconds):
+        time.sleep(seconds * 0.9)
+        found = [scene_metrics(running, name) for name in ("busy1", "busy2")]
+    return {"hands": count, "ticks_per_second": [m["ticksPerSecond"] for m in found],
+            "tick_ms_p50": [m["tickMsP50"] for m in found],
+            "tick_ms_p95": [m["tickMsP95"] for m in found]}

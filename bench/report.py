@@ -1,0 +1,137 @@
+"""RESULTS.md's generated section: the machine, the run, every figure with its reference
+and its target (one table of targets, here)."""
+
+from __future__ import annotations
+
+import os
+import platform
+import re
+import time
+from importlib.metadata import version
+from pathlib import Path
+from typing import Any, Callable
+
+BEGIN = "<!-- bench:begin: written by `make bench` (bench/run.py); notes go below the end mark -->"
+END = "<!-- bench:end -->"
+PERIOD_MS = 1000 / 60
+AT_60_HZ = 59.0  # ticks or frames per second that count as keeping 60 Hz (rounding)
+
+# headline name → (target as written, test)
+TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
+    "tick_ratio_hands10": ("≤ 1.2× the floor", lambda v: v <= 1.2),
+    "tick_ratio_hands50": ("≤ 1.2× the floor", lambda v: v <= 1.2),
+    "sensors100_ms": ("≤ 0.5 ms", lambda v: v <= 0.5),
+    "requests_per_s": ("≥ 20 000 /s", lambda v: v >= 20_000),
+    "latency_p99_ms": ("p99 ≤ 2 tick periods (33.3 ms)", lambda v: v <= 2 * PERIOD_MS),
+    "viewers200_fps_min": ("60 Hz", lambda v: v >= AT_60_HZ),
+    "viewers200_late_pct": ("≤ 1 %", lambda v: v <= 1),
+    "frame_bytes_two_hands": ("≤ 1 KB (1024 B)", lambda v: v <= 1024),
+    "max_hands_60hz": ("≥ 100", lambda v: v >= 100),
+    "two_scenes_fps_min": ("both at 60 Hz", lambda v: v >= AT_60_HZ),
+}
+
+
+def write(path: Path, body: list[str]) -> None:
+    """Put the generated section (``body``'s lines between the marks) at the top of
+    ``path``, in place of the last one; whatever follows its end mark stays."""
+    section = "\n".join([BEGIN, *body, END])
+    old = path.read_text() if path.exists() else "# Benchmark results\n\n"
+    if BEGIN in old and END in old:
+        new = old[:old.index(BEGIN)] + section + old[old.index(END) + len(END):]
+    else:
+        title, _, rest = old.partition("\n")
+        new = f"{title}\n\n{section}\n{rest}"
+    path.write_text(new)
+
+
+def machine() -> str:
+    """CPU model, cores, memory, Python and PyBullet versions."""
+    cpu = re.search(r"model name\s*:\s*(.*)", Path("/proc/cpuinfo").read_text())
+    memory = re.search(r"MemTotal:\s*(\d+)", Path("/proc/meminfo").read_text())
+    gib = int(memory.group(1)) / 2**20 if memory else 0
+    return (f"{cpu.group(1) if cpu else platform.processor()}, {os.cpu_count()} cores, "
+            f"{gib:.0f} GiB; Python {platform.python_version()}, PyBullet "
+            f"{version('pybullet')}, numpy {version('numpy')}")
+
+
+def lines(results: dict[str, Any], found: dict[str, Any]) -> list[str]:
+    """The section's lines: machine, run, the headline figures, every measure, viewers."""
+    run = "quick run (tiny scenes: the figures mean nothing)" if results["quick"] else "full run"
+    out = ["", f"## Latest run: {time.strftime('%Y-%m-%d %H:%M %Z')}", "",
+           f"Machine: {machine()}.  ",
+           f"Commit `{results['commit']}`, {run}, {results['seconds']} s. Everything ran on "
+           "this one machine; clients (drivers, viewers) in processes of their own at nice 10.",
+           "", *headline_table(results), "", *figure_table(found), "",
+           *viewer_table(found["viewers"]), ""]
+    return out
+
+
+def headline_table(results: dict[str, Any]) -> list[str]:
+    rows = ["| results.json | value | target | met |", "|---|---|---|---|"]
+    for name, (target, test) in TARGETS.items():
+        value = results[name]
+        rows.append(f"| `{name}` | {_number(value)} | {target} | {'yes' if test(value) else '**no**'} |")
+    return rows
+
+
+def figure_table(found: dict[str, Any]) -> list[str]:
+    rows = ["| measure | median | p95 | reference, same run (median) | ours / reference |",
+            "|---|---|---|---|---|"]
+    for key in ("hands10", "hands50", "arms11"):
+        m, label = found[key], found[key]["scene"]
+        rows.append(f"| tick of {label} ({m['bodies']} bodies), in-process | {_ms(m['tick_ms'].median)} "
+                    f"| {_ms(m['tick_ms'].p95)} | bare PyBullet: {_ms(m['floor_ms'].median)} "
+                    f"(p95 {_ms(m['floor_ms'].p95)}) | {m['ratio']:.2f}× |")
+        rows.append(f"| applying one step of {label} (not in the tick) | {_ms(m['apply_ms'].median)} "
+                    f"| {_ms(m['apply_ms'].p95)} | | |")
+    for row, key in zip(found["outside"], ("hands10", "hands50")):
+        floor = found[key]["floor_ms"].median
+        rows.append(f"| tick of hands-{row['hands']} from outside, driven at 60 Hz (/api/metrics; "
+                    f"{row['ticks_per_second']:.1f} ticks/s, scene process {row['cpu_percent']:.0f} % CPU) "
+                    f"| {_ms(row['tick_ms_p50'])} | {_ms(row['tick_ms_p95'])} | bare PyBullet: "
+                    f"{_ms(floor)} | {row['tick_ms_p50'] / floor:.2f}× |")
+    for m in found["sensors"]:
+        rows.append(f"| sensing step, {m['sensors']} watched sensors (frame {m['frame_bytes'].median:.0f} B) "
+                    f"| {_ms(m['sensing_ms'].median)} | {_ms(m['sensing_ms'].p95)} | one `rayTestBatch`: "
+                    f"{_ms(m['floor_ms'].median)} | {m['ratio']:.2f}× |")
+    r = found["requests"]
+    rows.append(f"| `setAngles` (20 angles) through a session | {r['per_second']:,.0f} /s | | "
+                f"`json.loads` + `json.dumps` of the same texts: {r['json_only_per_second']:,.0f} /s "
+                f"| {r['ratio']:.2f}× |")
+    lat = found["latency"]
+    rows.append(f"| `setAngle` → another client's frame ({lat['rounds']} changes; p99 "
+                f"{_ms(lat['p99_ms'])}) | {_ms(lat['ms'].median)} | {_ms(lat['ms'].p95)} | one tick "
+                f"period: {_ms(PERIOD_MS)} | p99 {lat['p99_in_periods']:.2f} periods |")
+    f = found["frames"]["frame_bytes"]
+    rows.append(f"| frame of two hands moving all 40 motors | {f.median:.0f} B | {f.p95:.0f} B | 1 KB | "
+                f"{f.median / 1024:.2f}× |")
+    for row in found["max_hands"]["rows"]:
+        rows.append(f"| applying a step and ticking hands-{row['hands']} | {_ms(row['step_ms'].median)} "
+                    f"| {_ms(row['step_ms'].p95)} | one tick period: {_ms(PERIOD_MS)} | "
+                    f"{row['step_ms'].median / PERIOD_MS:.2f}× |")
+    two = found["two_scenes"]
+    rows.append(f"| two scenes of hands-{two['hands']} driven at once: ticks/s | "
+                f"{' and '.join(f'{t:.1f}' for t in two['ticks_per_second'])} | tick p95 "
+                f"{' and '.join(_ms(t) for t in two['tick_ms_p95'])} | 60 Hz | |")
+    return rows
+
+
+def viewer_table(rows: list[dict[str, Any]]) -> list[str]:
+    out = ["Viewers on hands-10 driven at 60 Hz (light readers in one process; \"late\": more "
+           "than two tick periods after the previous frame; \"skipped\": frames it never got, "
+           "as a slow reader gets only the latest):", "",
+           "| viewers | one more that never reads | frames/s lowest / median | late | skipped "
+           "| server CPU (cores) |", "|---|---|---|---|---|---|"]
+    for row in rows:
+        out.append(f"| {row['viewers']} | {'yes' if row['stalled'] else 'no'} | "
+                   f"{row['fps_min']:.1f} / {row['fps_median']:.1f} | {row['late_pct']:.2f} % | "
+                   f"{row['skipped_pct']:.2f} % | {row['server_cores']:.2f} |")
+    return out
+
+
+def _ms(value: float) -> str:
+    return f"{value:.2f} ms" if value < 100 else f"{value:.0f} ms"
+
+
+def _number(value: float) -> str:
+    return f"{value:,.2f}" if isinstance(value, float) else f"{value:,}"

@@ -1,0 +1,140 @@
+"""The benchmark runner: ``make bench`` (every figure, a few minutes) and ``make bench-quick``
+(the same code on tiny scenes, under a minute, in the test suite; no figure is judged).
+
+Writes ``results.json`` (the headline figures by name, then every measure in full) and
+``RESULTS.md``'s generated section (between its markers; the notes below it stay).
+``python -m bench.run [--quick] [--out DIR]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+from . import core, live, scenes
+from .report import lines, write
+
+HERE = Path(__file__).resolve().parent
+
+
+@dataclass(frozen=True)
+class Sizes:
+    """How much of each measure a run does."""
+
+    ticks: int
+    hands_large: int
+    sensor_counts: tuple[int, ...]
+    sensing_ticks: int
+    requests: int
+    frames: int
+    hand_counts: tuple[int, ...]
+    hand_ticks: int
+    outside_seconds: float
+    latency_rounds: int
+    viewer_counts: tuple[int, ...]
+    viewer_seconds: float
+    busy_hands: int
+
+
+FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
+             requests=20_000, frames=300, hand_counts=(10, 20, 30, 40, 50, 60, 80, 100),
+             hand_ticks=120, outside_seconds=12, latency_rounds=2000,
+             viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20)
+QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
+              frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
+              latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2)
+
+
+def measure(sizes: Sizes) -> dict[str, Any]:
+    """Every measure, in-process first (quiet machine), then through a server."""
+    small, large = (10, sizes.hands_large) if sizes is FULL else (2, sizes.hands_large)
+    found: dict[str, Any] = {}
+    steps = {
+        "hands10": lambda: core.tick_against_floor(
+            f"hands-{small}", scenes.hands("c1", small), lambda n: scenes.hand_step("c1", small, n), sizes.ticks),
+        "hands50": lambda: core.tick_against_floor(
+            f"hands-{large}", scenes.hands("c1", large), lambda n: scenes.hand_step("c1", large, n), sizes.ticks),
+        "arms11": lambda: core.tick_against_floor(
+            "arms-11", scenes.arms("c1"), lambda n: scenes.arm_step("c1", n), sizes.ticks),
+        "sensors": lambda: [core.sensing(small, count, sizes.sensing_ticks)
+                            for count in sizes.sensor_counts],
+        "requests": lambda: core.requests(sizes.requests),
+        "frames": lambda: core.frame_bytes(sizes.frames),
+        "max_hands": lambda: core.max_hands(list(sizes.hand_counts), sizes.hand_ticks),
+    }
+    for name, step in steps.items():
+        found[name] = _timed(name, step)
+    with live.server() as running:
+        outside = {
+            "outside": lambda: [live.tick_outside(running, count, sizes.outside_seconds)
+                                for count in (small, large)],
+            "latency": lambda: live.latency(running, sizes.latency_rounds),
+            "viewers": lambda: live.viewers(running, list(sizes.viewer_counts),
+                                            sizes.viewer_seconds),
+            "two_scenes": lambda: live.two_scenes(running, sizes.busy_hands,
+                                                  sizes.outside_seconds),
+        }
+        for name, step in outside.items():
+            found[name] = _timed(name, step)
+    return found
+
+
+def _timed(name: str, step: Callable[[], Any]) -> Any:
+    started = time.monotonic()
+    print(f"{name}…", end=" ", file=sys.stderr, flush=True)
+    result = step()
+    print(f"{time.monotonic() - started:.1f} s", file=sys.stderr, flush=True)
+    return result
+
+
+def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
+    """The named figures of results.json."""
+    most = [row for row in found["viewers"]
+            if row["viewers"] == max(r["viewers"] for r in found["viewers"])]
+    return {
+        "tick_ratio_hands10": found["hands10"]["ratio"],
+        "tick_ratio_hands50": found["hands50"]["ratio"],
+        "sensors100_ms": found["sensors"][0]["sensing_ms"].median,
+        "requests_per_s": found["requests"]["per_second"],
+        "latency_p99_ms": found["latency"]["p99_ms"],
+        "viewers200_fps_min": min(row["fps_min"] for row in most),
+        "viewers200_late_pct": max(row["late_pct"] for row in most),
+        "frame_bytes_two_hands": found["frames"]["frame_bytes"].median,
+        "max_hands_60hz": found["max_hands"]["max_hands"],
+        "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),
+        "commit": commit,
+    }
+
+
+def commit() -> str:
+    """The commit measured (with ``+changes`` when the work tree differs from it)."""
+    head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=HERE, capture_output=True,
+                          text=True, check=True).stdout.strip()
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=HERE,
+                           capture_output=True, text=True, check=True).stdout.strip()
+    return head + ("+changes" if dirty else "")
+
+
+def main(argv: list[str]) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="tiny scenes: checks the code only")
+    parser.add_argument("--out", type=Path, default=HERE, help="where to write the results")
+    options = parser.parse_args(argv)
+    started = time.monotonic()
+    found = measure(QUICK if options.quick else FULL)
+    results = {**headline(found, commit()), "quick": options.quick,
+               "seconds": round(time.monotonic() - started, 1), "figures": core.as_json(found)}
+    options.out.mkdir(parents=True, exist_ok=True)
+    (options.out / "results.json").write_text(json.dumps(results, indent=1) + "\n")
+    write(options.out / "RESULTS.md", lines(results, found))
+    print(json.dumps({k: v for k, v in results.items() if k != "figures"}, indent=1))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

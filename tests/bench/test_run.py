@@ -1,0 +1,31 @@
+"""`make bench-quick`: the whole benchmark on tiny scenes, so its code keeps working.
+
+It asserts what the run wrote, never how fast anything was.
+"""
+
+import json
+import math
+import subprocess
+
+from bench.report import BEGIN, END, TARGETS
+from tests.conftest import ROOT
+
+
+def test_bench_quick_writes_every_figure(tmp_path):
+    subprocess.run(["make", "-s", "bench-quick", f"BENCH_OUT={tmp_path}"], cwd=ROOT, check=True,
+                   capture_output=True, timeout=300)
+    results = json.loads((tmp_path / "results.json").read_text())
+    for name in TARGETS:
+        assert isinstance(results[name], (int, float)) and math.isfinite(results[name]), name
+    head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
+                          text=True, check=True).stdout.strip()
+    assert results["commit"].startswith(head) and results["quick"] is True
+    figures = results["figures"]
+    assert figures["hands10"]["bodies"] == 32 and figures["frames"]["frame_bytes"]["count"] == 3
+    assert [(row["viewers"], row["stalled"]) for row in figures["viewers"]] == [(2, False), (2, True)]
+    assert all(row["fps_median"] > 0 for row in figures["viewers"])  # frames reached them
+    assert figures["latency"]["rounds"] == 5
+    markdown = (tmp_path / "RESULTS.md").read_text()
+    assert markdown.count(BEGIN) == 1 and markdown.count(END) == 1
+    for name in TARGETS:
+        assert f"`{name}`" in markdown
