@@ -52,13 +52,19 @@ class Motor(Part):
 
     def set_angle(self, angle: float | None) -> None:
         """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""
+        value = self.within_limits(angle)
+        if value is not None:
+            self.scene.turn([(self, value)])
+
+    def within_limits(self, angle: float | None) -> float | None:
+        """The angle ``setAngle(angle)`` gives this motor (None: it is ignored)."""
         if angle is None or math.isnan(angle):
-            return
+            return None
         value = clamp(angle, self.min, self.max)
         if not math.isfinite(value):
             raise OutOfRange(f"angle {angle} of motor {self.id} is not finite within its "
                              f"limits [{self.min}, {self.max}]", object=self.id)
-        self._assign("angle", value)
+        return value
 
     def set_name(self, name: str) -> Motor:
         """Manual ``setName(name)``; returns the motor for chaining."""

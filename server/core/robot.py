@@ -102,8 +102,8 @@ class Robot(Node):
 
     def set_angles(self, *angles: float | None) -> None:
         """Manual ``setAngles(a0, a1, …)``: None leaves a motor as it is; extras are ignored."""
-        for motor, angle in zip(self.get_motors(), angles):
-            motor.set_angle(angle)
+        self.scene.turn([(motor, value) for motor, angle in zip(self.get_motors(), angles)
+                         if (value := motor.within_limits(angle)) is not None])
 
     @property
     def motors(self) -> list[str]:

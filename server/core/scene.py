@@ -154,6 +154,21 @@ class Scene:
         if field == "visible":
             self.bodies.mark(n.id for n in node.walk())
 
+    def turn(self, turns: list[tuple[Motor, float]]) -> None:
+        """Set motor angles (journaled, reported, moving what hangs on them) in one pass:
+        a robot's ``setAngles`` turns all its motors at once."""
+        turns = [(motor, angle) for motor, angle in turns if motor.angle != angle]
+        if not turns:
+            return
+        before = [(motor, motor.angle) for motor, _ in turns]
+        self.journal.record(lambda: self.turn(before))
+        for motor, angle in turns:
+            motor.angle = angle
+        for changes in self._recorders:
+            changes.angles.update(dict.fromkeys(motor.id for motor, _ in turns))
+        for motor, _ in turns:
+            self._moved(motor)
+
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
         self.tree_version += 1
@@ -169,7 +184,7 @@ class Scene:
         self.node_changed(node, "parent")
 
     def _moved(self, node: Node) -> None:
-        self.bodies.mark(changed.id for changed in node.invalidate() if changed.physical)
+        self.bodies.mark([changed.id for changed in node.invalidate() if changed.physical])
 
     def warn(self, message: str) -> None:
         """Tell whoever made the current request something that did not fail but may surprise."""

@@ -39,6 +39,24 @@ def test_failed_transaction_undoes_everything(scene):
     assert robot.get_motors() == [motor]
 
 
+def test_set_angles_turns_all_motors_at_once_and_undoes_them_together(scene):
+    robot = Robot(scene, "r")
+    motors = [MotorZ(scene, f"m{i}", -1, 1) for i in range(3)]
+    finger = EdgedFinger(scene, "f")
+    robot.attach_chain(*motors, finger)
+    scene.tick(0.1)
+    tip_before = finger.world_pose()
+    with pytest.raises(OutOfRange), scene.journal.transaction():
+        robot.set_angles(0.5, None, 9)  # None keeps one, 9 is clamped to 1
+        assert robot.get_angles() == [0.5, 0.0, 1.0] and finger.world_pose() != tip_before
+        raise OutOfRange("late failure")
+    assert robot.get_angles() == [0.0, 0.0, 0.0] and finger.world_pose() == tip_before
+    robot.set_angles(0.5, 0, 0.25)
+    frame = frame_of(scene.tick(0.1))
+    assert frame["angles"] == {"m0": 0.5, "m2": 0.25}  # m1 did not change
+    assert scene.bodies.physics.pose("f")[0] == pytest.approx(finger.world_pose()[0])
+
+
 def test_tick_reports_added_frame_removed_in_order(scene):
     first = scene.tick(0.5)
     assert first == [{"op": "frame", "seq": 1, "time": 0.5}]
