@@ -102,7 +102,7 @@ def sensing(hands: int, sensors: int, ticks: int) -> dict[str, Any]:
     scene = bench.scene
     tips = [n for n in scene.nodes.values() if n.type_name == "EdgedTip"]
     for k in range(sensors):
-        sensor = Sensor(scene, f"c1.s{k}")
+        sensor = Sensor(scene, f"c1.{1_000_000 + k}")  # numbered: names are limited
         sensor.attach_to_slot(tips[k % len(tips)])
         sensor.set_rotation(0.1 * (k // len(tips)), 0, 0)
         sensor.watch(client="c1")

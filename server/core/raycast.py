@@ -18,11 +18,12 @@ import numpy as np
 
 from .assets import AssetLibrary
 from .math3d import Pose
-from .rayshapes import GROUND_SHAPE, Shape, shape_of
+from .rayshapes import GROUND_SHAPE, Convex, Shape, convex_entries, shape_of
 
 GROUND = "ground"
 _NOTHING, _GROUND = -2, -1  # key indices besides the rows of parts
 _BROAD_CHUNK = 250_000  # ray × part pairs tested at once (bounded memory)
+_SLACK = 1e-9  # relative and absolute: bounding spheres are met a hair generously
 
 Hits = tuple[list[list[str]], np.ndarray]  # keys (rays × limits), distances (rays, limits)
 
@@ -42,6 +43,7 @@ class RayTargets:
         self._centres = np.empty((0, 3))  # of the bounding spheres, in the world
         self._radii = np.empty(0)
         self._moved: dict[str, Pose] = {}  # poses not yet taken into the arrays
+        self._planes = ConvexPlanes()  # the convex shapes' planes, met in one go
 
     def __len__(self) -> int:
         return len(self._keys)
@@ -56,6 +58,7 @@ class RayTargets:
         if index is None:
             index = self._shape_index[shape_key] = len(self._shapes)
             self._shapes.append(shape_of(geometry, self._assets))
+            self._planes.add(index, self._shapes[index])
         self._rows[key] = len(self._keys)
         self._keys.append(key)
         self._shape_of = np.append(self._shape_of, index)
@@ -125,16 +128,23 @@ class RayTargets:
         return [[names[i] for i in row] for row in who.tolist()], best
 
     def _exact(self, origins: np.ndarray, directions: np.ndarray, limits: Sequence[float]):
-        """(rays, rows, entries) for the pairs whose bounding sphere meets, shape by shape."""
+        """(rays, rows, entries) for the pairs whose bounding sphere meets: every convex
+        shape's pairs at once, then the other shapes one by one."""
         rays, rows = self._broad(origins, directions, limits[0])
+        turn = self._rotations[rows]  # local = Rᵀ (world - position)
+        local_o = np.einsum("kji,kj->ki", turn, origins[rays] - self._positions[rows])
+        local_d = np.einsum("kji,kj->ki", turn, directions[rays])
         shapes = self._shape_of[rows]
-        for index in np.unique(shapes):
-            mine = shapes == index
-            r, n = rays[mine], rows[mine]
-            turn = self._rotations[n]  # local = Rᵀ (world - position)
-            local_o = np.einsum("kji,kj->ki", turn, origins[r] - self._positions[n])
-            local_d = np.einsum("kji,kj->ki", turn, directions[r])
-            yield r, n, self._shapes[index].entries(local_o, local_d, limits)
+        convex = self._planes.holds(shapes)
+        if convex.any():
+            normals, offsets = self._planes.of(shapes[convex])
+            yield rays[convex], rows[convex], convex_entries(
+                normals, offsets, local_o[convex], local_d[convex], limits)
+        others = ~convex
+        for index in np.unique(shapes[others]):
+            mine = others & (shapes == index)
+            yield rays[mine], rows[mine], self._shapes[index].entries(local_o[mine],
+                                                                      local_d[mine], limits)
 
     def _broad(self, origins: np.ndarray, directions: np.ndarray,
                low: float) -> tuple[np.ndarray, np.ndarray]:
@@ -145,14 +155,51 @@ class RayTargets:
         rays, rows = [], []
         for start in range(0, len(origins), step):
             o, d = origins[start:start + step], directions[start:start + step]
-            towards = self._centres[None, :, :] - o[:, None, :]
-            along = np.einsum("rnj,rj->rn", towards, d)
-            miss = np.einsum("rnj,rnj->rn", towards, towards) - along ** 2
-            near = (miss <= self._radii ** 2) & (along + self._radii >= low)
+            # with t = c - o: along = t·d, miss² = t·t - along², in products of matrices
+            # (no rays × parts × 3 arrays); a hair of slack keeps rounding on the safe side
+            along = d @ self._centres.T - np.einsum("rj,rj->r", o, d)[:, None]
+            apart = (self._centres ** 2).sum(axis=1) - 2 * (o @ self._centres.T) + \
+                (o ** 2).sum(axis=1)[:, None]
+            reach = self._radii * (1 + _SLACK) + _SLACK
+            near = (apart - along ** 2 <= reach ** 2) & (along + reach >= low)
             r, n = np.nonzero(near)
             rays.append(r + start)
             rows.append(n)
         return np.concatenate(rays), np.concatenate(rows)
+
+
+class ConvexPlanes:
+    """The face planes of every convex shape, padded to one count: slot k of shape index
+    i holds its normals and offsets (rows of zeros with offset 1 pad: no plane)."""
+
+    def __init__(self) -> None:
+        self._slot = np.empty(0, dtype=np.int64)  # per shape index; -1: not convex
+        self._normals = np.zeros((0, 0, 3))
+        self._offsets = np.ones((0, 0))
+
+    def add(self, index: int, shape: Shape) -> None:
+        """Note shape ``index`` (the next one); its planes if it is convex."""
+        if not isinstance(shape, Convex):
+            self._slot = np.append(self._slot, -1)
+            return
+        self._slot = np.append(self._slot, len(self._normals))
+        width = max(self._normals.shape[1], len(shape.offsets))
+        normals = np.zeros((len(self._normals) + 1, width, 3))
+        offsets = np.ones((len(self._normals) + 1, width))
+        normals[:-1, :self._normals.shape[1]] = self._normals
+        offsets[:-1, :self._offsets.shape[1]] = self._offsets
+        normals[-1, :len(shape.offsets)], offsets[-1, :len(shape.offsets)] = \
+            shape.normals, shape.offsets
+        self._normals, self._offsets = normals, offsets
+
+    def holds(self, shapes: np.ndarray) -> np.ndarray:
+        """Which of these shape indices are convex."""
+        return self._slot[shapes] >= 0
+
+    def of(self, shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Normals (k, planes, 3) and offsets (k, planes) of these convex shape indices."""
+        slots = self._slot[shapes]
+        return self._normals[slots], self._offsets[slots]
 
 
 def _improve(best: np.ndarray, who: np.ndarray, rays: np.ndarray, rows: np.ndarray,

@@ -66,15 +66,26 @@ class Convex:
 
     def entries(self, origins: np.ndarray, directions: np.ndarray,
                 limits: Sequence[float]) -> np.ndarray:
-        towards = directions @ self.normals.T         # (rays, planes)
-        gaps = self.offsets - origins @ self.normals.T  # ≥ 0: inside that plane
-        with np.errstate(divide="ignore", invalid="ignore"):
-            at = gaps / towards
-        entering, leaving = towards < -_PARALLEL, towards > _PARALLEL
-        enter = np.where(entering, at, -np.inf).max(axis=1)
-        leave = np.where(leaving, at, np.inf).min(axis=1)
-        beside = (~entering & ~leaving & (gaps < -ON_SURFACE)).any(axis=1)
-        return _from_one_entry(enter, ~beside & (enter <= leave) & (enter >= -ON_SURFACE), limits)
+        rays = len(origins)
+        return convex_entries(np.broadcast_to(self.normals, (rays, *self.normals.shape)),
+                              np.broadcast_to(self.offsets, (rays, len(self.offsets))),
+                              origins, directions, limits)
+
+
+def convex_entries(normals: np.ndarray, offsets: np.ndarray, origins: np.ndarray,
+                   directions: np.ndarray, limits: Sequence[float]) -> np.ndarray:
+    """:meth:`Shape.entries` of many rays, each against convex planes of its own: ray k
+    against n·p ≤ c for the rows of ``normals[k]`` (planes, 3) and ``offsets[k]``. Rows of
+    zeros with a positive offset are no planes (they pad hulls with fewer faces)."""
+    towards = np.einsum("kj,kpj->kp", directions, normals)       # (rays, planes)
+    gaps = offsets - np.einsum("kj,kpj->kp", origins, normals)   # ≥ 0: inside that plane
+    with np.errstate(divide="ignore", invalid="ignore"):
+        at = gaps / towards
+    entering, leaving = towards < -_PARALLEL, towards > _PARALLEL
+    enter = np.where(entering, at, -np.inf).max(axis=1)
+    leave = np.where(leaving, at, np.inf).min(axis=1)
+    beside = (~entering & ~leaving & (gaps < -ON_SURFACE)).any(axis=1)
+    return _from_one_entry(enter, ~beside & (enter <= leave) & (enter >= -ON_SURFACE), limits)
 
 
 class Ground:

@@ -50,6 +50,6 @@ def read_sensors(targets: RayTargets, sensors: Sequence[Sensor],
                            for _, (x, y, z, w) in poses])
     _, hits = targets.cast(origins, directions, (0.0, figures.SENSOR_NEAR), figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / figures.TOUCH_RANGE)  # 0 for inf too
-    return {sensor.id: Reading(float(hits[k, 1]), float(touches[k]), poses[k][0],
-                               tuple(contacts_of(sensor)))
-            for k, sensor in enumerate(sensors)}
+    return {sensor.id: Reading(distance, touch, pose[0], tuple(contacts_of(sensor)))
+            for sensor, distance, touch, pose in zip(sensors, hits[:, 1].tolist(),
+                                                     touches.tolist(), poses)}
