@@ -66,31 +66,30 @@ class Hand(Robot):
     def flex_finger(self, index: int, angle: float | None) -> None:
         """Manual ``flexFinger(index, angle)``: every flexing motor of the finger to -angle."""
         self._check_finger(index)
-        for i in self.flex_indices(index):
-            self._turn(i, angle)
+        self._turn([(i, angle) for i in self.flex_indices(index)])
 
     def flex_fingers(self, angle: float | None) -> None:
         """Manual ``flexFingers(angle)``."""
-        for finger in range(FINGERS):
-            self.flex_finger(finger, angle)
+        self._turn([(i, angle) for finger in range(FINGERS) for i in self.flex_indices(finger)])
 
     def spread_finger(self, index: int, angle: float | None) -> None:
         """Manual ``spreadFinger(index, angle)``: the finger's base motor to -angle."""
         self._check_finger(index)
-        self._turn(self.spread_index(index), angle)
-
-    def _turn(self, index: int, angle: float | None) -> None:
-        """Motor ``index`` of the hand to -angle, if the hand still has it."""
-        motor = self._motor(index)
-        if motor is not None:
-            motor.set_angle(None if angle is None else -angle)
+        self._turn([(self.spread_index(index), angle)])
 
     def spread_fingers(self, angle: float, include_thumb: bool = False) -> None:
         """Manual ``spreadFingers(angle, includeThumb=false)``."""
-        if include_thumb:
-            self.spread_finger(0, self.spread_thumb(angle))
-        for finger, share in enumerate(figures.SPREAD_FINGERS, start=1):
-            self.spread_finger(finger, share * angle)
+        turns = [(self.spread_index(0), self.spread_thumb(angle))] if include_thumb else []
+        turns += [(self.spread_index(finger), share * angle)
+                  for finger, share in enumerate(figures.SPREAD_FINGERS, start=1)]
+        self._turn(turns)
+
+    def _turn(self, turns: list[tuple[int, float | None]]) -> None:
+        """Motors (by index) to -angle, those the hand still has, in one pass."""
+        motors = [(self._motor(index), angle) for index, angle in turns]
+        self.scene.turn([(motor, value) for motor, angle in motors if motor is not None and
+                         (value := motor.within_limits(None if angle is None else -angle))
+                         is not None])
 
 
 class EdgedHand(Hand):
