@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import random
 import subprocess
 import sys
 import threading
@@ -95,6 +96,7 @@ def latency(running: RunningServer, rounds: int) -> dict[str, Any]:
 
 def _one_change(setter: Any, watcher: Any, motor: str, k: int) -> float:
     angle = 0.001 * (k % 1000) + 0.0005
+    time.sleep(random.uniform(0, 1 / 60))  # not in step with the ticks: any phase of one
     sent = time.monotonic()
     setter.send(json.dumps({"op": "call", "object": motor, "method": "setAngle", "args": [angle]}))
     while time.monotonic() < sent + 10:
@@ -130,9 +132,9 @@ def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
     command = [*NICE, sys.executable, "-m", "bench.viewers", running.ws, scene, str(count),
                str(seconds), *(["--stalled"] if stall else [])]
     process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, text=True)
-    cpu_before, started = server_cpu_seconds(running), time.monotonic()
+    cpu_before, started = server_cpu_seconds(running, scene), time.monotonic()
     out, _ = process.communicate(timeout=seconds + 120)
-    cpu = (server_cpu_seconds(running) - cpu_before) / (time.monotonic() - started)
+    cpu = (server_cpu_seconds(running, scene) - cpu_before) / (time.monotonic() - started)
     found = json.loads(out)["viewers"]
     frames = sum(v["frames"] for v in found)
     fps = [v["fps"] for v in found]
@@ -143,32 +145,13 @@ def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
             "server_cores": cpu}
 
 
-def server_cpu_seconds(running: RunningServer) -> float:
-    """CPU seconds (user + system) of the server and every process under it."""
+def server_cpu_seconds(running: RunningServer, scene: str) -> float:
+    """CPU seconds (user + system) of the server's own process and of the scene's process."""
     ticks = 0
-    for pid in _tree(running.process.pid):
-        try:
-            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
+    for pid in (running.process.pid, scene_metrics(running, scene)["pid"]):
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
         ticks += int(fields[11]) + int(fields[12])
     return ticks / 100  # clock ticks (USER_HZ, 100 on Linux)
-
-
-def _tree(root: int) -> list[int]:
-    children: dict[int, list[int]] = {}
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        try:
-            parent = int(stat.read_text().rsplit(")", 1)[1].split()[1])
-        except (OSError, IndexError, ValueError):
-            continue
-        children.setdefault(parent, []).append(int(stat.parent.name))
-    found, todo = [], [root]
-    while todo:
-        pid = todo.pop()
-        found.append(pid)
-        todo += children.get(pid, [])
-    return found
 
 
 def two_scenes(running: RunningServer, count: int, seconds: float) -> dict[str, Any]:

@@ -82,7 +82,8 @@ def figure_table(found: dict[str, Any]) -> list[str]:
         rows.append(f"| tick of {label} ({m['bodies']} bodies), in-process | {_ms(m['tick_ms'].median)} "
                     f"| {_ms(m['tick_ms'].p95)} | bare PyBullet: {_ms(m['floor_ms'].median)} "
                     f"(p95 {_ms(m['floor_ms'].p95)}) | {m['ratio']:.2f}× |")
-        rows.append(f"| applying one step of {label} (not in the tick) | {_ms(m['apply_ms'].median)} "
+        rows.append(f"| applying one step of {label} through a session (decode, check, apply; "
+                    f"not in the tick) | {_ms(m['apply_ms'].median)} "
                     f"| {_ms(m['apply_ms'].p95)} | | |")
     for row, key in zip(found["outside"], ("hands10", "hands50")):
         floor = found[key]["floor_ms"].median
@@ -121,7 +122,7 @@ def viewer_table(rows: list[dict[str, Any]]) -> list[str]:
            "than two tick periods after the previous frame; \"skipped\": frames it never got, "
            "as a slow reader gets only the latest):", "",
            "| viewers | one more that never reads | frames/s lowest / median | late | skipped "
-           "| server CPU (cores) |", "|---|---|---|---|---|---|"]
+           "| server CPU (cores: web process + scene process) |", "|---|---|---|---|---|---|"]
     for row in rows:
         out.append(f"| {row['viewers']} | {'yes' if row['stalled'] else 'no'} | "
                    f"{row['fps_min']:.1f} / {row['fps_median']:.1f} | {row['late_pct']:.2f} % | "

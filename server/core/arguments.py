@@ -33,8 +33,13 @@ def bind(params: Sequence[Param], raw: Sequence[Any], resolve: Resolver, where: 
     position = 0
     for param in params:
         if param.variadic:
-            values.extend(_coerce_item(param, item, resolve, where, position + i)
-                          for i, item in enumerate(raw[position:]))
+            items = raw[position:]
+            if param.kind in _PLAIN_NUMBERS and all(type(v) is float for v in items) and \
+                    all(map(math.isfinite, items)):
+                values.extend(items)  # setAngles' angles, as they came
+            else:
+                values.extend(_coerce_item(param, item, resolve, where, position + i)
+                              for i, item in enumerate(items))
             return values
         if param.kind == "point":
             value, used = _point(param, raw, position, where)

@@ -166,8 +166,8 @@ class Scene:
             motor.angle = angle
         for changes in self._recorders:
             changes.angles.update(dict.fromkeys(motor.id for motor, _ in turns))
-        for motor, _ in turns:
-            self._moved(motor)
+        self.bodies.mark([moved.id for motor, _ in turns for moved in motor.invalidate()
+                          if moved.physical])
 
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
