@@ -19,12 +19,11 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterator
 
-from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
 from tests.conftest import RunningServer, start_server, stop_server
 
-from .drive import build
+from .drive import build, drain
 from .stats import figure
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -85,7 +84,7 @@ def latency(running: RunningServer, rounds: int) -> dict[str, Any]:
                        {"op": "create", "object": f"{me}.f", "type": "EdgedFinger"},
                        {"op": "call", "object": f"{me}.r", "method": "attachChain",
                         "args": [{"ref": motor}, {"ref": f"{me}.f"}]}])
-        threading.Thread(target=_drain, args=(setter,), daemon=True).start()
+        threading.Thread(target=drain, args=(setter,), daemon=True).start()
         with connect(f"{running.ws}/ws?scene={scene}&role=viewer", max_size=None) as watcher:
             times = [_one_change(setter, watcher, motor, k) for k in range(rounds)]
     period_ms = 1000 / 60
@@ -104,14 +103,6 @@ def _one_change(setter: Any, watcher: Any, motor: str, k: int) -> float:
         if message["op"] == "frame" and message.get("angles", {}).get(motor) == angle:
             return (time.monotonic() - sent) * 1000
     raise TimeoutError(f"no frame carried angle {angle} of {motor} within 10 s")
-
-
-def _drain(ws: Any) -> None:
-    try:
-        while True:
-            ws.recv()
-    except ConnectionClosed:
-        pass
 
 
 def viewers(running: RunningServer, counts: list[int], seconds: float) -> list[dict[str, Any]]:
