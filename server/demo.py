@@ -47,6 +47,7 @@ def setup_diggers(scene: Scene) -> Callable[[Scene, float], None]:
     for speed, z in DIGGERS:
         robot = build_digger(scene, lambda: f"demo.{next(numbers)}", speed)
         robot.set_position((0.0, 0.0, z))
+        robot.share()
         robots.append(robot)
 
     def animate(scene: Scene, time: float) -> None:
@@ -83,6 +84,7 @@ def setup_hands(scene: Scene) -> Callable[[Scene, float], None]:
         for left, z in ((True, -1.2), (False, 1.2)):
             hand = kind(scene, f"demo.{kind.type_name}-{'left' if left else 'right'}", left)
             hand.set_position((x, 0.2, z))
+            hand.share()  # anyone's motor panel may move it
             hands.append(hand)
     scene.set_camera_position((0.0, 5.0, 15.0))
     scene.set_camera_target((0.0, 1.6, 0.0))

@@ -22,6 +22,13 @@ export class Robot extends SceneObject {
 	}
 
 	// In a browser, robot.gui is the lil-gui panel at once (the viewer fills in the sliders).
+	// Not in 1.0: let other clients set this robot's motor angles and attach their own
+	// parts to it (without it only this client changes the robot).
+	share(on = true) {
+		this.call('share', on);
+		return this;
+	}
+
 	addGUI(title = 'Robot') {
 		this.vp.session.makePanel?.(this, title);
 		this.call('addGUI', title);

@@ -50,6 +50,9 @@ class Param:
     kind: str
     default: Any = REQUIRED
     variadic: bool = False
+    # a node the call attaches to, which may be another client's shared robot (a
+    # repeated parameter: its first item only); every other node a change names is the caller's
+    destination: bool = False
 
 
 @dataclass(frozen=True)
@@ -61,6 +64,9 @@ class Method:
     returns: str = "none"
     mutates: bool = True
     client: bool = False
+    # who may call it on another client's robot once shared (server.core.ownership):
+    # "owner" nobody else, "steer" anyone (motor angles), "attach" anyone, with their own parts
+    access: str = "owner"
 
     @property
     def python(self) -> str:
@@ -107,10 +113,11 @@ QUATERNION = Method("setQuaternion", (Param("quaternion", "quaternion"),))
 SCALE = Method("setScale", (Param("scale", "scale"),))
 VISIBLE = Method("setVisible", (Param("visible", "bool"),))
 HAND_METHODS = (
-    Method("flexFinger", (Param("index", "integer"), Param("angle", "angle"))),
-    Method("flexFingers", (Param("angle", "angle"),)),
-    Method("spreadFinger", (Param("index", "integer"), Param("angle", "angle"))),
-    Method("spreadFingers", (Param("angle", "number"), Param("includeThumb", "bool", False))),
+    Method("flexFinger", (Param("index", "integer"), Param("angle", "angle")), access="steer"),
+    Method("flexFingers", (Param("angle", "angle"),), access="steer"),
+    Method("spreadFinger", (Param("index", "integer"), Param("angle", "angle")), access="steer"),
+    Method("spreadFingers", (Param("angle", "number"), Param("includeThumb", "bool", False)),
+           access="steer"),
 )
 
 TYPES: dict[str, TypeSpec] = {t.name: t for t in (
@@ -124,15 +131,15 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
              (POSITION, ROTATION, QUATERNION, SCALE)),
     TypeSpec("Part", None, methods=(
         Method("addSlot", (Param("position", "point", ORIGIN),), returns="ref"),
-        Method("attachToSlot", (Param("parent", "node"), Param("slot", "slot", 0)),
-               returns="self"),
+        Method("attachToSlot", (Param("parent", "node", destination=True),
+                                Param("slot", "slot", 0, destination=True)), returns="self"),
         POSITION, ROTATION, QUATERNION, SCALE, VISIBLE,
     ), callbacks=("beginContact", "endContact")),
     TypeSpec("Motor", "Part", (Param("axis", "axis"), Param("min", "limit", -math.inf),
                                Param("max", "limit", math.inf), Param("def", "number", 0.0)),
              (Method("setName", (Param("name", "string"),), returns="self"),
               Method("getAngle", returns="number", mutates=False),
-              Method("setAngle", (Param("angle", "angle"),)),
+              Method("setAngle", (Param("angle", "angle"),), access="steer"),
               Method("flip", (Param("bool", "bool", True),), returns="self"))),
     TypeSpec("MotorX", "Motor", _motor_params("MotorX"), slots=1),
     TypeSpec("MotorY", "Motor", _motor_params("MotorY"), slots=1),
@@ -157,8 +164,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("watch", (Param("on", "bool", True),), mutates=False, client=True),
     )),
     TypeSpec("Robot", None, methods=(
-        Method("attachChain", (Param("parts", "part", variadic=True),), returns="ref"),
-        Method("addChain", (Param("parts", "node", variadic=True),), returns="ref"),
+        Method("attachChain", (Param("parts", "part", variadic=True),), returns="ref",
+               access="attach"),
+        Method("addChain", (Param("parts", "node", variadic=True, destination=True),),
+               returns="ref", access="attach"),
         Method("addGUI", (Param("title", "string", "Robot"),)),
         Method("getParts", returns="refs", mutates=False),
         Method("getMotors", returns="refs", mutates=False),
@@ -167,9 +176,12 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("setPosition", (Param("position", "point", None),)),
         ROTATION, QUATERNION, SCALE, VISIBLE,
         Method("getAngle", (Param("index", "integer"),), returns="number", mutates=False),
-        Method("setAngle", (Param("index", "integer"), Param("angle", "angle"))),
+        Method("setAngle", (Param("index", "integer"), Param("angle", "angle")), access="steer"),
         Method("getAngles", returns="numbers", mutates=False),
-        Method("setAngles", (Param("angles", "angle", variadic=True),)),
+        Method("setAngles", (Param("angles", "angle", variadic=True),), access="steer"),
+        # not in the manual: let other clients set this robot's motor angles and attach
+        # their own parts to it (server.core.ownership)
+        Method("share", (Param("on", "bool", True),), returns="self"),
     )),
     TypeSpec("EdgedHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
     TypeSpec("GLTFPart", "Part", (Param("filename", "asset"), Param("length", "number", 0.0)),

@@ -27,7 +27,8 @@ def table() -> dict[str, Any]:
         spec.name: {"extends": spec.base, "creatable": spec.creatable, "slots": spec.slots,
                     "params": [_param(p) for p in spec.params],
                     "methods": {m.name: {"python": m.python, "params": [_param(p) for p in m.params],
-                                         "returns": m.returns, "mutates": m.mutates}
+                                         "returns": m.returns, "mutates": m.mutates,
+                                         "access": m.access}
                                 for m in spec.methods},
                     "callbacks": {c: snake(c) for c in spec.callbacks}}
         for spec in TYPES.values()}}

@@ -17,6 +17,12 @@ from .journal import Journal
 _MAX_NUMBER_DIGITS = 15  # longer numeric names are remembered as names
 
 
+
+def owner_of(node_id: str) -> str:
+    """Who made an object: the part of its id before the first dot (``c7`` of ``c7.3/1``)."""
+    return node_id.partition(".")[0]
+
+
 class IntegerRuns:
     """A set of integers stored as sorted, disjoint, non-adjacent [start, end] runs."""
 

@@ -11,6 +11,7 @@ from .hands import AnthroHand, EdgedHand, RoundHand
 from .meshparts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from .motor import Motor, MotorX, MotorY, MotorZ
 from .node import Node, Slot
+from .ownership import Ownership
 from .parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
 from .robot import Robot
 from .scene import Scene
@@ -45,9 +46,10 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
 class Operations:
     """Turns checked protocol messages into calls on a scene and results into wire values."""
 
-    def __init__(self, scene: Scene, client_id: str = "") -> None:
+    def __init__(self, scene: Scene, client_id: str) -> None:
         self.scene = scene
         self.client_id = client_id
+        self.ownership = Ownership(client_id)
 
     def type_of(self, object_id: str) -> str:
         """The API type name of an object (``Scene`` for the scene itself)."""
@@ -76,7 +78,9 @@ class Operations:
         if kind == "call":
             return self.call(op["object"], op["method"], op.get("args", []))
         if kind == "delete":
-            self.scene.delete(self.scene.get(op["object"]))
+            node = self.scene.get(op["object"])
+            self.ownership.check_delete(node)
+            self.scene.delete(node)
             return None
         if kind == "batch":
             limit = self.scene.limits.batch_ops
@@ -113,6 +117,9 @@ class Operations:
         method = self.method(object_id, name)
         target = self.scene if object_id == SCENE_ID else self.scene.get(object_id)
         args = bind(method.params, raw_args, self.scene.get, f"{name} of {object_id}")
+        if method.mutates:
+            self.ownership.check_call(None if target is self.scene else target, method,
+                                      method.params, args)
         extra = {"client": self.client_id} if method.client else {}
         value = getattr(target, method.python)(*args, **extra)
         return RESULTS[method.returns](target, value)

@@ -7,6 +7,7 @@ from typing import Any
 from . import math3d
 from .motor import Motor
 from .robot import Robot
+from .ids import owner_of
 from .scene import Scene
 from .sensor import Sensor
 from .wire import encode_numbers
@@ -27,7 +28,8 @@ def scene_summary(scene: Scene) -> dict[str, Any]:
 
 def robot_summary(robot: Robot) -> dict[str, Any]:
     """A robot in a list: id, type, position, motor count."""
-    return {"id": robot.id, "type": robot.type_name, "position": list(robot.position),
+    return {"id": robot.id, "type": robot.type_name, "owner": owner_of(robot.id),
+            "shared": robot.shared, "position": list(robot.position),
             "visible": robot.visible, "motors": len(robot.get_motors()),
             "parts": len(robot.get_parts())}
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from ..errors import WrongType
+from .ids import owner_of
 from .math3d import Vec3
 from .motor import Motor
 from .node import Node
@@ -26,6 +27,7 @@ class Robot(Node):
     def __init__(self, scene: Scene, node_id: str) -> None:
         super().__init__(scene, node_id)
         self.gui: str | None = None
+        self.shared = False  # others may steer it and attach their parts (ownership.py)
         self._listing: tuple[int, list[Part], list[Motor]] | None = None
 
     # --- chains ------------------------------------------------------------------------
@@ -42,6 +44,12 @@ class Robot(Node):
     def attach_chain(self, *parts: Part) -> Node | None:
         """Manual ``attachChain(a, b, …)``: ``addChain(this, a, b, …)``."""
         return self.add_chain(self, *parts)
+
+    def share(self, on: bool = True) -> Robot:
+        """Let other clients set this robot's motor angles and attach their own parts to it
+        (not in the manual); returns the robot."""
+        self._assign("shared", bool(on))
+        return self
 
     def add_gui(self, title: str = "Robot") -> None:
         """Manual ``addGUI(title)``: ask the viewers for a motor panel."""
@@ -111,4 +119,5 @@ class Robot(Node):
         return [motor.id for motor in self.get_motors()]
 
     def properties(self) -> dict[str, Any]:
-        return {"gui": self.gui, "motors": self.motors}
+        return {"gui": self.gui, "motors": self.motors, "owner": owner_of(self.id),
+                "shared": self.shared}

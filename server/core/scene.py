@@ -15,7 +15,7 @@ from ..errors import DuplicateId, LimitExceeded, UnknownObject
 from . import figures
 from .assets import AssetLibrary
 from .changes import ChangeSet
-from .ids import IdBook
+from .ids import IdBook, owner_of
 from .journal import Journal
 from .limits import DEFAULT, Limits
 from .math3d import Quat, Vec3
@@ -29,11 +29,6 @@ from .wire import encode_numbers
 
 log = logging.getLogger(__name__)
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped", "scale")
-
-
-def owner_of(node_id: str) -> str:
-    """Who made an object: the part of its id before the first dot (``c7`` of ``c7.3/1``)."""
-    return node_id.partition(".")[0]
 
 
 class Scene:

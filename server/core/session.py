@@ -18,7 +18,8 @@ from .messages import (PROTOCOL_VERSION, byte_size, check_client_message, decode
 from .operations import Operations
 from .physics import ENGINE
 from .rates import TokenBucket
-from .scene import Scene, owner_of
+from .ids import owner_of
+from .scene import Scene
 
 log = logging.getLogger(__name__)
 ROLES = ("controller", "viewer")

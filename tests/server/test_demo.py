@@ -1,5 +1,6 @@
 """`make run`'s demos: six hands gesturing (default) and three Diggers that keep digging."""
 
+import json
 import time
 
 from websockets.sync.client import connect
@@ -43,3 +44,22 @@ def test_demo_diggers_are_where_the_manual_puts_them_and_move(demo_server, digge
         assert [m["angle"] for m in before] != [m["angle"] for m in after]
         assert [(m["min"], m["max"]) for m in after] == [(-0.7, 0.7), (-1.6, 0), (-1.6, 0)]
         assert all(m["min"] <= m["angle"] <= m["max"] for m in after)
+
+
+def test_the_demo_robots_are_shared_and_nobody_deletes_them(demo_server):
+    """Anyone's motor panel may move the demo's hands; only the server removes them."""
+    for scene in ("default", "diggers"):
+        robots = demo_server.get(f"/api/scenes/{scene}/robots")
+        assert all(r["shared"] and r["owner"] == "demo" for r in robots)
+    with connect(f"{demo_server.ws}/ws?scene={scene}") as ws:  # the diggers
+        ws.recv(timeout=10)  # hello
+        ws.send(json.dumps([{"op": "call", "id": 1, "object": robots[0]["id"], "method": "setAngle",
+                             "args": [0, 0.1]},
+                            {"op": "delete", "id": 2, "object": robots[0]["id"]}]))
+        answers = {}
+        while len(answers) < 2:
+            message = json.loads(ws.recv(timeout=10))
+            if message.get("id") in (1, 2):
+                answers[message["id"]] = message
+    assert answers[1]["op"] == "ok"
+    assert answers[2]["code"] == "forbidden" and answers[2]["details"]["owner"] == "demo"

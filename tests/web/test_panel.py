@@ -18,6 +18,7 @@ def arm(server, scene_name):
     robot.attach_chain(vp.MotorZ(-1, 1).set_name("shoulder"), vp.EdgedFinger(),
                        vp.MotorX(-2, 2), vp.EdgedTip())
     robot.add_gui("Arm")
+    robot.share()  # a controller page may move it
     scene.sync()
     yield robot
     scene.close()
@@ -58,3 +59,18 @@ def test_a_robot_without_addgui_has_no_panel(browser, pages, server, scene_name)
         assert page.evaluate("() => document.querySelectorAll('.lil-gui').length") == 0
         robot.add_gui("Late")
         wait_until(page, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Late'")
+
+
+def test_a_controller_page_cannot_steer_a_robot_not_shared(browser, pages, server, scene_name):
+    """Its panel is read-only, as a viewer's is, until the owner shares the robot."""
+    with vp.Scene(server.ws, scene=scene_name) as client:
+        robot = vp.Robot(scene=client)
+        robot.attach_chain(vp.MotorZ(-1, 1, scene=client))
+        robot.add_gui("Mine")
+        client.sync()
+        page = open_viewer(browser, pages, server, f"scene={scene_name}&role=controller")
+        wait_until(page, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Mine'")
+        assert page.evaluate(f"() => ({SLIDER_INPUTS})().every((input) => input.disabled)")
+        robot.share()
+        client.sync()
+        wait_until(page, f"() => !({SLIDER_INPUTS})()[0].disabled")

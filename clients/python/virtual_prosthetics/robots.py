@@ -32,6 +32,12 @@ class Robot(Shown):
         self._call("addChain", *parts)
         return parts[-1] if parts else None
 
+    def share(self, on: bool = True) -> Robot:
+        """Let other clients set this robot's motor angles and attach their own parts to it
+        (not in the manual; without it only this client changes the robot)."""
+        self._call("share", on)
+        return self
+
     def add_gui(self, title: str = "Robot") -> None:
         """Manual ``addGUI(title)``: a motor panel in every viewer."""
         self._call("addGUI", title)

@@ -25,7 +25,8 @@ def test_robot_report_lists_motors_in_order(server, scene_name):
             {"op": "call", "object": f"{client}.1", "method": "flexFinger", "args": [2, 0.4]},
         ])
         robots = server.get(f"/api/scenes/{scene_name}/robots")
-        assert robots == [{"id": f"{client}.1", "type": "EdgedHand", "position": [1, 2, 3],
+        assert robots == [{"id": f"{client}.1", "type": "EdgedHand", "owner": client,
+                           "shared": False, "position": [1, 2, 3],
                            "visible": True, "motors": 20, "parts": 36}]
         report = server.get(f"/api/scenes/{scene_name}/robots/{client}.1")
         motors = report["motors"]

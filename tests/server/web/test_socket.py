@@ -160,3 +160,29 @@ def test_messages_are_sent_uncompressed_even_when_the_client_offers_deflate(serv
     with connect(f"{server.ws}/ws?scene={scene_name}", compression="deflate") as ws:
         assert "Sec-WebSocket-Extensions" not in ws.response.headers
         assert json.loads(ws.recv(timeout=10))["op"] == "hello"
+
+
+def test_clients_change_only_their_own_objects_unless_shared(server, scene_name):
+    alice, hello, _ = open_client(server, scene_name)
+    bob, bob_hello, _ = open_client(server, scene_name)
+    a = hello["client"]
+    with alice, bob:
+        request_all(alice, [{"op": "create", "object": f"{a}.h", "type": "EdgedHand"}])
+        bob.send(json.dumps({"op": "call", "id": 1, "object": f"{a}.h", "method": "setAngles",
+                             "args": [0.3]}))
+        error = next_message(bob, "error")
+        assert error["code"] == "forbidden" and error["details"]["owner"] == a
+        request_all(alice, [{"op": "call", "object": f"{a}.h", "method": "share"}])
+        request_all(bob, [{"op": "call", "object": f"{a}.h", "method": "setAngles",
+                           "args": [0.3]}])
+        motor = f"{a}.h/1"
+        for _ in range(600):  # alice sees bob steer her shared hand
+            if next_message(alice, "frame").get("angles", {}).get(motor) == 0.3:
+                break
+        else:
+            raise AssertionError("the angle never reached the owner")
+        bob.send(json.dumps({"op": "delete", "id": 2, "object": f"{a}.h"}))
+        assert next_message(bob, "error")["code"] == "forbidden"
+        [robot] = [r for r in server.get(f"/api/scenes/{scene_name}/robots")]
+        assert (robot["owner"], robot["shared"]) == (a, True)
+

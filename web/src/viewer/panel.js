@@ -1,6 +1,7 @@
 // Motor panels: a robot whose script called addGUI(title) gets a lil-gui panel with one
-// slider per motor (its name, else its index). A controller's sliders move the motors on
-// the server, so every viewer sees it; a viewer's panel follows the frames, read-only.
+// slider per motor (its name, else its index). Where the page may steer the robot (a
+// controller, on its own robot or a shared one) the sliders move the motors on the server,
+// so every viewer sees it; elsewhere the panel follows the frames, read-only.
 // "Get gesture" shows the setAngles(...) call for the current pose.
 
 import GUI from 'lil-gui';
@@ -17,8 +18,9 @@ export function motorsOf(robot, objects) {
 }
 
 export class MotorPanels {
-	// guiFor(robotId): a panel the page already made for that robot (the JavaScript
-	// client's robot.gui), filled here instead of a new one.
+	// editable(robotNode): may this page steer that robot? guiFor(robotId): a panel the
+	// page already made for that robot (the JavaScript client's robot.gui), filled here
+	// instead of a new one.
 	constructor(tree, { editable, setAngle, showGesture, guiFor = () => null }) {
 		this.tree = tree;
 		this.guiFor = guiFor;
@@ -30,7 +32,8 @@ export class MotorPanels {
 		const refresh = () => { this.stale = true; };
 		tree.on('added', refresh);
 		tree.on('removed', refresh);
-		tree.on('changed', (object, fields) => { if ('gui' in fields || 'motors' in fields || 'name' in fields) refresh(); });
+		const shaping = ['gui', 'motors', 'name', 'shared'];
+		tree.on('changed', (object, fields) => { if (shaping.some((key) => key in fields)) refresh(); });
 	}
 
 	// Rebuild panels after structural changes (at most once per rendered frame).
@@ -64,12 +67,13 @@ export class MotorPanels {
 		const gui = owned ?? new GUI({ title });
 		if (owned) gui.title(title);
 		const values = {}, sliders = new Map();
+		const editable = this.editable(robot.userData.node);
 		motorsOf(robot, this.tree.objects).forEach((motor, index) => {
 			const node = motor.userData.node;
 			values[motor.name] = node.angle;
 			const slider = gui.add(values, motor.name, limit(node.min, -UNLIMITED), limit(node.max, UNLIMITED), 0.01)
 				.name(node.name ?? String(index));
-			if (this.editable) {
+			if (editable) {
 				slider.onChange((angle) => { slider.dragging = true; this.setAngle(motor.name, angle); });
 				slider.onFinishChange(() => { slider.dragging = false; });
 			} else slider.disable();

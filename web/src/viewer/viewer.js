@@ -56,7 +56,8 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 	const logo = new Logo(stage.scene);
 	const handlers = makeHandlers(view);
 	const panels = new MotorPanels(tree, {
-		editable: options.role === 'controller',
+		// a controller steers its own robots and shared ones (the server refuses the rest)
+		editable: (robot) => options.role === 'controller' && (robot.shared || robot.owner === view.hook.client),
 		setAngle: (motorId, angle) => request(
 			{ op: 'call', object: motorId, method: 'setAngle', args: [angle] }).catch(() => {}),
 		showGesture: (text) => { gestureBox.textContent = text; gestureBox.hidden = false; },
