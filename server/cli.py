@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import os
 import resource
 from pathlib import Path
 
@@ -11,6 +12,7 @@ import uvicorn
 
 from .core.limits import DEFAULT, Limits
 from .demo import DEMOS
+from .web.access import AccessPolicy
 from .web.app import create_app
 from .web.guard import ConnectionCount, guarded_protocol
 
@@ -36,19 +38,33 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--assets-dir", type=Path, default=None, metavar="DIR",
                         help="keep uploaded mesh files here (default: a temporary folder "
                              "removed when the server stops)")
+    parser.add_argument("--token", default=os.environ.get("VP_TOKEN"), metavar="TOKEN",
+                        help="controlling (WebSockets with ?token=, REST changes with "
+                             "Authorization: Bearer) needs this token (default: $VP_TOKEN)")
+    parser.add_argument("--view-token", default=os.environ.get("VP_VIEW_TOKEN"), metavar="TOKEN",
+                        help="viewing needs this token or the control token (default: "
+                             "$VP_VIEW_TOKEN; unset: viewing is open)")
+    parser.add_argument("--allow-origin", action="append", metavar="ORIGIN",
+                        default=[o for o in os.environ.get("VP_ALLOWED_ORIGINS", "").split(",") if o],
+                        help="browser pages of this origin (https://host:port; * for any) may "
+                             "connect besides this server's own (repeatable; default: "
+                             "$VP_ALLOWED_ORIGINS, comma-separated)")
     parser.add_argument("--log-level", default="info",
                         choices=["critical", "error", "warning", "info", "debug"])
     args = parser.parse_args(argv)
     if not 1 <= args.tick_rate <= 1000:
         parser.error("--tick-rate must be between 1 and 1000")
+    if args.view_token and not args.token:
+        parser.error("a view token without a control token would leave controlling open")
     try:
         limits = DEFAULT.with_values(args.limit)
     except ValueError as error:
         parser.error(str(error))
     logging.basicConfig(level=args.log_level.upper())
     _raise_file_limit(limits)
+    access = AccessPolicy(args.token or None, args.view_token or None, tuple(args.allow_origin))
     app = create_app(tick_rate=args.tick_rate, setups=None if args.no_demo else DEMOS,
-                     limits=limits, uploads=args.assets_dir)
+                     limits=limits, uploads=args.assets_dir, access=access)
     # No permessage-deflate: it would compress every frame for every client on the one
     # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md).
     uvicorn.run(app, host=args.host, port=args.port, log_level=args.log_level,

@@ -29,6 +29,7 @@ class RunningServer:
 
     process: subprocess.Popen[bytes]
     port: int
+    token: str | None = None  # sent with every REST read (a server that asks for one)
 
     @property
     def http(self) -> str:
@@ -40,7 +41,9 @@ class RunningServer:
 
     def get(self, path: str) -> Any:
         """GET a REST path; the decoded JSON body (raises HTTPError for 4xx/5xx)."""
-        with urllib.request.urlopen(self.http + path, timeout=10) as response:
+        headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
+        request = urllib.request.Request(self.http + path, headers=headers)
+        with urllib.request.urlopen(request, timeout=10) as response:
             return json.loads(response.read())
 
     def nodes(self, scene: str) -> list[dict[str, Any]]:
@@ -63,11 +66,13 @@ def free_port() -> int:
         return probe.getsockname()[1]
 
 
-def start_server(*args: str, port: int | None = None) -> RunningServer:
-    """Start vp-server (on a free port unless told) and wait until /api/health answers."""
+def start_server(*args: str, port: int | None = None, log: Path | None = None) -> RunningServer:
+    """Start vp-server (on a free port unless told) and wait until /api/health answers;
+    its output goes to ``log`` when given."""
     port = port or free_port()
+    output = open(log, "wb") if log is not None else None  # noqa: SIM115 (the process keeps it)
     process = subprocess.Popen([str(VP_SERVER), "--port", str(port), "--log-level", "warning",
-                                *args], cwd=ROOT)
+                                *args], cwd=ROOT, stdout=output, stderr=output)
     server = RunningServer(process, port)
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:

@@ -28,7 +28,7 @@ export async function startPage(moduleUrl) {
 	useScene(viewer.scene);
 	viewer.setState('connecting');
 	const url = `${server.protocol === 'https:' ? 'wss:' : 'ws:'}//${server.host}`;
-	session = await connect({ url, scene, role: options.role, onMessage: (message) => viewer.receive(message) });
+	session = await connect({ url, scene, role: options.role, token: options.token, onMessage: (message) => viewer.receive(message) });
 	session.makePanel = (robot, title) => {
 		const gui = robot.gui ?? new GUI({ title });
 		guis.set(robot.vp.id, gui);

@@ -32,17 +32,19 @@ let animation = null;            // {stop}
 let keeper = null;               // flushes directly written transforms without an animation
 
 // The WebSocket address of a scene: `url` is the server (ws://host:port) or already /ws.
-export function sceneUrl(url, { scene: name = 'default', role = 'controller' } = {}) {
+export function sceneUrl(url, { scene: name = 'default', role = 'controller', token = null } = {}) {
 	const base = url.replace(/\/+$/, '');
 	const query = new URLSearchParams({ scene: name, role });
+	if (token) query.set('token', token);
 	return `${/\/ws$/.test(base) ? base : `${base}/ws`}?${query}`;
 }
 
 // Connect to a scene of a server and make it the one new objects go to.
-// Node: connect({url, scene, role}) or the VP_URL environment variable.
-export async function connect({ url, scene: name = 'default', role = 'controller', onMessage } = {}) {
+// Node: connect({url, scene, role, token}) or the VP_URL and VP_TOKEN environment variables.
+export async function connect({ url, scene: name = 'default', role = 'controller', token, onMessage } = {}) {
 	const server = url ?? globalThis.process?.env?.VP_URL ?? 'ws://127.0.0.1:8000';
-	const session = await openSession(sceneUrl(server, { scene: name, role }), CLASSES, onMessage);
+	const key = token ?? globalThis.process?.env?.VP_TOKEN ?? null;
+	const session = await openSession(sceneUrl(server, { scene: name, role, token: key }), CLASSES, onMessage);
 	session.meshes = new PageMeshes(session, () => [scene, session.root]);
 	setCurrentSession(session);
 	keepSyncing(session);

@@ -10,7 +10,7 @@ from contextlib import asynccontextmanager
 from pathlib import Path
 from typing import AsyncIterator, Mapping
 
-from fastapi import FastAPI, Request
+from fastapi import Depends, FastAPI, Request
 from fastapi.responses import JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
@@ -18,6 +18,7 @@ from ..core.assets import AssetLibrary
 from ..core.limits import DEFAULT, Limits
 from ..errors import Forbidden, LimitExceeded, LookupFailure, TooLarge, VPError
 from . import assets, heap, rest, socket
+from .access import AccessPolicy, redact_tokens_in_logs, viewing_allowed
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
@@ -28,10 +29,11 @@ HTTP_STATUS: dict[type[VPError], int] = {LookupFailure: 404, Forbidden: 403, Too
 
 
 def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None = None,
-               limits: Limits = DEFAULT, uploads: Path | None = None) -> FastAPI:
+               limits: Limits = DEFAULT, uploads: Path | None = None,
+               access: AccessPolicy = AccessPolicy()) -> FastAPI:
     """The server: the ``default`` scene exists from the start; ``setups`` prepare scenes
     by name (whenever one starts). Uploaded meshes are kept in ``uploads`` (by default a
-    temporary folder removed when the server stops)."""
+    temporary folder removed when the server stops). ``access``: tokens and origins."""
     temporary = uploads is None
     if uploads is None:
         uploads = Path(tempfile.mkdtemp(prefix="vp-uploads-"))
@@ -43,6 +45,7 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         asyncio.get_running_loop().set_exception_handler(LoopErrorLog().handle)
+        redact_tokens_in_logs()  # uvicorn has set its loggers up by now
         hubs.open(DEFAULT_SCENE)
         sweeper = asyncio.create_task(hubs.sweep())
         heap.settle()
@@ -54,9 +57,10 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
 
     app = FastAPI(title="Virtual Prosthetics", version=rest.VERSION, lifespan=lifespan)
     app.state.hubs = hubs
+    app.state.access = access
     app.state.started = time.monotonic()
-    app.include_router(rest.router)
-    app.include_router(assets.router)
+    app.include_router(rest.router, dependencies=[Depends(viewing_allowed)])
+    app.include_router(assets.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(socket.router)
 
     @app.exception_handler(VPError)

@@ -22,6 +22,7 @@ router = APIRouter(prefix="/api")
 MEDIA_TYPES = {"glb": "model/gltf-binary", "gltf": "model/gltf+json"}
 REFUSED: dict[int | str, dict[str, Any]] = {
     400: {"model": ErrorBody, "description": "Not a usable glTF mesh (bad_asset)"},
+    403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"},
     413: {"model": ErrorBody, "description": "Larger than the assetBytes limit (too_large)"},
     429: {"model": ErrorBody, "description": "Too many triangles or files (limit_exceeded)"}}
 
@@ -39,7 +40,9 @@ UPLOAD_BODY = {"requestBody": {"required": True, "description": "the file's byte
              summary="Upload a glTF mesh (GLB, or glTF with embedded buffers) as the body")
 async def upload(request: Request) -> JSONResponse:
     """The body is the file. The answer names it: ``{"name", "url", "bytes", "triangles"}``;
-    give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene."""
+    give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene. With a server token,
+    ``Authorization: Bearer <token>`` is needed."""
+    request.app.state.access.check_change(request.headers.get("authorization"))
     limits = request.app.state.hubs.limits
     data = bytearray()
     async for chunk in request.stream():

@@ -17,6 +17,7 @@ from starlette.websockets import WebSocketDisconnect
 from ..core.physics import ENGINE
 from ..core.session import ROLES
 from ..errors import LimitExceeded, OutOfRange, VPError
+from .access import AccessPolicy
 from .hub import Connection, Hubs, SceneHub
 from .outbox import Outbox, Outgoing
 
@@ -28,12 +29,16 @@ TRY_AGAIN_LATER = 1013
 
 @router.websocket("/ws")
 async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
-                             role: str = "controller", engine: str = ENGINE) -> None:
+                             role: str = "controller", engine: str = ENGINE,
+                             token: str | None = None) -> None:
     hubs: Hubs = websocket.app.state.hubs
+    access: AccessPolicy = websocket.app.state.access
     await websocket.accept()
     try:
         if role not in ROLES:
             raise OutOfRange(f"role must be controller or viewer, got {role[:40]!r}", role=role)
+        access.check_origin(websocket.headers.get("origin"), websocket.headers.get("host"))
+        access.check_role(role, token)
         if engine != ENGINE:
             raise OutOfRange(f"engine {engine[:40]!r} is not available; this server runs "
                              f"{ENGINE}", engine=engine)

@@ -1,6 +1,21 @@
 // The index page: what the server runs, refreshed every few seconds.
 
 const REFRESH = 3000;
+// A token in this page's URL (a server that asks for one) goes on to the pages it links.
+const TOKEN = new URLSearchParams(location.search).get('token');
+
+function withToken(href) {
+	if (!TOKEN) return href;
+	const url = new URL(href, location.href);
+	url.searchParams.set('token', TOKEN);
+	return url.pathname + url.search;
+}
+
+function passTokenOn(root) {
+	for (const link of root.querySelectorAll('a[href^="/view"], a[href^="/examples/"]')) {
+		link.setAttribute('href', withToken(link.getAttribute('href')));
+	}
+}
 
 function cell(row, text, className) {
 	const td = row.insertCell();
@@ -10,8 +25,9 @@ function cell(row, text, className) {
 }
 
 async function refresh() {
+	const headers = TOKEN ? { Authorization: `Bearer ${TOKEN}` } : {};
 	const [health, scenes] = await Promise.all(
-		['/api/health', '/api/scenes'].map((url) => fetch(url).then((r) => r.json())));
+		['/api/health', '/api/scenes'].map((url) => fetch(url, { headers }).then((r) => r.json())));
 	document.getElementById('health').textContent =
 		`version ${health.version}, protocol ${health.protocol}, up ${Math.round(health.uptime)} s`;
 	const body = document.querySelector('#scenes tbody');
@@ -24,8 +40,10 @@ async function refresh() {
 		const links = row.insertCell();
 		const name = encodeURIComponent(scene.name);
 		links.innerHTML = `<a href="/view?scene=${name}">watch</a> · <a href="/view?scene=${name}&role=controller">control</a>`;
+		passTokenOn(links);
 	}
 }
 
+passTokenOn(document);
 refresh().catch(console.error);
 setInterval(() => refresh().catch(console.error), REFRESH);

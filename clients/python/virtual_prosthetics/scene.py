@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import threading
 from itertools import count
 from typing import TYPE_CHECKING, Any, Callable, TypeVar
@@ -43,7 +44,8 @@ class Scene:
     """
 
     def __init__(self, url: str = "ws://127.0.0.1:8000", scene: str = "default",
-                 role: str = "controller", timeout: float = 10.0) -> None:
+                 role: str = "controller", timeout: float = 10.0,
+                 token: str | None = None) -> None:
         self.url = url.rstrip("/")
         self.mirror = Mirror(self._listens)
         self.lock = threading.RLock()
@@ -52,7 +54,8 @@ class Scene:
         self.animation: tuple[Callable[..., None], float] | None = None
         self._ids = count(1)
         self._ready = threading.Event()
-        query = urlencode({"scene": scene, "role": role})
+        token = token if token is not None else os.environ.get("VP_TOKEN")
+        query = urlencode({"scene": scene, "role": role, **({"token": token} if token else {})})
         self.connection = Connection(f"{url.rstrip('/')}/ws?{query}", self._on_message,
                                      self._on_changes)
         self.connection.start()
@@ -206,8 +209,9 @@ class Scene:
 
 
 def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
-            role: str = "controller") -> Scene:
-    """Connect to a scene of a server and make it the current scene."""
+            role: str = "controller", token: str | None = None) -> Scene:
+    """Connect to a scene of a server and make it the current scene; ``token`` (default:
+    the ``VP_TOKEN`` environment variable) when the server asks for one."""
     global _current
-    _current = Scene(url, scene, role)
+    _current = Scene(url, scene, role, token=token)
     return _current

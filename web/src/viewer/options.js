@@ -1,5 +1,5 @@
 // The viewer's URL options: /view?scene=NAME&role=viewer|controller&touch-color=red
-//   &debug-physics&show-slots&engine=NAME
+//   &debug-physics&show-slots&engine=NAME&token=TOKEN (a server that asks for one)
 
 export function readOptions(search = window.location.search) {
 	const params = new URLSearchParams(search);
@@ -11,6 +11,7 @@ export function readOptions(search = window.location.search) {
 		debugPhysics: flag('debug-physics'),
 		showSlots: flag('show-slots'),
 		engine: params.get('engine') || null,
+		token: params.get('token') || null,
 	};
 }
 
@@ -19,5 +20,6 @@ export function socketUrl(options, location = window.location) {
 	const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
 	const query = new URLSearchParams({ scene: options.scene, role: options.role });
 	if (options.engine) query.set('engine', options.engine);
+	if (options.token) query.set('token', options.token);
 	return `${scheme}//${location.host}/ws?${query}`;
 }

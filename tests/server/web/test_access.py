@@ -1,0 +1,109 @@
+"""Tokens and origins with a real server: controlling needs the token, viewing the view
+token, browsers must come from an allowed origin, and no token reaches the log."""
+
+import json
+import urllib.error
+import urllib.request
+
+import pytest
+from websockets.sync.client import connect
+
+import virtual_prosthetics as vp
+from server.web.access import AccessPolicy
+from server.errors import Forbidden
+
+from ...conftest import start_server, stop_server
+
+CONTROL, VIEW = "s3cret-control", "s3cret-view"
+
+
+@pytest.fixture(scope="module")
+def locked(tmp_path_factory):
+    log = tmp_path_factory.mktemp("access") / "server.log"
+    running = start_server("--no-demo", "--token", CONTROL, "--view-token", VIEW,
+                           "--allow-origin", "https://friend.example", "--log-level", "info",
+                           log=log)
+    running.log = log
+    yield running
+    stop_server(running)
+
+
+def first_message(server, query, origin=None):
+    headers = {"Origin": origin} if origin else {}
+    with connect(f"{server.ws}/ws?{query}", additional_headers=headers) as ws:
+        return json.loads(ws.recv(timeout=10))
+
+
+@pytest.mark.parametrize("query, allowed", [
+    ("scene=a&role=controller", False),
+    ("scene=a&role=controller&token=wrong", False),
+    (f"scene=a&role=controller&token={VIEW}", False),
+    (f"scene=a&role=controller&token={CONTROL}", True),
+    ("scene=a&role=viewer", False),
+    (f"scene=a&role=viewer&token={VIEW}", True),
+    (f"scene=a&role=viewer&token={CONTROL}", True),
+])
+def test_each_role_needs_its_token(locked, query, allowed):
+    message = first_message(locked, query)
+    if allowed:
+        assert message["op"] == "hello"
+    else:
+        assert message["op"] == "error" and message["code"] == "forbidden"
+        assert "token" in message["message"] and CONTROL not in json.dumps(message)
+
+
+@pytest.mark.parametrize("origin, allowed", [
+    (None, True),  # a script, not a browser
+    ("https://friend.example", True),
+    ("https://evil.example", False),
+    ("http://127.0.0.1:1", False),  # another port is another site
+])
+def test_browser_pages_must_come_from_an_allowed_origin(locked, origin, allowed):
+    message = first_message(locked, f"scene=a&role=viewer&token={VIEW}", origin)
+    assert (message["op"] == "hello") is allowed
+    own = first_message(locked, f"scene=a&role=viewer&token={VIEW}", locked.http)
+    assert own["op"] == "hello"  # the server's own pages
+
+
+def test_rest_changes_need_the_control_token(locked):
+    request = urllib.request.Request(f"{locked.http}/api/assets?token={VIEW}", data=b"glb?",
+                                     method="POST")
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(request, timeout=10)
+    assert refused.value.code == 403 and json.loads(refused.value.read())["code"] == "forbidden"
+    request.add_header("Authorization", f"Bearer {CONTROL}")
+    with pytest.raises(urllib.error.HTTPError) as judged:  # let in: then judged as a file
+        urllib.request.urlopen(request, timeout=10)
+    assert judged.value.code == 400
+
+
+def test_the_python_client_controls_with_the_token_and_the_log_never_shows_it(locked):
+    with vp.Scene(locked.ws, scene="tokened", token=CONTROL) as scene:
+        robot = vp.Robot(scene=scene)
+        scene.sync()
+        robots = locked.get(f"/api/scenes/tokened/robots?token={VIEW}")
+        assert robot.id in {r["id"] for r in robots}
+    first_message(locked, f"scene=a&role=controller&token={CONTROL}")
+    text = locked.log.read_text()
+    assert "/ws?" in text and "token=***" in text  # request lines are logged, blanked
+    assert CONTROL not in text and VIEW not in text
+
+
+def test_a_policy_without_tokens_lets_everyone_in():
+    open_policy = AccessPolicy()
+    open_policy.check_role("controller", None)
+    open_policy.check_change(None)
+    with pytest.raises(Forbidden):
+        open_policy.check_origin("https://evil.example", "127.0.0.1:8000")
+
+
+def test_rest_reads_need_the_view_token_but_health_does_not(locked):
+    assert locked.get("/api/health")["status"] == "ok"
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        locked.get("/api/scenes")
+    assert refused.value.code == 403
+    assert locked.get(f"/api/scenes?token={VIEW}")
+    request = urllib.request.Request(f"{locked.http}/api/metrics",
+                                     headers={"Authorization": f"Bearer {CONTROL}"})
+    with urllib.request.urlopen(request, timeout=10) as answer:
+        assert "scenes" in json.loads(answer.read())
