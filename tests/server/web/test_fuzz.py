@@ -3,9 +3,9 @@
 Whatever arrives, the server stays up, answers every request that carries an id exactly
 once with a well-formed message (never ``internal``), and its scene stays sound: ids
 unique, the tree acyclic, angles within their limits, and the snapshot a new viewer gets equal to what an old
-viewer built from frames. Another client's objects are among the ids drawn (that they
-stay untouched is ownership, which comes with the access issue). The rates are lifted for this server so that the fuzzer can go fast; the rate
-limits have tests of their own.
+viewer built from frames. Another client's objects are among the ids drawn, and stay
+exactly as they were (ownership). The rates are lifted for this server so that the fuzzer
+can go fast; the rate limits have tests of their own.
 """
 
 from __future__ import annotations
@@ -166,12 +166,16 @@ def check_answers(drawn: list[Drawn], received: list[dict[str, Any]]) -> None:
     assert answered == expected, "every request with an id gets exactly one answer"
 
 
-def check_scene(server: RunningServer, watcher: Watcher) -> None:
-    """The invariants of the scene, seen by a new viewer and by the old one."""
+def check_scene(server: RunningServer, watcher: Watcher,
+                untouched: dict[str, Any] | None = None) -> None:
+    """The invariants of the scene, seen by a new viewer and by the old one; the nodes
+    ``untouched`` (another client's) exactly as they were."""
     viewer, _, snapshot = open_client(server, "viewer")
     viewer.close()
     nodes = {node["id"]: node for node in snapshot["nodes"]}
     assert len(nodes) == len(snapshot["nodes"]), "ids are unique"
+    for node_id, node in (untouched or {}).items():
+        assert nodes.get(node_id) == node, f"another client changed {node_id}"
     for node in nodes.values():
         seen, current = set(), node
         while current["parent"] is not None:  # every chain of parents ends: no cycle
@@ -204,6 +208,8 @@ def gone(server: RunningServer, client: str) -> bool:
 def test_fuzzed_messages_never_break_the_server_or_its_scene(fuzz_server):
     tally: Counter[str] = Counter()
     keeper, others = bystander_robot(fuzz_server)
+    theirs = {n["id"]: n for n in fuzz_server.nodes(SCENE)
+              if n["id"].startswith(keeper.client + ".")}
     watcher = Watcher(fuzz_server)
     started = time.monotonic()
     ws, me, _ = open_client(fuzz_server)
@@ -228,7 +234,7 @@ def test_fuzzed_messages_never_break_the_server_or_its_scene(fuzz_server):
         sent[0] += len(drawn)
         check_answers(drawn, exchange(ws, drawn))
         if sent[0] % 500 < MESSAGES_PER_EXAMPLE:
-            check_scene(fuzz_server, watcher)
+            check_scene(fuzz_server, watcher, theirs)
 
     run_cases()
     fuzz()
@@ -237,7 +243,7 @@ def test_fuzzed_messages_never_break_the_server_or_its_scene(fuzz_server):
     while not gone(fuzz_server, me) and time.monotonic() < deadline:
         time.sleep(0.05)
     assert gone(fuzz_server, me), "a client's objects leave with it"
-    check_scene(fuzz_server, watcher)
+    check_scene(fuzz_server, watcher, theirs)
     keeper.ws.close()
     watcher.ws.close()
     print(f"\n{sum(tally.values())} fuzzed messages in {time.monotonic() - started:.1f} s, "
