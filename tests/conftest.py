@@ -97,8 +97,9 @@ def stop_server(server: RunningServer) -> None:
 
 @pytest.fixture(scope="session")
 def server() -> Iterator[RunningServer]:
-    """A server with an empty default scene (no demo), shared by the whole session."""
-    running = start_server("--no-demo")
+    """A server with an empty default scene (no demo), shared by the whole session; what a
+    client made goes 1 s after it leaves (10 s by default)."""
+    running = start_server("--no-demo", "--limit", "leaveGraceSeconds=1")
     yield running
     stop_server(running)
 

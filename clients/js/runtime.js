@@ -32,19 +32,21 @@ let animation = null;            // {stop}
 let keeper = null;               // flushes directly written transforms without an animation
 
 // The WebSocket address of a scene: `url` is the server (ws://host:port) or already /ws.
-export function sceneUrl(url, { scene: name = 'default', role = 'controller', token = null } = {}) {
+export function sceneUrl(url, { scene: name = 'default', role = 'controller', token = null, keep = false } = {}) {
 	const base = url.replace(/\/+$/, '');
 	const query = new URLSearchParams({ scene: name, role });
 	if (token) query.set('token', token);
+	if (keep) query.set('keep', 'true');
 	return `${/\/ws$/.test(base) ? base : `${base}/ws`}?${query}`;
 }
 
 // Connect to a scene of a server and make it the one new objects go to.
-// Node: connect({url, scene, role, token}) or the VP_URL and VP_TOKEN environment variables.
-export async function connect({ url, scene: name = 'default', role = 'controller', token, onMessage } = {}) {
+// Node: connect({url, scene, role, token, keep}) or the VP_URL and VP_TOKEN environment
+// variables; keep: what this script makes stays in the scene after it ends.
+export async function connect({ url, scene: name = 'default', role = 'controller', token, keep = false, onMessage } = {}) {
 	const server = url ?? globalThis.process?.env?.VP_URL ?? 'ws://127.0.0.1:8000';
 	const key = token ?? globalThis.process?.env?.VP_TOKEN ?? null;
-	const session = await openSession(sceneUrl(server, { scene: name, role, token: key }), CLASSES, onMessage);
+	const session = await openSession(sceneUrl(server, { scene: name, role, token: key, keep }), CLASSES, onMessage);
 	session.meshes = new PageMeshes(session, () => [scene, session.root]);
 	setCurrentSession(session);
 	keepSyncing(session);

@@ -46,6 +46,7 @@ class Limits:
     # the server
     scenes: int = 100
     scene_idle_seconds: int = 60          # a scene without clients is removed after this
+    leave_grace_seconds: int = 10         # a client that left gets its objects back this long
     connections: int = 1_000
     connections_per_address: int = 256
     header_seconds: int = 10              # to send a complete HTTP request head

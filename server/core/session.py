@@ -28,13 +28,16 @@ ROLES = ("controller", "viewer")
 class Session:
     """A connected client: its id (``c7``), its role, and the objects it created."""
 
-    def __init__(self, scene: Scene, client_id: str, role: str = "controller") -> None:
+    def __init__(self, scene: Scene, client_id: str, role: str = "controller",
+                 resume: str | None = None) -> None:
         if role not in ROLES:
             raise ValueError(f"role must be one of {ROLES}, got {role!r}")
         self.scene = scene
         self.client_id = client_id
         self.role = role
         self.operations = Operations(scene, client_id)
+        self.resume = resume  # what a reconnecting client sends to be this client again
+        self.keep = False  # what it made stays when it leaves
         now = time.monotonic()
         self._ops = TokenBucket(scene.limits.ops_per_second, now)
         self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
@@ -45,7 +48,7 @@ class Session:
         return {"op": "hello", "protocol": PROTOCOL_VERSION, "client": self.client_id,
                 "role": self.role, "scene": self.scene.name, "time": self.scene.time,
                 "tickRate": tick_rate, "limits": self.scene.limits.wire(), "engine": ENGINE,
-                "slots": api.slot_counts()}
+                "slots": api.slot_counts(), **({"resume": self.resume} if self.resume else {})}
 
     def receive(self, text: str | bytes, now: float | None = None) -> list[dict[str, Any]]:
         """Apply every message in one WebSocket text message; the answers, in order.

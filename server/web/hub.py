@@ -8,9 +8,12 @@ made (:mod:`server.web.runner`).
 from __future__ import annotations
 
 import asyncio
+import hashlib
+import hmac
 import itertools
 import logging
 import re
+import secrets
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -38,6 +41,8 @@ class Connection:
     client_id: str
     role: str
     outbox: Outbox
+    resume: str | None = None  # sent in hello: how this client comes back as itself
+    keep: bool = False  # what it made stays in the scene when it leaves
     number: int = field(default_factory=lambda: next(_numbers))
     closed: asyncio.Event = field(default_factory=asyncio.Event)
     admitted: asyncio.Event = field(default_factory=asyncio.Event)
@@ -105,9 +110,13 @@ class SceneHub:
         """Send a connection its hello and snapshot; it gets every later tick."""
         if self.ended:
             raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
+        for other in list(self.members.values()):  # the same client back: the new one wins
+            if other.client_id == connection.client_id:
+                other.closed.set()
         self.members[connection.number] = connection
         self.idle_since = None
-        self.runner.post("join", connection.number, connection.client_id, connection.role)
+        self.runner.post("join", connection.number, connection.client_id, connection.role,
+                         connection.resume, connection.keep)
         await connection.admitted.wait()
 
     def _admit(self, number: int, items: list[Outgoing]) -> None:
@@ -166,6 +175,7 @@ class Hubs:
         self.removed = 0
         self._clients = 0
         self._setups: dict[str, SceneSetup] = {}
+        self._secret = secrets.token_bytes(32)  # signs resume keys (valid until a restart)
 
     def get(self, name: str) -> SceneHub | None:
         """The hub of an existing scene."""
@@ -194,6 +204,20 @@ class Hubs:
                                                self.assets, self._setups.get(name))
             hub.runner.start()
         return hub
+
+    def client_for(self, scene: str, resume: str | None) -> tuple[str, str]:
+        """The client id of a connection and its resume key: the id ``resume`` names when
+        it is one this server gave for this scene (the client is back), else a new one."""
+        if resume is not None:
+            client_id, _, _ = resume.partition(":")
+            if hmac.compare_digest(resume.encode(), self._resume_key(scene, client_id).encode()):
+                return client_id, resume
+        client_id = self.new_client_id()
+        return client_id, self._resume_key(scene, client_id)
+
+    def _resume_key(self, scene: str, client_id: str) -> str:
+        mac = hmac.new(self._secret, f"{scene}\0{client_id}".encode(), hashlib.sha256)
+        return f"{client_id}:{mac.hexdigest()[:32]}"
 
     def new_client_id(self) -> str:
         """A fresh client id: c1, c2, … (never handed out twice by this server)."""

@@ -30,7 +30,8 @@ TRY_AGAIN_LATER = 1013
 @router.websocket("/ws")
 async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
                              role: str = "controller", engine: str = ENGINE,
-                             token: str | None = None) -> None:
+                             token: str | None = None, resume: str | None = None,
+                             keep: bool = False) -> None:
     hubs: Hubs = websocket.app.state.hubs
     access: AccessPolicy = websocket.app.state.access
     await websocket.accept()
@@ -48,7 +49,8 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
         await websocket.send_text(Outgoing.of(error.to_wire()).text)
         await websocket.close(code, error.message[:120])
         return
-    connection = Connection(hubs.new_client_id(), role, Outbox(hubs.limits.outbox_bytes))
+    client_id, resume_key = hubs.client_for(scene, resume)
+    connection = Connection(client_id, role, Outbox(hubs.limits.outbox_bytes), resume_key, keep)
     tasks: list[asyncio.Task[object]] = []
     try:
         await hub.join(connection)

@@ -11,9 +11,12 @@ Commands (tuples) come from the server in lists; events go back in lists:
 ========================================  =============================================
 command                                   events it causes
 ========================================  =============================================
-``("join", cid, client_id, role)``        ``("admit", cid, [hello, snapshot])``
+``("join", cid, client_id, role, resume,   ``("admit", cid, [hello, snapshot])``
+keep)``
 ``("text", cid, text)``                   ``("answers", cid, [answers], bytes_applied)``
 ``("leave", cid)``                        the client's objects deleted (seen in frames)
+                                          after ``leaveGraceSeconds``, unless it comes
+                                          back (joins as the same client) or keeps them
 ``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)``
 ``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
 ``("stop",)``                             the process ends
@@ -76,6 +79,7 @@ class SceneWorker:
         self._events: list[tuple[Any, ...]] = []
         self._resync = False
         self._stopping = False
+        self._departed: dict[str, tuple[float, Session]] = {}  # client -> (deadline, session)
 
     def run(self) -> None:
         """Serve until ``stop`` or until the server's end of the pipe closes."""
@@ -129,8 +133,11 @@ class SceneWorker:
         except Exception:  # a bug in one command must not stop the scene
             log.exception("command %s of scene %s failed", command[0], self.scene.name)
 
-    def _join(self, cid: int, client_id: str, role: str) -> None:
-        session = self._sessions[cid] = Session(self.scene, client_id, role)
+    def _join(self, cid: int, client_id: str, role: str, resume: str | None = None,
+              keep: bool = False) -> None:
+        self._departed.pop(client_id, None)  # back within the grace period: nothing goes
+        session = self._sessions[cid] = Session(self.scene, client_id, role, resume=resume)
+        session.keep = keep
         self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
                                             Outgoing.of(self.scene.snapshot())]))
 
@@ -144,8 +151,19 @@ class SceneWorker:
 
     def _leave(self, cid: int) -> None:
         session = self._sessions.pop(cid, None)
-        if session is not None and session.close():
-            heap.trim()  # what the client's objects used goes back to the system
+        if session is None or session.keep or \
+                any(s.client_id == session.client_id for s in self._sessions.values()):
+            return  # kept, or the client is back already (a new connection took over)
+        grace = self.scene.limits.leave_grace_seconds
+        self._departed[session.client_id] = (time.monotonic() + grace, session)
+
+    def _expire(self, now: float) -> None:
+        """Delete what clients that left made, once their grace period is over."""
+        for client_id, (deadline, session) in list(self._departed.items()):
+            if now >= deadline:
+                del self._departed[client_id]
+                if session.close():
+                    heap.trim()  # what the client's objects used goes back to the system
 
     def _read(self, number: int, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
         try:
@@ -177,6 +195,7 @@ class SceneWorker:
             self._resync = True
             log.exception("tick of scene %s failed", self.scene.name)
             return
+        self._expire(time.monotonic())  # deleted now, announced by the next tick
         if messages:
             self._events.append(("frame", messages))
         self._flush()

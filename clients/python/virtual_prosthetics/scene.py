@@ -45,7 +45,7 @@ class Scene:
 
     def __init__(self, url: str = "ws://127.0.0.1:8000", scene: str = "default",
                  role: str = "controller", timeout: float = 10.0,
-                 token: str | None = None) -> None:
+                 token: str | None = None, keep: bool = False) -> None:
         self.url = url.rstrip("/")
         self.mirror = Mirror(self._listens)
         self.lock = threading.RLock()
@@ -55,7 +55,8 @@ class Scene:
         self._ids = count(1)
         self._ready = threading.Event()
         token = token if token is not None else os.environ.get("VP_TOKEN")
-        query = urlencode({"scene": scene, "role": role, **({"token": token} if token else {})})
+        query = urlencode({"scene": scene, "role": role, **({"token": token} if token else {}),
+                           **({"keep": "true"} if keep else {})})
         self.connection = Connection(f"{url.rstrip('/')}/ws?{query}", self._on_message,
                                      self._on_changes)
         self.connection.start()
@@ -209,9 +210,10 @@ class Scene:
 
 
 def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
-            role: str = "controller", token: str | None = None) -> Scene:
+            role: str = "controller", token: str | None = None, keep: bool = False) -> Scene:
     """Connect to a scene of a server and make it the current scene; ``token`` (default:
-    the ``VP_TOKEN`` environment variable) when the server asks for one."""
+    the ``VP_TOKEN`` environment variable) when the server asks for one; ``keep``: what
+    this script makes stays in the scene after it ends."""
     global _current
-    _current = Scene(url, scene, role, token=token)
+    _current = Scene(url, scene, role, token=token, keep=keep)
     return _current

@@ -185,6 +185,15 @@ def test_disconnect_removes_the_clients_robots(server, scene_name):
     assert server.get(f"/api/scenes/{scene_name}")["robots"] == 0
 
 
+def test_keep_leaves_a_scripts_robots_after_it_ends(server, scene_name):
+    with vp.connect(server.ws, scene=scene_name, keep=True):
+        vp.EdgedHand().share()
+        vp.current_scene().sync()
+    time.sleep(1.5)  # past the test server's grace period
+    [robot] = server.get(f"/api/scenes/{scene_name}/robots")
+    assert robot["type"] == "EdgedHand" and robot["shared"]
+
+
 def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
     from ...conftest import start_server, stop_server
     own = start_server("--no-demo")

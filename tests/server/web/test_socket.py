@@ -186,3 +186,34 @@ def test_clients_change_only_their_own_objects_unless_shared(server, scene_name)
         [robot] = [r for r in server.get(f"/api/scenes/{scene_name}/robots")]
         assert (robot["owner"], robot["shared"]) == (a, True)
 
+
+
+def test_a_client_that_comes_back_in_time_is_itself_again(server, scene_name):
+    """The shared server's grace period is 1 s: back within it, nothing was lost."""
+    first, hello, _ = open_client(server, scene_name)
+    me, resume = hello["client"], hello["resume"]
+    with first:
+        request_all(first, [{"op": "create", "object": f"{me}.1", "type": "Box"}])
+    again, hello2, snapshot = open_client(server, scene_name + f"&resume={resume}")
+    with again:
+        assert hello2["client"] == me and f"{me}.1" in [n["id"] for n in snapshot["nodes"]]
+        time.sleep(1.5)
+        assert f"{me}.1" in [n["id"] for n in server.nodes(scene_name)]
+        request_all(again, [{"op": "call", "object": f"{me}.1", "method": "setPosition",
+                             "args": [[1, 2, 3]]}])  # still its owner
+    forged, hello3, _ = open_client(server, scene_name + f"&resume={me}:{'0' * 32}")
+    with forged:
+        assert hello3["client"] != me
+    deadline = time.monotonic() + 5
+    while f"{me}.1" in [n["id"] for n in server.nodes(scene_name)]:
+        assert time.monotonic() < deadline, "what a client made goes after the grace period"
+        time.sleep(0.1)
+
+
+def test_keep_leaves_what_a_client_made_in_the_scene(server, scene_name):
+    maker, hello, _ = open_client(server, scene_name + "&keep=true")
+    me = hello["client"]
+    with maker:
+        request_all(maker, [{"op": "create", "object": f"{me}.1", "type": "Box"}])
+    time.sleep(1.5)
+    assert f"{me}.1" in [n["id"] for n in server.nodes(scene_name)]

@@ -3,6 +3,7 @@
 import json
 import multiprocessing
 import threading
+import time
 
 import pytest
 
@@ -16,7 +17,7 @@ from server.web.worker import SceneWorker
 @pytest.fixture
 def worker():
     server_end, scene_end = multiprocessing.Pipe()
-    scene = Scene("w", DEFAULT)
+    scene = Scene("w", DEFAULT.with_values(["leaveGraceSeconds=1"]))
     loop = SceneWorker(scene_end, scene, 60.0, None)
     thread = threading.Thread(target=loop.run)
     thread.start()
@@ -60,12 +61,37 @@ def test_reads_reply_with_json_or_the_error_with_its_details(worker):
     assert refused[3].details == {"object": "c1.nope"}
 
 
-def test_a_leaving_client_takes_its_objects_along(worker):
+def nodes_of(worker, number):
+    worker.send([("read", number, Scene.snapshot, ())])
+    (_, _, ok, body), = events_until(worker, "reply")
+    assert ok
+    return [node["id"] for node in json.loads(body)["nodes"]]
+
+
+def test_a_leaving_client_takes_its_objects_along_after_the_grace_period(worker):
     worker.send([("join", 1, "c1", "controller"),
                  ("text", 1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
-                 ("leave", 1), ("metrics", 2)])
-    (_, _, _, stats), = events_until(worker, "reply")
-    assert stats["ticks"] >= 0
-    worker.send([("read", 3, Scene.snapshot, ())])
-    (_, _, ok, body), = events_until(worker, "reply")
-    assert ok and json.loads(body)["nodes"] == []
+                 ("leave", 1)])
+    left = time.monotonic()
+    assert nodes_of(worker, 2) == ["c1.b"]  # still there: it may come back
+    while nodes_of(worker, 3) and time.monotonic() < left + 5:
+        time.sleep(0.05)
+    assert nodes_of(worker, 4) == [] and time.monotonic() - left >= 1
+
+
+def test_a_client_back_within_the_grace_period_keeps_everything(worker):
+    worker.send([("join", 1, "c1", "controller"),
+                 ("text", 1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
+                 ("leave", 1), ("join", 2, "c1", "controller", "c1:key", False)])
+    (_, _, (hello, _)), = events_until(worker, "admit", 2)[1:]
+    assert hello.message["client"] == "c1" and hello.message["resume"] == "c1:key"
+    time.sleep(1.5)
+    assert nodes_of(worker, 3) == ["c1.b"]
+
+
+def test_a_client_that_keeps_leaves_its_objects_for_good(worker):
+    worker.send([("join", 1, "c1", "controller", None, True),
+                 ("text", 1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
+                 ("leave", 1)])
+    time.sleep(1.5)
+    assert nodes_of(worker, 2) == ["c1.b"]
