@@ -7,16 +7,19 @@ and lets the caller's thread wait for the reader's.
 from __future__ import annotations
 
 import threading
+import time
 import warnings
 from typing import Any
+from urllib.parse import parse_qsl, urlencode, urlsplit, urlunsplit
 
-from websockets.exceptions import ConnectionClosed
+from websockets.exceptions import ConnectionClosed, InvalidHandshake
 from websockets.sync.client import connect as ws_connect
 
 from .errors import ConnectionLost, ServerError, ServerWarning, Timeout
-from .protocol import Handler, ProtocolCore
+from .protocol import Handler, ProtocolCore, Request
 
 ANSWER_TIMEOUT = 30.0
+RETRY_FIRST, RETRY_MAX = 0.1, 1.0  # seconds between attempts to connect again
 
 
 class Connection:
@@ -28,6 +31,10 @@ class Connection:
     """
 
     def __init__(self, url: str, on_message: Handler, on_changes: Handler) -> None:
+        self._url = url
+        self._closing = False
+        self._reconnecting = False
+        self._generation = 0  # connections made so far after the first
         # entered by hand: the connection outlives this constructor (closed by close())
         self._ws = ws_connect(url, max_size=None, open_timeout=10).__enter__()
         self.core = ProtocolCore(on_message, on_changes)
@@ -45,25 +52,24 @@ class Connection:
 
     def close(self) -> None:
         """Close the WebSocket (the server then deletes what this client made)."""
+        self._closing = True
         self._ws.close()
         self._reader.join(timeout=5)
 
     def send(self, message: dict[str, Any], wait: bool = False) -> Any:
         """Send a request; with ``wait``, block for its answer and return the result."""
         self.raise_deferred()
-        with self._lock:
-            self._check_open()
-            request = self.core.request(message, wait)
-        try:
-            self._ws.send(request.text)
-        except ConnectionClosed as error:
-            raise ConnectionLost(f"connection closed: {error}") from None
+        request = self._send(message, wait)
         if not wait:
             return None
         with self._lock:
-            if not self._lock.wait_for(lambda: request.id in self.core.answers or self.closed,
-                                       ANSWER_TIMEOUT):
+            if not self._lock.wait_for(lambda: request.id in self.core.answers or self.closed
+                                       or request.id in self.core.interrupted, ANSWER_TIMEOUT):
                 raise Timeout(f"no answer to {message['op']} within {ANSWER_TIMEOUT} s")
+            if request.id in self.core.interrupted:
+                self.core.interrupted.discard(request.id)
+                raise ConnectionLost(f"the connection dropped before {message['op']} was "
+                                     f"answered (it may or may not have been applied)")
             if request.id not in self.core.answers:
                 self._check_open()
             try:  # a ServerError is raised outside the lock, after the answer's warnings
@@ -74,6 +80,26 @@ class Connection:
         if error is not None:
             raise error
         return result
+
+    def _send(self, message: dict[str, Any], wait: bool) -> Request:
+        """Send a request, waiting out a reconnection: a request the loss kept from going
+        goes again, with a new id, on the new connection."""
+        for attempt in range(2):
+            with self._lock:
+                self._lock.wait_for(lambda: not self._reconnecting, self.core.grace + 10)
+                self._check_open()
+                request, generation = self.core.request(message, wait), self._generation
+            try:
+                self._ws.send(request.text)
+                return request
+            except ConnectionClosed as error:
+                with self._lock:  # the reader finds the loss too and connects again
+                    self._lock.wait_for(lambda: self._generation != generation or
+                                        bool(self.closed), self.core.grace + 10)
+                    self.core.interrupted.discard(request.id)
+                    if self._generation == generation or attempt:
+                        raise ConnectionLost(f"connection closed: {error}") from None
+        raise AssertionError("unreachable")
 
     def settle(self, timeout: float = ANSWER_TIMEOUT) -> None:
         """Wait until every request sent so far is answered; raise a kept error."""
@@ -104,16 +130,55 @@ class Connection:
             raise ConnectionLost(self.closed)
 
     def _read(self) -> None:
+        while True:
+            reason = self._read_until_closed()
+            with self._lock:
+                self._reconnecting = not self._closing and self.core.resume is not None
+            if not self._reconnecting or not self._reconnect():
+                break
+        with self._lock:
+            self.core.lost(reason)
+            self._reconnecting = False
+            self._lock.notify_all()
+
+    def _read_until_closed(self) -> str:
         try:
             for text in self._ws:
                 with self._lock:
                     self.core.receive(text)
                     self._lock.notify_all()
-            reason = "the server closed the connection"
+            return "the server closed the connection"
         except ConnectionClosed as error:
-            reason = f"connection closed: {error}"
+            return f"connection closed: {error}"
         except Exception as error:  # a broken message must not leave waiters hanging
-            reason = f"reading failed: {error!r}"
-        with self._lock:
-            self.core.lost(reason)
-            self._lock.notify_all()
+            return f"reading failed: {error!r}"
+
+    def _reconnect(self) -> bool:
+        """Connect again as the same client while the server still keeps its objects; the
+        server then sends a fresh hello and snapshot, which resync the mirror."""
+        if self.core.resume is None:
+            return False
+        deadline, pause = time.monotonic() + self.core.grace, RETRY_FIRST
+        url = _with_query(self._url, resume=self.core.resume)
+        while time.monotonic() < deadline and not self._closing:
+            try:
+                socket = ws_connect(url, max_size=None, open_timeout=5).__enter__()
+            except (OSError, InvalidHandshake, TimeoutError):
+                time.sleep(min(pause, max(0.0, deadline - time.monotonic())))
+                pause = min(RETRY_MAX, pause * 2)
+                continue
+            with self._lock:
+                self._ws = socket
+                self.core.reconnected()
+                self._generation += 1
+                self._reconnecting = False
+                self._lock.notify_all()
+            return True
+        return False
+
+
+def _with_query(url: str, **params: str) -> str:
+    """``url`` with these query parameters set (replacing earlier values)."""
+    parts = urlsplit(url)
+    query = dict(parse_qsl(parts.query)) | params
+    return urlunsplit(parts._replace(query=urlencode(query)))

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 from .codec import decode, encode
-from .errors import ProtocolError, ServerError
+from .errors import ConnectionLost, ProtocolError, ServerError
 
 Handler = Callable[[dict[str, Any]], None]
 SERVER_OPS = frozenset({"hello", "snapshot", "ok", "error", "frame", "added", "removed"})
@@ -41,9 +41,12 @@ class ProtocolCore:
         self.unanswered: set[int] = set()
         self._waited: set[int] = set()
         self.answers: dict[int, dict[str, Any]] = {}  # answers of waited requests
-        self.deferred: list[ServerError] = []
+        self.deferred: list[Exception] = []
         self.warnings: list[str] = []
         self.closed: str | None = None
+        self.resume: str | None = None  # hello's key for connecting again as this client
+        self.grace = 0.0  # how long the server keeps this client's objects after a loss
+        self.interrupted: set[int] = set()  # waited requests a lost connection left unanswered
 
     def request(self, message: dict[str, Any], wait: bool = False) -> Request:
         """The request for ``message`` with a fresh id (``wait``: keep its answer)."""
@@ -64,6 +67,9 @@ class ProtocolCore:
         if message["op"] in ("ok", "error") and message.get("id") is not None:
             self._answered(message)
         else:
+            if message["op"] == "hello":
+                self.resume = message.get("resume")
+                self.grace = float(message.get("limits", {}).get("leaveGraceSeconds", 0))
             if message["op"] == "error":
                 self.deferred.append(ServerError.from_wire(message))
             self.on_message(message)
@@ -101,3 +107,15 @@ class ProtocolCore:
     def lost(self, reason: str) -> None:
         """The connection is gone: nothing more will be answered."""
         self.closed = reason
+
+    def reconnected(self) -> None:
+        """A new connection replaced a lost one (as the same client): requests sent before
+        the loss and not answered may or may not have been applied; who waits for one
+        is told so, the others' loss is raised by the next call."""
+        lost = ConnectionLost("the connection dropped before a request was answered (it "
+                              "may or may not have been applied); reconnected")
+        self.interrupted |= self.unanswered & self._waited
+        if self.unanswered - self._waited:
+            self.deferred.append(lost)
+        self._waited -= self.unanswered
+        self.unanswered.clear()

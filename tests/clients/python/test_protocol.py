@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from virtual_prosthetics.errors import ProtocolError, ServerError
+from virtual_prosthetics.errors import ConnectionLost, ProtocolError, ServerError
 from virtual_prosthetics.protocol import ProtocolCore
 
 
@@ -85,3 +85,17 @@ def test_frames_and_errors_without_id_go_to_on_message():
 def test_unknown_messages_fail_loudly(text):
     with pytest.raises(ProtocolError):
         Heard().core().receive(text)
+
+
+def test_hello_gives_the_key_to_come_back_and_a_reconnection_settles_the_unanswered():
+    core = Heard().core()
+    core.receive(json.dumps({"op": "hello", "client": "c3", "resume": "c3:abc",
+                             "limits": {"leaveGraceSeconds": 10}}))
+    assert (core.resume, core.grace) == ("c3:abc", 10.0)
+    waited = core.request({"op": "call", "object": "c3.m", "method": "getAngle"}, wait=True)
+    core.request({"op": "call", "object": "c3.m", "method": "setAngle", "args": [1]})
+    core.reconnected()
+    assert core.unanswered == set() and core.interrupted == {waited.id}
+    lost = core.take_deferred()
+    assert isinstance(lost, ConnectionLost) and "may or may not" in str(lost)
+    assert core.take_deferred() is None and core.closed is None  # the conversation goes on

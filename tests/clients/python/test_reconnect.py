@@ -1,0 +1,100 @@
+"""A script whose connection drops comes back as the same client, with its robots,
+nothing made twice (the network cut by a real TCP proxy between it and the server)."""
+
+from __future__ import annotations
+
+import socket
+import threading
+import time
+
+import pytest
+
+import virtual_prosthetics as vp
+
+
+class CuttableProxy:
+    """Forwards TCP from a local port to the server; :meth:`cut` drops every connection
+    (as a lost network does) and keeps listening."""
+
+    def __init__(self, target_port: int) -> None:
+        self.target = target_port
+        self.listener = socket.create_server(("127.0.0.1", 0))
+        self.port = self.listener.getsockname()[1]
+        self.open: list[socket.socket] = []
+        self.accepted = 0
+        threading.Thread(target=self._accept, daemon=True).start()
+
+    def _accept(self) -> None:
+        while True:
+            try:
+                client, _ = self.listener.accept()
+            except OSError:
+                return
+            upstream = socket.create_connection(("127.0.0.1", self.target))
+            self.open += [client, upstream]
+            self.accepted += 1
+            for a, b in ((client, upstream), (upstream, client)):
+                threading.Thread(target=self._pump, args=(a, b), daemon=True).start()
+
+    @staticmethod
+    def _pump(source: socket.socket, sink: socket.socket) -> None:
+        try:
+            while data := source.recv(65536):
+                sink.sendall(data)
+        except OSError:
+            pass
+        for end in (source, sink):
+            try:
+                end.shutdown(socket.SHUT_RDWR)
+            except OSError:
+                pass
+
+    def cut(self) -> None:
+        ends, self.open = self.open, []  # not the connections made again meanwhile
+        for end in ends:
+            try:
+                end.shutdown(socket.SHUT_RDWR)
+            except OSError:
+                pass
+
+    def close(self) -> None:
+        self.cut()
+        self.listener.close()
+
+
+@pytest.fixture
+def proxy(server):
+    running = CuttableProxy(server.port)
+    yield running
+    running.close()
+
+
+def test_a_dropped_script_comes_back_with_its_robots_and_makes_nothing_twice(server, proxy,
+                                                                            scene_name):
+    with vp.connect(f"ws://127.0.0.1:{proxy.port}", scene=scene_name) as scene:
+        me = scene.client_id
+        hand = vp.EdgedHand()
+        hand.flex_fingers(0.3)
+        scene.sync()
+        proxy.cut()
+        deadline = time.monotonic() + 5
+        while proxy.accepted < 2:  # requests sent into the dead link before the client
+            assert time.monotonic() < deadline  # noticed would be reported lost
+            time.sleep(0.01)
+        hand.flex_fingers(0.6)  # sent once the client is itself again
+        scene.sync()
+        assert proxy.accepted == 2 and scene.client_id == me
+        robots = server.get(f"/api/scenes/{scene_name}/robots")
+        assert [r["id"] for r in robots] == [hand.id]
+        motors = server.get(f"/api/scenes/{scene_name}/robots/{hand.id}")["motors"]
+        assert motors[1]["angle"] == pytest.approx(-0.6)
+        assert hand.get_angles()[1] == pytest.approx(-0.6)  # the mirror resynced and follows
+
+
+def test_closing_on_purpose_does_not_come_back(server, proxy, scene_name):
+    scene = vp.connect(f"ws://127.0.0.1:{proxy.port}", scene=scene_name)
+    vp.Box()
+    scene.sync()
+    scene.close()
+    time.sleep(0.5)
+    assert proxy.accepted == 1
