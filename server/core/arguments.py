@@ -254,6 +254,9 @@ def _slot(value: Any, resolve: Resolver, label: str) -> int | Node:
     return index
 
 
+# the kinds whose values name objects of the scene (ownership checks look only at these)
+NODE_KINDS = frozenset({"node", "part", "slot", "contact", "transforms"})
+
 _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "number": lambda v, r, label: _number(v, label),
     "size": _size,

@@ -14,6 +14,7 @@ from typing import Any, Iterator, Sequence
 
 from ..errors import Forbidden
 from .api import Method, Param
+from .arguments import NODE_KINDS
 from .node import Node
 from .robot import Robot
 from .ids import owner_of
@@ -69,6 +70,8 @@ def _refusal(node: Node, why: str) -> Forbidden:
 def _nodes_named(params: Sequence[Param], values: Sequence[Any]) -> Iterator[tuple[Node, bool]]:
     """Every node in bound arguments, with whether it is an attach destination."""
     for index, param in enumerate(params):
+        if param.kind not in NODE_KINDS:
+            continue
         if param.variadic:
             for k, value in enumerate(values[index:]):
                 for node in _nodes_in(value):

@@ -96,3 +96,22 @@ def test_others_attach_their_own_parts_to_a_shared_robot(scene, alice, bob, hand
 
 def test_reading_sensing_and_watching_stay_open(scene, bob, hand):
     assert ask(bob, call(hand, "getAngles"), call(hand, "getParts"))["op"] == "ok"
+
+
+def test_every_kind_that_names_objects_is_checked(scene):
+    """Ownership looks only at parameters of NODE_KINDS: any kind whose binding resolves
+    an object must be one of them."""
+    from server.core.arguments import _KINDS, NODE_KINDS
+    from server.core.parts import Box
+    box = Box(scene, "c1.b")
+    for kind, bind in _KINDS.items():
+        named = []
+        def resolve(node_id):
+            named.append(node_id)
+            return box
+        for value in ({"ref": "c1.b"}, {"c1.b": [0, 0, 0, 0, 0, 0, 1]}, "c1.b"):
+            try:
+                bind(value, resolve, "test")
+            except Exception:
+                pass
+        assert not named or kind in NODE_KINDS, kind
