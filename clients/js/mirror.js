@@ -24,13 +24,19 @@ export class Mirror {
 	// Fold one server message (snapshot, added, removed, frame) into the mirror.
 	apply(message) {
 		switch (message.op) {
-			case 'snapshot':
-				for (const id of [...this.nodes.keys()]) this.forget(id);
+			case 'snapshot': {
+				// after a reconnection: what is still there stays (changed), the rest goes
+				const fresh = new Set(message.nodes.map((node) => node.id));
+				for (const id of [...this.nodes.keys()]) if (!fresh.has(id)) this.forget(id);
 				this.camera = message.camera;
-				this.add(message.nodes);
+				for (const node of message.nodes) {
+					if (this.nodes.has(node.id)) this.change(node.id, node);
+					else this.add([node]);
+				}
 				this.contacts = new Set(message.contacts.map(([a, b]) => `${a}|${b}`));
 				this.tick(message);
 				break;
+			}
 			case 'added': this.add(message.nodes); break;
 			case 'removed': for (const id of message.ids) this.forget(id); break;
 			case 'frame':

@@ -28,13 +28,34 @@ export async function startPage(moduleUrl) {
 	useScene(viewer.scene);
 	viewer.setState('connecting');
 	const url = `${server.protocol === 'https:' ? 'wss:' : 'ws:'}//${server.host}`;
-	session = await connect({ url, scene, role: options.role, token: options.token, onMessage: (message) => viewer.receive(message) });
+	session = await connect({
+		url, scene, role: options.role, token: options.token,
+		onMessage: (message) => {
+			if (message.op === 'hello' && session) viewer.setState('connected');   // back again
+			viewer.receive(message);
+		},
+	});
 	session.makePanel = (robot, title) => {
 		const gui = robot.gui ?? new GUI({ title });
 		guis.set(robot.vp.id, gui);
 		robot.gui = gui;
 	};
 	viewer.setState('connected');
-	session.socket.addEventListener('close', () => viewer.setState('disconnected'));
+	watchLoss(session, viewer);
 	return session;
+}
+
+// The status line says when the connection is lost (the transport connects again; a new
+// hello says it is back) and when the session has ended for good.
+function watchLoss(session, viewer) {
+	const watched = new WeakSet();
+	const follow = () => {
+		const socket = session.socket;
+		if (watched.has(socket)) return;
+		watched.add(socket);
+		socket.addEventListener('close', () => { if (!session.closed) viewer.setState('reconnecting'); });
+	};
+	follow();
+	session.listeners.push((message) => { if (message.op === 'hello') follow(); });
+	session.ended.then(() => viewer.setState('disconnected'));
 }

@@ -84,6 +84,14 @@ export class ProtocolCore {
 		return new Promise((resolve) => this.settled.push([this.nextId - 1, resolve]));
 	}
 
+	// A new connection replaced a lost one (as the same client): requests the loss left
+	// unanswered may or may not have been applied. Their waiters hear `error`; the others'
+	// loss is thrown by the next call.
+	reconnected(error) {
+		if ([...this.unanswered].some((id) => !this.waiting.has(id))) this.deferred.push(error);
+		this.lost(error);
+	}
+
 	// The connection is gone: every waiter hears it.
 	lost(error) {
 		for (const { reject } of this.waiting.values()) reject(error);

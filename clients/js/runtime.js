@@ -78,6 +78,7 @@ export function close() {
 		return;
 	}
 	session.flush();
+	session.closing = true;   // not a loss: the transport does not connect again
 	session.socket.close(1000, 'closed by the client');
 	setCurrentSession(null);
 }

@@ -52,6 +52,7 @@ export class Session {
 			onWarning,
 		});
 		this.ready = new Promise((resolve, reject) => { this.welcome = { resolve, reject }; });
+		this.ended = new Promise((resolve) => { this.end = resolve; });   // resolves with why
 	}
 
 	get clientId() { return this.hello?.client; }
@@ -71,9 +72,17 @@ export class Session {
 		for (const listener of this.listeners) listener(message);
 	}
 
+	// A new connection, as the same client, replaced a lost one (transport.js); the
+	// server's fresh hello and snapshot follow and resync the mirror.
+	reconnected() {
+		this.core.reconnected(new ConnectionLost('the connection dropped before a request was '
+			+ 'answered (it may or may not have been applied); reconnected'));
+	}
+
 	// The connection closed: waiters hear it, later requests throw.
 	lost(reason) {
 		this.closed = reason;
+		this.end(reason);
 		const error = new ConnectionLost(reason);
 		this.core.lost(error);
 		this.welcome.reject(error);

@@ -1,11 +1,23 @@
-// The WebSocket under a session: the browser's, Node's own (22+), or `ws` from npm.
+// The WebSocket under a session: the browser's, Node's own (22+), or `ws` from npm. A
+// connection lost (not closed by the page) is opened again as the same client (hello's
+// `resume` key) while the server still keeps what the client made; what the page sends
+// meanwhile waits and goes on the new connection.
 
 import { ProtocolError } from './errors.js';
 import { Session } from './session.js';
 
+const OPEN = 1;
+const RETRY_FIRST = 100, RETRY_MAX = 1000;   // ms between attempts to connect again
+
 async function socketClass() {
 	if (globalThis.WebSocket) return globalThis.WebSocket;
 	return (await import('ws')).default;
+}
+
+function withResume(url, key) {
+	const address = new URL(url);
+	address.searchParams.set('resume', key);
+	return address.href;
 }
 
 // Open a session on `url` (ws://host:port/ws?scene=…&role=…); resolves once the scene's
@@ -13,22 +25,55 @@ async function socketClass() {
 // every server message that is not an answer, from the hello on.
 export async function openSession(url, classes, onMessage = null) {
 	const WebSocketClass = await socketClass();
-	const socket = new WebSocketClass(url);
-	const session = new Session({ send: (text) => socket.send(text), classes });
+	const waiting = [];   // texts sent while no connection is open
+	const session = new Session({
+		send: (text) => (session.socket.readyState === OPEN ? session.socket.send(text) : waiting.push(text)),
+		classes,
+	});
 	if (onMessage) session.listeners.push(onMessage);
-	session.socket = socket;
-	socket.onmessage = (event) => {
-		const text = typeof event.data === 'string' ? event.data : String(event.data);
-		try {
-			session.receive(text);
-		} catch (error) {
-			if (!(error instanceof ProtocolError)) throw error;
-			console.error(error);
-			socket.close(1002, 'protocol error');
+
+	const open = (address) => new Promise((resolve) => {
+		const socket = new WebSocketClass(address);
+		let opened = false;
+		socket.onopen = () => {
+			opened = true;
+			session.socket = socket;
+			resolve(true);
+		};
+		socket.onmessage = (event) => {
+			const text = typeof event.data === 'string' ? event.data : String(event.data);
+			try {
+				session.receive(text);
+			} catch (error) {
+				if (!(error instanceof ProtocolError)) throw error;
+				console.error(error);
+				socket.close(1002, 'protocol error');
+			}
+		};
+		socket.onclose = (event) => {
+			if (!opened) return resolve(false);
+			lost(`connection closed (${event.code}${event.reason ? `: ${event.reason}` : ''})`);
+		};
+		socket.onerror = () => {};   // the close that follows says it
+		if (!session.socket) session.socket = socket;   // the first: page.js listens to it
+	});
+
+	async function lost(reason) {
+		const key = session.hello?.resume;
+		if (session.closing || !key) return session.lost(reason);
+		const deadline = Date.now() + 1000 * (session.hello.limits?.leaveGraceSeconds ?? 0);
+		for (let pause = RETRY_FIRST; Date.now() < deadline && !session.closing; pause = Math.min(RETRY_MAX, pause * 2)) {
+			if (await open(withResume(url, key))) {
+				session.reconnected();
+				for (const text of waiting.splice(0)) session.socket.send(text);
+				return;
+			}
+			await new Promise((resolve) => setTimeout(resolve, pause));
 		}
-	};
-	socket.onclose = (event) => session.lost(`connection closed (${event.code}${event.reason ? `: ${event.reason}` : ''})`);
-	socket.onerror = () => {};   // the close that follows says it
+		session.lost(reason);
+	}
+
+	if (!(await open(url))) session.lost('the server could not be reached');
 	await session.ready;
 	return session;
 }
