@@ -38,7 +38,7 @@ def bind(params: Sequence[Param], raw: Sequence[Any], resolve: Resolver, where: 
                     all(map(math.isfinite, items)):
                 values.extend(items)  # setAngles' angles, as they came
             else:
-                values.extend(_coerce_item(param, item, resolve, where, position + i)
+                values.extend(_coerce(param, item, resolve, f"{where}, argument {position + i}")
                               for i, item in enumerate(items))
             return values
         if param.kind == "point":
@@ -153,18 +153,9 @@ def _coerce(param: Param, value: Any, resolve: Resolver, label: str) -> Any:
     return _KINDS[param.kind](value, resolve, label)
 
 
-# Kinds that take any finite number as it is: a variadic list of them (setAngles' 20
-# angles) skips the general path, whose per-item label alone was a fifth of a request.
+# Kinds that take any finite float as it is: a variadic list of such floats (setAngles'
+# 20 angles) skips the general path, whose per-item label alone was a fifth of a request.
 _PLAIN_NUMBERS = frozenset({"number", "limit", "angle"})
-
-
-def _coerce_item(param: Param, value: Any, resolve: Resolver, where: str, index: int) -> Any:
-    if param.kind in _PLAIN_NUMBERS:
-        if type(value) is float and math.isfinite(value):
-            return value
-        if type(value) is int and abs(value) <= 2 ** 53:
-            return float(value)
-    return _coerce(param, value, resolve, f"{where}, argument {index}")
 
 
 def _size(value: Any, resolve: Resolver, label: str) -> float:

@@ -87,9 +87,8 @@ class Hand(Robot):
     def _turn(self, turns: list[tuple[int, float | None]]) -> None:
         """Motors (by index) to -angle, those the hand still has, in one pass."""
         motors = [(self._motor(index), angle) for index, angle in turns]
-        self.scene.turn([(motor, value) for motor, angle in motors if motor is not None and
-                         (value := motor.within_limits(None if angle is None else -angle))
-                         is not None])
+        self.scene.turn([(motor, None if angle is None else -angle)
+                         for motor, angle in motors if motor is not None])
 
 
 class EdgedHand(Hand):

@@ -17,7 +17,6 @@ from .journal import Journal
 _MAX_NUMBER_DIGITS = 15  # longer numeric names are remembered as names
 
 
-
 def owner_of(node_id: str) -> str:
     """Who made an object: the part of its id before the first dot (``c7`` of ``c7.3/1``)."""
     return node_id.partition(".")[0]

@@ -52,9 +52,7 @@ class Motor(Part):
 
     def set_angle(self, angle: float | None) -> None:
         """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""
-        value = self.within_limits(angle)
-        if value is not None:
-            self.scene.turn([(self, value)])
+        self.scene.turn([(self, angle)])
 
     def within_limits(self, angle: float | None) -> float | None:
         """The angle ``setAngle(angle)`` gives this motor (None: it is ignored)."""

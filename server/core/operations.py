@@ -118,8 +118,7 @@ class Operations:
         target = self.scene if object_id == SCENE_ID else self.scene.get(object_id)
         args = bind(method.params, raw_args, self.scene.get, f"{name} of {object_id}")
         if method.mutates:
-            self.ownership.check_call(None if target is self.scene else target, method,
-                                      method.params, args)
+            self.ownership.check_call(None if target is self.scene else target, method, args)
         extra = {"client": self.client_id} if method.client else {}
         value = getattr(target, method.python)(*args, **extra)
         return RESULTS[method.returns](target, value)

@@ -41,12 +41,11 @@ class Ownership:
         if not self.owns(node):
             raise _refusal(node, "only its owner deletes it")
 
-    def check_call(self, target: Node | None, method: Method, params: Sequence[Param],
-                   values: Sequence[Any]) -> None:
+    def check_call(self, target: Node | None, method: Method, values: Sequence[Any]) -> None:
         """A changing call on ``target`` (None: the scene) with bound arguments ``values``."""
         if target is not None and not self.owns(target):
             self._check_foreign_target(target, method)
-        for node, destination in _nodes_named(params, values):
+        for node, destination in _nodes_named(method.params, values):
             if self.owns(node) or (destination and shared_robot(node) is not None):
                 continue
             raise _refusal(node, "only its owner attaches or moves it" if not destination else

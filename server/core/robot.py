@@ -110,8 +110,7 @@ class Robot(Node):
 
     def set_angles(self, *angles: float | None) -> None:
         """Manual ``setAngles(a0, a1, …)``: None leaves a motor as it is; extras are ignored."""
-        self.scene.turn([(motor, value) for motor, angle in zip(self.get_motors(), angles)
-                         if (value := motor.within_limits(angle)) is not None])
+        self.scene.turn(list(zip(self.get_motors(), angles)))
 
     @property
     def motors(self) -> list[str]:

@@ -149,10 +149,12 @@ class Scene:
         if field == "visible":
             self.bodies.mark(n.id for n in node.walk())
 
-    def turn(self, turns: list[tuple[Motor, float]]) -> None:
-        """Set motor angles (journaled, reported, moving what hangs on them) in one pass:
-        a robot's ``setAngles`` turns all its motors at once."""
-        turns = [(motor, angle) for motor, angle in turns if motor.angle != angle]
+    def turn(self, turns: list[tuple[Motor, float | None]]) -> None:
+        """Motors to angles, as ``setAngle`` takes them (None and NaN ignored, the rest
+        clamped: :meth:`Motor.within_limits`), journaled, reported and moving what hangs on
+        them, in one pass: a robot's ``setAngles`` turns all its motors at once."""
+        turns = [(motor, value) for motor, angle in turns
+                 if (value := motor.within_limits(angle)) is not None and motor.angle != value]
         if not turns:
             return
         before = [(motor, motor.angle) for motor, _ in turns]
@@ -161,8 +163,7 @@ class Scene:
             motor.angle = angle
         for changes in self._recorders:
             changes.angles.update(dict.fromkeys(motor.id for motor, _ in turns))
-        self.bodies.mark([moved.id for motor, _ in turns for moved in motor.invalidate()
-                          if moved.physical])
+        self._moved(*(motor for motor, _ in turns))
 
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
@@ -178,8 +179,9 @@ class Scene:
                 changes.update(robot.id, "motors")
         self.node_changed(node, "parent")
 
-    def _moved(self, node: Node) -> None:
-        self.bodies.mark([changed.id for changed in node.invalidate() if changed.physical])
+    def _moved(self, *nodes: Node) -> None:
+        self.bodies.mark([changed.id for node in nodes for changed in node.invalidate()
+                          if changed.physical])
 
     def warn(self, message: str) -> None:
         """Tell whoever made the current request something that did not fail but may surprise."""
