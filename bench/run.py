@@ -113,11 +113,15 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
 
 
 def commit() -> str:
-    """The commit measured (with ``+changes`` when the work tree differs from it)."""
-    head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=HERE, capture_output=True,
-                          text=True, check=True).stdout.strip()
-    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=HERE,
-                           capture_output=True, text=True, check=True).stdout.strip()
+    """The commit measured (with ``+changes`` when the work tree differs from it);
+    ``unknown`` outside a git checkout (the container image has no history)."""
+    try:
+        head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=HERE, capture_output=True,
+                              text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
+                               cwd=HERE, capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
     return head + ("+changes" if dirty else "")
 
 

@@ -38,6 +38,11 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--assets-dir", type=Path, default=None, metavar="DIR",
                         help="keep uploaded mesh files here (default: a temporary folder "
                              "removed when the server stops)")
+    parser.add_argument("--state-dir", type=Path, default=os.environ.get("VP_STATE_DIR"),
+                        metavar="DIR", help="save every scene here (on change, at most once a "
+                        "second, and on shutdown) and restore them at start; uploads are kept "
+                        "here too unless --assets-dir says otherwise (default: $VP_STATE_DIR; "
+                        "unset: scenes last as long as the server)")
     parser.add_argument("--token", default=os.environ.get("VP_TOKEN"), metavar="TOKEN",
                         help="controlling (WebSockets with ?token=, REST changes with "
                              "Authorization: Bearer) needs this token (default: $VP_TOKEN)")
@@ -64,7 +69,8 @@ def main(argv: list[str] | None = None) -> None:
     _raise_file_limit(limits)
     access = AccessPolicy(args.token or None, args.view_token or None, tuple(args.allow_origin))
     app = create_app(tick_rate=args.tick_rate, setups=None if args.no_demo else DEMOS,
-                     limits=limits, uploads=args.assets_dir, access=access)
+                     limits=limits, uploads=args.assets_dir, access=access,
+                     state_dir=args.state_dir)
     # No permessage-deflate: it would compress every frame for every client on the one
     # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md).
     uvicorn.run(app, host=args.host, port=args.port, log_level=args.log_level,

@@ -18,10 +18,9 @@ from .web.worker import SceneSetup
 DIGGERS = ((2.0, 1.0), (3.0, 0.0), (4.0, -1.0))
 
 
-def build_digger(scene: Scene, ids: Callable[[], str], speed: float) -> Robot:
+def build_digger(scene: Scene, ids: Callable[[], str]) -> Robot:
     """The manual's ``Digger``: three customised motors and fingers in a chain."""
     robot = Robot(scene, ids())
-    robot.speed = speed  # type: ignore[attr-defined]
     robot.attach_chain(
         MotorZ(scene, ids(), -0.7, 0.7, 0, 0.2, 0.6),
         EdgedFinger(scene, ids(), 1, 1, 0.1),
@@ -33,9 +32,9 @@ def build_digger(scene: Scene, ids: Callable[[], str], speed: float) -> Robot:
     return robot
 
 
-def dig(robot: Robot, time: float) -> None:
-    """The manual's ``dig(time)``."""
-    t = time * robot.speed  # type: ignore[attr-defined]
+def dig(robot: Robot, time: float, speed: float) -> None:
+    """The manual's ``dig(time)`` of a Digger of this speed."""
+    t = time * speed
     robot.set_angles(-0.7 * math.sin(t + 3), -1.6 * (0.5 + 0.5 * math.sin(t + 1)),
                      -1.6 * (0.5 + 0.5 * math.sin(t)))
 
@@ -43,17 +42,19 @@ def dig(robot: Robot, time: float) -> None:
 def setup_diggers(scene: Scene) -> Callable[[Scene, float], None]:
     """Put the three Diggers into ``scene``; the returned animator makes them dig."""
     numbers = count(1)
-    robots = []
+    speeds = {}
     for speed, z in DIGGERS:
-        robot = build_digger(scene, lambda: f"demo.{next(numbers)}", speed)
+        robot = build_digger(scene, lambda: f"demo.{next(numbers)}")
         robot.set_position((0.0, 0.0, z))
         robot.share()
-        robots.append(robot)
+        speeds[robot.id] = speed
 
     def animate(scene: Scene, time: float) -> None:
-        for robot in robots:
-            if robot.id in scene.nodes:
-                dig(robot, time)
+        # by id: a scene restored from a document has new objects of the same ids
+        for robot_id, speed in speeds.items():
+            robot = scene.nodes.get(robot_id)
+            if isinstance(robot, Robot):
+                dig(robot, time, speed)
     return animate
 
 
@@ -85,13 +86,14 @@ def setup_hands(scene: Scene) -> Callable[[Scene, float], None]:
             hand = kind(scene, f"demo.{kind.type_name}-{'left' if left else 'right'}", left)
             hand.set_position((x, 0.2, z))
             hand.share()  # anyone's motor panel may move it
-            hands.append(hand)
+            hands.append(hand.id)
     scene.set_camera_position((0.0, 5.0, 15.0))
     scene.set_camera_target((0.0, 1.6, 0.0))
 
     def animate(scene: Scene, time: float) -> None:
-        for k, hand in enumerate(hands):
-            if hand.id in scene.nodes:
+        for k, hand_id in enumerate(hands):
+            hand = scene.nodes.get(hand_id)  # by id, as the Diggers
+            if isinstance(hand, Hand):
                 gesture(hand, time + 0.4 * k)
     return animate
 

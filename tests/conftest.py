@@ -68,11 +68,13 @@ def free_port() -> int:
 
 def start_server(*args: str, port: int | None = None, log: Path | None = None) -> RunningServer:
     """Start vp-server (on a free port unless told) and wait until /api/health answers;
-    its output goes to ``log`` when given."""
+    its output goes to ``log`` when given. It leads a process group of its own (with its
+    scenes' processes: :func:`crash_server`)."""
     port = port or free_port()
     output = open(log, "wb") if log is not None else None  # noqa: SIM115 (the process keeps it)
     process = subprocess.Popen([str(VP_SERVER), "--port", str(port), "--log-level", "warning",
-                                *args], cwd=ROOT, stdout=output, stderr=output)
+                                *args], cwd=ROOT, stdout=output, stderr=output,
+                               start_new_session=True)
     server = RunningServer(process, port)
     deadline = time.monotonic() + 30
     while time.monotonic() < deadline:
@@ -85,6 +87,13 @@ def start_server(*args: str, port: int | None = None, log: Path | None = None) -
             time.sleep(0.1)
     process.kill()
     raise RuntimeError("vp-server did not answer /api/health within 30 s")
+
+
+def crash_server(server: RunningServer) -> None:
+    """``kill -9`` the server and every process of its scenes at once: nothing gets to
+    save anything."""
+    os.killpg(server.process.pid, signal.SIGKILL)
+    server.process.wait(timeout=10)
 
 
 def stop_server(server: RunningServer) -> None:

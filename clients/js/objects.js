@@ -84,6 +84,13 @@ export class Part extends SceneObject {
 		super(...forward(args[0], args[1], []));
 	}
 
+	// Not in 1.0: leave the part (and what hangs below it) in the scene when this page's
+	// connection ends (connect({keep: true}) keeps everything it makes).
+	keep(on = true) {
+		this.call('keep', on);
+		return this;
+	}
+
 	// addSlot(x, y, z) or addSlot([x, y, z]); the slot is returned at once (its id is
 	// the one the server gives it: <part>/s<count>, counts from hello).
 	addSlot(position, ...more) {

@@ -66,6 +66,11 @@ export class ProtocolCore {
 		} else if (waiter) {
 			waiter.resolve(message.result);
 		}
+		this.release();
+	}
+
+	// Resolve the settle() promises whose requests are all answered (or lost).
+	release() {
 		const oldest = this.unanswered.values().next().value ?? Infinity;
 		const due = this.settled.filter(([id]) => id < oldest);
 		this.settled = this.settled.filter(([id]) => id >= oldest);
@@ -87,9 +92,17 @@ export class ProtocolCore {
 	// A new connection replaced a lost one (as the same client): requests the loss left
 	// unanswered may or may not have been applied. Their waiters hear `error`; the others'
 	// loss is thrown by the next call.
-	reconnected(error) {
-		if ([...this.unanswered].some((id) => !this.waiting.has(id))) this.deferred.push(error);
-		this.lost(error);
+	// Requests from `sentBefore` on were made after the loss and wait to go on the new
+	// connection: they are not lost.
+	reconnected(error, sentBefore = this.nextId) {
+		const lost = [...this.unanswered].filter((id) => id < sentBefore);
+		if (lost.some((id) => !this.waiting.has(id))) this.deferred.push(error);
+		for (const id of lost) {
+			this.unanswered.delete(id);
+			this.waiting.get(id)?.reject(error);
+			this.waiting.delete(id);
+		}
+		this.release();
 	}
 
 	// The connection is gone: every waiter hears it.

@@ -29,6 +29,12 @@ export class Robot extends SceneObject {
 		return this;
 	}
 
+	// Not in 1.0 either: leave the robot in the scene when this page's connection ends.
+	keep(on = true) {
+		this.call('keep', on);
+		return this;
+	}
+
 	addGUI(title = 'Robot') {
 		this.vp.session.makePanel?.(this, title);
 		this.call('addGUI', title);

@@ -74,9 +74,10 @@ export class Session {
 
 	// A new connection, as the same client, replaced a lost one (transport.js); the
 	// server's fresh hello and snapshot follow and resync the mirror.
-	reconnected() {
+	// Requests from id `sentBefore` on were made after the loss (sent on the new connection).
+	reconnected(sentBefore) {
 		this.core.reconnected(new ConnectionLost('the connection dropped before a request was '
-			+ 'answered (it may or may not have been applied); reconnected'));
+			+ 'answered (it may or may not have been applied); reconnected'), sentBefore);
 	}
 
 	// The connection closed: waiters hear it, later requests throw.

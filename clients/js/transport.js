@@ -61,10 +61,11 @@ export async function openSession(url, classes, onMessage = null) {
 	async function lost(reason) {
 		const key = session.hello?.resume;
 		if (session.closing || !key) return session.lost(reason);
+		const sentBefore = session.core.nextId;   // later requests wait in `waiting`
 		const deadline = Date.now() + 1000 * (session.hello.limits?.leaveGraceSeconds ?? 0);
 		for (let pause = RETRY_FIRST; Date.now() < deadline && !session.closing; pause = Math.min(RETRY_MAX, pause * 2)) {
 			if (await open(withResume(url, key))) {
-				session.reconnected();
+				session.reconnected(sentBefore);
 				for (const text of waiting.splice(0)) session.socket.send(text);
 				return;
 			}

@@ -112,6 +112,8 @@ QUATERNION = Method("setQuaternion", (Param("quaternion", "quaternion"),))
 # not in the manual either: three.js `scale` and `visible`, written directly by pages
 SCALE = Method("setScale", (Param("scale", "scale"),))
 VISIBLE = Method("setVisible", (Param("visible", "bool"),))
+# not in the manual: what stays in the scene when its owner leaves (server.core.session)
+KEEP = Method("keep", (Param("on", "bool", True),), returns="self")
 HAND_METHODS = (
     Method("flexFinger", (Param("index", "integer"), Param("angle", "angle")), access="steer"),
     Method("flexFingers", (Param("angle", "angle"),), access="steer"),
@@ -133,7 +135,7 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("addSlot", (Param("position", "point", ORIGIN),), returns="ref"),
         Method("attachToSlot", (Param("parent", "node", destination=True),
                                 Param("slot", "slot", 0, destination=True)), returns="self"),
-        POSITION, ROTATION, QUATERNION, SCALE, VISIBLE,
+        POSITION, ROTATION, QUATERNION, SCALE, VISIBLE, KEEP,
     ), callbacks=("beginContact", "endContact")),
     TypeSpec("Motor", "Part", (Param("axis", "axis"), Param("min", "limit", -math.inf),
                                Param("max", "limit", math.inf), Param("def", "number", 0.0)),
@@ -182,6 +184,7 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         # not in the manual: let other clients set this robot's motor angles and attach
         # their own parts to it (server.core.ownership)
         Method("share", (Param("on", "bool", True),), returns="self"),
+        KEEP,
     )),
     TypeSpec("EdgedHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
     TypeSpec("GLTFPart", "Part", (Param("filename", "asset"), Param("length", "number", 0.0)),

@@ -109,6 +109,8 @@ def _quaternion(value: Any, resolve: Resolver, label: str) -> Quat:
     norm = math.sqrt(sum(c * c for c in q))
     if norm < 1e-9 or norm > 1e9:
         raise OutOfRange(f"{label}: a quaternion needs a length between 1e-9 and 1e9, got {norm:g}")
+    if abs(norm - 1.0) < 1e-12:
+        return tuple(q)  # type: ignore[return-value]  # a unit one stays bit for bit (restored ones)
     return tuple(c / norm for c in q)  # type: ignore[return-value]
 
 

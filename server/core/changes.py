@@ -24,6 +24,11 @@ class ChangeSet:
         """Note a changed property (``children`` when the order of a node's children changed)."""
         self.updates.setdefault(node_id, set()).add(field)
 
+    def __bool__(self) -> bool:
+        """True once anything changed (warnings aside)."""
+        return bool(self.born or self.died or self.angles or self.poses or self.updates
+                    or self.camera)
+
     def clear(self) -> None:
         """Forget everything noted so far."""
         self.__init__()

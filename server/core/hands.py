@@ -35,6 +35,9 @@ class Hand(Robot):
         self._parts_made = 0
         self._built: list[Motor] = []
 
+    def constructor_args(self) -> list[Any]:
+        return [self.is_left]
+
     def make(self, cls: type[Node], *args: Any) -> Any:
         """A new part of this hand with the next inner id."""
         node = cls(self.scene, f"{self.id}/{self._parts_made}", *args)

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from bisect import bisect_right
 
+from typing import Any
+
 from ..errors import DuplicateId, LimitExceeded
 from .journal import Journal
 
@@ -53,6 +55,22 @@ class IntegerRuns:
             self._starts.insert(k + 1, n)
             self._ends.insert(k + 1, n)
 
+    @classmethod
+    def of(cls, runs: list[list[int]]) -> IntegerRuns:
+        """The set of the integers in these [start, end] runs (in any order, overlapping or not)."""
+        merged = cls()
+        for start, end in sorted(runs):
+            if merged._ends and start <= merged._ends[-1] + 1:
+                merged._ends[-1] = max(merged._ends[-1], end)
+            else:
+                merged._starts.append(start)
+                merged._ends.append(end)
+        return merged
+
+    def runs(self) -> list[list[int]]:
+        """The runs as [start, end] pairs, lowest first."""
+        return [[start, end] for start, end in zip(self._starts, self._ends)]
+
     def remove(self, n: int) -> None:
         """Take ``n`` (present) out again, splitting its run if needed."""
         k = bisect_right(self._starts, n) - 1
@@ -73,6 +91,10 @@ class _Owner:
     def __init__(self) -> None:
         self.numbers = IntegerRuns()
         self.names: set[str] = set()
+
+    def reset(self, runs: list[list[int]], names: set[str]) -> None:
+        self.numbers = IntegerRuns.of(runs)
+        self.names = names
 
 
 class IdBook:
@@ -116,6 +138,20 @@ class IdBook:
     def forget(self, owner_name: str) -> None:
         """Drop what an owner used: it will never make ids again (a client that left)."""
         self._owners.pop(owner_name, None)
+
+    def wire(self) -> dict[str, dict[str, list[Any]]]:
+        """Every id used so far, per owner: numeric names as runs, the others sorted."""
+        return {name: {"numbers": owner.numbers.runs(), "names": sorted(owner.names)}
+                for name, owner in sorted(self._owners.items())}
+
+    def absorb(self, used: dict[str, dict[str, list[Any]]]) -> None:
+        """Note ids of :meth:`wire`'s form as used too (a scene restored from a document:
+        what its objects were once called stays taken), journaled."""
+        for owner_name, entry in used.items():
+            owner = self._owners.setdefault(owner_name, _Owner())
+            numbers, names = owner.numbers.runs(), set(owner.names)
+            self._journal.record(lambda o=owner, r=numbers, n=names: o.reset(r, n))
+            owner.reset(numbers + entry["numbers"], names | set(entry["names"]))
 
     def cost(self) -> int:
         """Entries remembered (runs and names): what this book costs in memory."""

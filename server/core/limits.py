@@ -55,6 +55,8 @@ class Limits:
     asset_bytes: int = 8 << 20            # one file
     asset_triangles: int = 200_000        # triangles of one file's mesh
     assets: int = 1_000                   # files kept
+    # a scene document (POST /api/scenes/{scene}/import), its files' bytes included
+    document_bytes: int = 64 << 20
 
     def wire(self) -> dict[str, int]:
         """The limits by wire name, as ``hello`` carries them."""

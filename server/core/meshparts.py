@@ -44,6 +44,9 @@ class GLTFPart(Part):
         if self.physical:
             self.envelope()  # made now: a shape it cannot be made for refuses the part
 
+    def constructor_args(self) -> list[Any]:
+        return [self.filename, self.length]
+
     @property
     def offset(self) -> Vec3:
         """Where the file's origin sits in the part's frame."""
@@ -115,6 +118,9 @@ class HandedPart(GLTFPart):
                  length: float = figures.ROUND_PALM_LENGTH) -> None:
         self.left = left  # before the slots and the envelope, which depend on it
         super().__init__(scene, node_id, filename, length)
+
+    def constructor_args(self) -> list[Any]:
+        return [self.left, self.filename, self.length]
 
 
 class RoundPalm(HandedPart):

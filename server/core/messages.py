@@ -104,6 +104,20 @@ def check_client_message(message: Any) -> dict[str, Any]:
     return message
 
 
+def check_document(document: Any) -> None:
+    """Nothing when ``document`` has the form of a scene document (``sceneDocument``),
+    else :class:`BadMessage` saying where it differs."""
+    if not isinstance(document, dict) or document.get("format") != "virtual-prosthetics-scene":
+        raise BadMessage("not a scene document: it needs \"format\": "
+                         "\"virtual-prosthetics-scene\" (what GET /api/scenes/{scene}/export gives)")
+    try:
+        validator("sceneDocument")(document)
+    except fastjsonschema.JsonSchemaValueException as error:
+        where = "/".join(str(p) for p in error.path[1:]) or "document"
+        complaint = error.message.split(" ", 1)[1] if " " in error.message else error.message
+        raise BadMessage(f"scene document: {where}: {complaint}", path=where) from None
+
+
 def _numbers_only(args: Any) -> bool:
     """True for a list of plain numbers (setAngles' angles) no longer than the schema's
     ``args`` allows: each is an ``arg`` as it stands, so the compiled check (which builds

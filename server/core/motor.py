@@ -76,6 +76,9 @@ class Motor(Part):
         self._assign("flipped", flipped)
         return self
 
+    def constructor_args(self) -> list[Any]:
+        return [self.axis, self.min, self.max, self.default]
+
     def properties(self) -> dict[str, Any]:
         return {**super().properties(), "axis": self.axis, "min": self.min, "max": self.max,
                 "angle": self.angle, "flipped": self.flipped, "name": self.name}
@@ -92,6 +95,9 @@ class AxisMotor(Motor):
         self.width = figure.width if width is None else width
         self.height = figure.height if height is None else height
         self.new_slot(figures.motor_slot(figure.axis, self.height))
+
+    def constructor_args(self) -> list[Any]:
+        return [self.min, self.max, self.default, self.width, self.height]
 
     def geometry(self) -> dict[str, Any]:
         return figures.motor_cylinder(self.type_name, self.width, self.height)

@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Iterator
 
 from ..errors import Cycle, LimitExceeded
 from . import math3d
+from .ids import owner_of
 from .math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
 
 UNIT_SCALE: Vec3 = (1.0, 1.0, 1.0)
@@ -34,8 +35,10 @@ class Node:
         self.quaternion: Quat = IDENTITY
         self.scale: Vec3 = UNIT_SCALE
         self.visible = True  # drawn (a robot: in the scene, see Robot.set_position)
+        self.kept = False  # stays when its owner leaves (keep)
         self._world: Pose | None = None
         self._world_scale: Vec3 = UNIT_SCALE
+        self.serial = 0  # when it was made: the scene's count of nodes made until then
         scene.register(self)
 
     # --- state changes -----------------------------------------------------------------
@@ -129,6 +132,12 @@ class Node:
         self.scene.journal.record(lambda: self._drop_slot(slot, journal=False))
         slot._link(self)
 
+    def restore_slots(self, slots: list[Slot]) -> None:
+        """Make ``slots`` (children of this node) its numbered slots, in order, journaled."""
+        old = self.slots
+        self.scene.journal.record(lambda: setattr(self, "slots", old))
+        self.slots = list(slots)
+
     def _drop_slot(self, slot: Slot, journal: bool = True) -> None:
         index = self.slots.index(slot)
         self.slots.pop(index)
@@ -211,6 +220,23 @@ class Node:
         out of the scene instead (:meth:`Scene.in_scene`, as ``setPosition()`` takes it)."""
         self._assign("visible", visible)
 
+    def keep(self, on: bool = True) -> Node:
+        """Leave this object (and what hangs below it) in the scene when its owner leaves
+        (not in the manual; a connection's ``keep`` does it for everything it makes)."""
+        self._assign("kept", bool(on))
+        return self
+
+    def is_kept(self) -> bool:
+        """True when this node, or one above it of the same owner, is kept (:meth:`keep`):
+        a part attached to another client's kept robot still goes with its owner."""
+        owner = owner_of(self.id)
+        node: Node | None = self
+        while node is not None and owner_of(node.id) == owner:
+            if node.kept:
+                return True
+            node = node.parent
+        return False
+
     # --- description ---------------------------------------------------------------------
 
     def describe(self) -> dict[str, Any]:
@@ -219,11 +245,18 @@ class Node:
                 "parent": self.parent.id if self.parent is not None else None,
                 "children": [child.id for child in self.children],
                 "position": list(self.position), "quaternion": list(self.quaternion),
-                "scale": list(self.scale), "visible": self.visible, **self.properties()}
+                "scale": list(self.scale), "visible": self.visible, "kept": self.kept,
+                **self.properties()}
 
     def properties(self) -> dict[str, Any]:
         """Type-specific fields of :meth:`describe`."""
         return {}
+
+    def constructor_args(self) -> list[Any]:
+        """Arguments of the manual's constructor that make this node again (as ``create``
+        takes them, before :func:`~server.core.wire.encode_numbers`); what changed since
+        is state (:mod:`server.core.scene_document`)."""
+        return []
 
 
 class Slot(Node):
@@ -234,6 +267,9 @@ class Slot(Node):
     def __init__(self, scene: Scene, node_id: str, position: Vec3 = ORIGIN) -> None:
         super().__init__(scene, node_id)
         self.position = tuple(position)
+
+    def constructor_args(self) -> list[Any]:
+        return [list(self.position)]
 
     def leave_slots(self) -> None:
         """Stop being one of the slots of the node it hangs on (it stays its child)."""

@@ -50,6 +50,7 @@ class Operations:
         self.scene = scene
         self.client_id = client_id
         self.ownership = Ownership(client_id)
+        self.keep = False  # what this client makes stays when it leaves (Node.keep)
 
     def type_of(self, object_id: str) -> str:
         """The API type name of an object (``Scene`` for the scene itself)."""
@@ -110,6 +111,8 @@ class Operations:
                               type=type_name)
         args = bind(spec.params, raw_args, self.scene.get, f"new {type_name}")
         node = NODE_CLASSES[type_name](self.scene, object_id, *args)
+        if self.keep:
+            node.keep()
         return {"ref": node.id}
 
     def call(self, object_id: str, name: str, raw_args: list[Any]) -> Any:

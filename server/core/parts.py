@@ -74,6 +74,9 @@ class Ball(Part):
         super().__init__(scene, node_id)
         self.radius, self.color = radius, color
 
+    def constructor_args(self) -> list[Any]:
+        return [self.radius, self.color]
+
     def geometry(self) -> dict[str, Any]:
         return {"kind": "sphere", "radius": self.radius, "color": self.color}
 
@@ -88,6 +91,9 @@ class Box(Part):
                  sizez: float = 1.0, color: str | int = figures.DEFAULT_COLOR) -> None:
         super().__init__(scene, node_id)
         self.size, self.color = (sizex, sizey, sizez), color
+
+    def constructor_args(self) -> list[Any]:
+        return [*self.size, self.color]
 
     def geometry(self) -> dict[str, Any]:
         return {"kind": "box", "size": list(self.size), "color": self.color}
@@ -118,6 +124,9 @@ class EdgedFinger(ConvexPart):
         self.points = figures.extrude(profile, width)
         self.new_slot((0.0, length, 0.0))
 
+    def constructor_args(self) -> list[Any]:
+        return [self.length, self.width, self.thickness]
+
 
 class EdgedTip(EdgedFinger):
     """The last segment of an edged finger; 1.0 gives it a top slot too."""
@@ -138,3 +147,6 @@ class EdgedPalm(ConvexPart):
         self.points = figures.extrude(figures.edged_palm_profile(left, length, width), thickness)
         for position, rotation, order in figures.edged_palm_slots(left, length, width):
             self.new_slot(position, rotation, order)
+
+    def constructor_args(self) -> list[Any]:
+        return [self.left, self.length, self.width, self.thickness]

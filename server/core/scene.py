@@ -43,11 +43,13 @@ class Scene:
         self.ids = IdBook(self.journal, limits.client_names)
         self.owned: Counter[str] = Counter()  # objects per owner
         self.physical = 0  # physical parts, in the scene or not
+        self._made = 0  # nodes made so far: each node's serial says when it was made
         self.assets = assets or AssetLibrary()
         self.bodies = SceneBodies(self.nodes, self.in_scene, limits, self.assets, name)
         self.time = 0.0
         self.seq = 0
         self.tree_version = 0
+        self.revision = 0  # ticks that sent changes: a document of the scene is out of date
         self.camera: dict[str, Vec3] = {"position": figures.CAMERA_POSITION,
                                         "target": figures.CAMERA_TARGET}
         self._pending = ChangeSet()
@@ -70,6 +72,7 @@ class Scene:
         if "/" not in node.id:
             self.ids.claim(node.id, self.name)
         self.nodes[node.id] = node
+        node.serial = self._made = self._made + 1
         self._count(node, 1)
         self.journal.record(lambda: self._drop(node))
         for changes in self._recorders:
@@ -128,6 +131,10 @@ class Scene:
         self.nodes[node.id] = node
         self._count(node, 1)
         self.bodies.mark((node.id,))
+
+    def in_order_made(self) -> list[Node]:
+        """Every node in the order it was made (``nodes`` is not, once a deletion was undone)."""
+        return sorted(self.nodes.values(), key=lambda node: node.serial)
 
     def roots(self) -> list[Node]:
         """Nodes without a parent, in the order they were made."""
@@ -225,6 +232,8 @@ class Scene:
         sensing fail, the frame goes out without them (and the failure is logged).
         """
         delta = self.delta(self._pending)
+        if self._pending:
+            self.revision += 1
         self._pending.clear()
         self.time += dt
         self.seq += 1
@@ -270,6 +279,12 @@ class Scene:
         """False for the parts of a robot taken out of the scene with ``setPosition()``."""
         root = node.root()
         return not isinstance(root, Robot) or root.visible
+
+    def restart_feed(self) -> None:
+        """Forget the changes not sent yet: every client gets a new snapshot instead
+        (after the whole scene was replaced); the scene counts as changed."""
+        self._pending.clear()
+        self.revision += 1
 
     def snapshot(self) -> dict[str, Any]:
         """The whole scene: every node (parents before children), camera, time."""

@@ -35,6 +35,9 @@ class SceneMesh(Part):
         """The colour every viewer draws the shape in."""
         self._assign("color", color)
 
+    def constructor_args(self) -> list[Any]:
+        return [self.shape, self.color]
+
     def geometry(self) -> dict[str, Any]:
         return self.shape
 

@@ -33,6 +33,9 @@ class Sensor(Part):
         if laser_color is not None:
             scene.watches.add(node_id, LASER)
 
+    def constructor_args(self) -> list[Any]:
+        return [self.visible, self.laser_color]
+
     def geometry(self) -> dict[str, Any] | None:
         return figures.sensor_pad()  # drawn or not as `visible` says (it may change)
 

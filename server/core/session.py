@@ -37,7 +37,6 @@ class Session:
         self.role = role
         self.operations = Operations(scene, client_id)
         self.resume = resume  # what a reconnecting client sends to be this client again
-        self.keep = False  # what it made stays when it leaves
         now = time.monotonic()
         self._ops = TokenBucket(scene.limits.ops_per_second, now)
         self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
@@ -136,8 +135,9 @@ class Session:
         """The client left: delete what it created (newest first); the ids deleted at the top."""
         scene = self.scene
         scene.watches.drop_watcher(self.client_id)
-        mine = [node_id for node_id in scene.nodes
-                if "/" not in node_id and owner_of(node_id) == self.client_id]
+        mine = [node_id for node_id, node in scene.nodes.items()
+                if "/" not in node_id and owner_of(node_id) == self.client_id
+                and not node.is_kept()]
         deleted = []
         for object_id in reversed(mine):
             node = scene.nodes.get(object_id)

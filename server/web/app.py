@@ -22,6 +22,7 @@ from .access import AccessPolicy, redact_tokens_in_logs, viewing_allowed
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
+from .state_dir import StateDir
 
 HTTP_CODES = {404: "not_found", 405: "method_not_allowed"}
 HTTP_STATUS: dict[type[VPError], int] = {LookupFailure: 404, Forbidden: 403, TooLarge: 413,
@@ -30,15 +31,19 @@ HTTP_STATUS: dict[type[VPError], int] = {LookupFailure: 404, Forbidden: 403, Too
 
 def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None = None,
                limits: Limits = DEFAULT, uploads: Path | None = None,
-               access: AccessPolicy = AccessPolicy()) -> FastAPI:
+               access: AccessPolicy = AccessPolicy(), state_dir: Path | None = None) -> FastAPI:
     """The server: the ``default`` scene exists from the start; ``setups`` prepare scenes
-    by name (whenever one starts). Uploaded meshes are kept in ``uploads`` (by default a
-    temporary folder removed when the server stops). ``access``: tokens and origins."""
-    temporary = uploads is None
+    by name (whenever one starts). Uploaded meshes are kept in ``uploads`` (by default
+    the state folder's, else a temporary folder removed when the server stops).
+    ``access``: tokens and origins. ``state_dir``: scenes are saved there and come back
+    from there (:mod:`server.web.state_dir`)."""
+    state = StateDir(state_dir) if state_dir is not None else None
+    temporary = uploads is None and state is None
     if uploads is None:
-        uploads = Path(tempfile.mkdtemp(prefix="vp-uploads-"))
+        uploads = state.assets if state is not None else \
+            Path(tempfile.mkdtemp(prefix="vp-uploads-"))
     uploads.mkdir(parents=True, exist_ok=True)
-    hubs = Hubs(tick_rate, limits, AssetLibrary(uploads=uploads))
+    hubs = Hubs(tick_rate, limits, AssetLibrary(uploads=uploads), state)
     for name, setup in (setups or {}).items():
         hubs.prepare(name, setup)
 
@@ -47,6 +52,8 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
         asyncio.get_running_loop().set_exception_handler(LoopErrorLog().handle)
         redact_tokens_in_logs()  # uvicorn has set its loggers up by now
         hubs.open(DEFAULT_SCENE)
+        for name in state.saved_scenes() if state is not None else []:
+            hubs.open(name)  # each restores itself from its file
         sweeper = asyncio.create_task(hubs.sweep())
         heap.settle()
         yield

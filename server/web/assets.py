@@ -15,8 +15,8 @@ from fastapi import APIRouter, Request
 from fastapi.responses import FileResponse, JSONResponse
 
 from ..core.assets import AssetLibrary, plain_name
-from ..errors import TooLarge, UnknownAsset
-from .rest import NOT_FOUND, ErrorBody
+from ..errors import UnknownAsset
+from .rest import NOT_FOUND, ErrorBody, read_body
 
 router = APIRouter(prefix="/api")
 MEDIA_TYPES = {"glb": "model/gltf-binary", "gltf": "model/gltf+json"}
@@ -44,13 +44,8 @@ async def upload(request: Request) -> JSONResponse:
     ``Authorization: Bearer <token>`` is needed."""
     request.app.state.access.check_change(request.headers.get("authorization"))
     limits = request.app.state.hubs.limits
-    data = bytearray()
-    async for chunk in request.stream():
-        data += chunk
-        if len(data) > limits.asset_bytes:  # stop reading: the rest is not wanted
-            raise TooLarge(f"the file has more than {limits.asset_bytes} bytes, the most "
-                           f"taken", limit="assetBytes", value=limits.asset_bytes)
-    stored = await asyncio.to_thread(_library(request).store, bytes(data), limits)
+    data = await read_body(request, limits.asset_bytes, "assetBytes", "the file")
+    stored = await asyncio.to_thread(_library(request).store, data, limits)
     return JSONResponse(stored, status_code=201)
 
 

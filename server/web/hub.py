@@ -11,6 +11,7 @@ import asyncio
 import hashlib
 import hmac
 import itertools
+import json
 import logging
 import re
 import secrets
@@ -20,15 +21,18 @@ from typing import Any
 
 from ..core.assets import AssetLibrary
 from ..core.limits import DEFAULT, Limits
+from ..core.scene import Scene
 from ..errors import LimitExceeded, OutOfRange, UnknownScene
 from . import heap
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .runner import SceneRunner
+from .state_dir import SceneStore, StateDir
 from .worker import SceneSetup
 
 log = logging.getLogger(__name__)
 
 SCENE_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
+CLIENT_ID = re.compile(r"c[0-9]{1,15}")
 DEFAULT_SCENE = "default"
 INFLIGHT_BYTES = 4 << 20  # text a connection may have waiting on its scene's process
 _numbers = itertools.count(1)
@@ -74,12 +78,13 @@ class SceneHub:
     """One scene: its process and the connections that receive its messages."""
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
-                 setup: SceneSetup | None = None) -> None:
+                 setup: SceneSetup | None = None, store: SceneStore | None = None) -> None:
         self.name = name
         self.members: dict[int, Connection] = {}  # joined, admitted or not yet
         self.connections: set[Connection] = set()  # admitted: they get every frame
         self.idle_since: float | None = time.monotonic()
-        self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events)
+        self.saved = store is not None  # its scene is kept on disk (and comes back from it)
+        self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events, store)
 
     @property
     def tick_rate(self) -> float:
@@ -162,20 +167,30 @@ class SceneHub:
         self.connections.clear()
 
 
+def object_count(scene: Scene) -> int:
+    """How many objects a scene holds (read in its process)."""
+    return len(scene.nodes)
+
+
 class Hubs:
     """Every scene the server runs, by name; a scene is made on first use and removed
-    when it has had no client for ``scene_idle_seconds`` (``default`` always stays)."""
+    when it has had no client for ``scene_idle_seconds`` (``default`` always stays) and
+    holds nothing, or holds what is kept in ``state`` (then it comes back from there)."""
 
     def __init__(self, tick_rate: float = 60.0, limits: Limits = DEFAULT,
-                 assets: AssetLibrary | None = None) -> None:
+                 assets: AssetLibrary | None = None, state: StateDir | None = None) -> None:
         self.tick_rate = tick_rate
         self.limits = limits
         self.assets = assets or AssetLibrary()  # uploads land here; every scene reads them
+        self.state = state
         self.scenes: dict[str, SceneHub] = {}
         self.removed = 0
-        self._clients = 0
         self._setups: dict[str, SceneSetup] = {}
-        self._secret = secrets.token_bytes(32)  # signs resume keys (valid until a restart)
+        # signs resume keys: valid until a restart, or for good with a state folder
+        self._secret = state.secret if state is not None else secrets.token_bytes(32)
+        self._clients = state.clients_reserved if state is not None else 0
+        self._reserved = self._clients
+        self._reserve(self._clients)
 
     def get(self, name: str) -> SceneHub | None:
         """The hub of an existing scene."""
@@ -200,8 +215,9 @@ class Hubs:
             if len(self.scenes) >= self.limits.scenes:
                 raise LimitExceeded(f"the server runs the maximum of {self.limits.scenes} scenes",
                                     limit="scenes", value=self.limits.scenes)
+            store = self.state.store(name) if self.state is not None else None
             hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
-                                               self.assets, self._setups.get(name))
+                                               self.assets, self._setups.get(name), store)
             hub.runner.start()
         return hub
 
@@ -220,26 +236,51 @@ class Hubs:
         return f"{client_id}:{mac.hexdigest()[:32]}"
 
     def new_client_id(self) -> str:
-        """A fresh client id: c1, c2, … (never handed out twice by this server)."""
+        """A fresh client id: c1, c2, … (never handed out twice by this server, nor, with
+        a state folder, by the server before a restart)."""
         self._clients += 1
+        self._reserve(self._clients)
         return f"c{self._clients}"
 
-    def remove_idle(self, now: float) -> list[str]:
-        """Stop the scenes that have had no client for the grace period; their names."""
+    def reserve(self, owners: list[str]) -> None:
+        """Never hand out these client ids (owners of objects a document brought in)."""
+        numbers = [int(owner[1:]) for owner in owners if CLIENT_ID.fullmatch(owner)]
+        self._clients = max([self._clients, *numbers])
+        self._reserve(self._clients)
+
+    def _reserve(self, upto: int) -> None:
+        if self.state is not None and upto >= self._reserved:
+            self._reserved = self.state.reserve_clients(upto)
+
+    async def remove_idle(self, now: float) -> list[str]:
+        """Stop the scenes that have had no client for the grace period and hold nothing
+        (or are saved: they come back as they were); their names."""
         grace = self.limits.scene_idle_seconds
-        idle = [name for name, hub in self.scenes.items() if name != DEFAULT_SCENE
+        idle = [hub for name, hub in self.scenes.items() if name != DEFAULT_SCENE
                 and not hub.members and hub.idle_since is not None
                 and now - hub.idle_since >= grace]
-        for name in idle:
-            self.scenes.pop(name).runner.stop()
-            self.removed += 1
-        return idle
+        removed = []
+        for hub in idle:
+            if not hub.saved and await self._holds_objects(hub):
+                continue  # kept objects: they stay while the server runs
+            if self.scenes.get(hub.name) is hub and not hub.members:
+                self.scenes.pop(hub.name).runner.stop()
+                self.removed += 1
+                removed.append(hub.name)
+        return removed
+
+    @staticmethod
+    async def _holds_objects(hub: SceneHub) -> bool:
+        try:
+            return json.loads(await hub.runner.call("read", object_count, ())) > 0
+        except UnknownScene:
+            return False
 
     async def sweep(self) -> None:
         """Remove idle scenes, forever (a task of the server's lifetime)."""
         while True:
             await asyncio.sleep(min(5.0, self.limits.scene_idle_seconds / 2))
-            for name in self.remove_idle(time.monotonic()):
+            for name in await self.remove_idle(time.monotonic()):
                 log.info("removed scene %s: no clients for %d s", name,
                          self.limits.scene_idle_seconds)
             heap.trim()  # what past floods of messages used goes back to the system

@@ -16,11 +16,12 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel
 
 from ..core import reports
-from ..core.messages import PROTOCOL_VERSION
+from ..core.messages import PROTOCOL_VERSION, check_document
+from ..core.scene_document import document_owners, export_scene
 from ..core.robot import Robot
 from ..core.scene import Scene
 from ..core.sensor import Sensor
-from ..errors import UnknownObject, UnknownScene, VPError
+from ..errors import BadJSON, TooLarge, UnknownObject, UnknownScene, VPError
 from . import prometheus
 from .hub import Hubs, SceneHub
 
@@ -58,6 +59,18 @@ def _hub(request: Request, scene: str) -> SceneHub:
     if hub is None:
         raise UnknownScene(f"no scene named {scene[:80]!r}", scene=scene)
     return hub
+
+
+async def read_body(request: Request, limit: int, name: str, what: str) -> bytes:
+    """A request's body, refused (``too_large``, naming the limit) past ``limit`` bytes
+    without reading the rest."""
+    data = bytearray()
+    async for chunk in request.stream():
+        data += chunk
+        if len(data) > limit:
+            raise TooLarge(f"{what} has more than {limit} bytes, the most taken", limit=name,
+                           value=limit)
+    return bytes(data)
 
 
 async def _read(request: Request, scene: str, report: Callable[..., Any],
@@ -120,6 +133,62 @@ async def sensor_detail(request: Request, scene: str, sensor_id: str,
             response_class=Response)
 async def contacts(request: Request, scene: str) -> Response:
     return await _read(request, scene, reports.contacts_report)
+
+
+@router.get("/scenes/{scene}/export", responses=NOT_FOUND, response_class=Response,
+            summary="The scene as a versioned JSON document (POST it to import to restore it)")
+async def export(request: Request, scene: str,
+                 assets: Literal["embed", "refer"] = "embed") -> Response:
+    """Structure, angles, poses, names, recolours, owners and the uploaded mesh files it
+    uses, by content hash (``assets=embed``: with their bytes, so that any server can
+    import it; ``refer``: by hash alone). No clock: an unchanged scene gives the same bytes."""
+    hubs = _hubs(request)
+    hub = hubs.get(scene)
+    if hub is None and hubs.state is not None and scene in hubs.state.saved_scenes():
+        hub = hubs.open(scene)  # saved, not running: back from its file
+    if hub is None:
+        raise UnknownScene(f"no scene named {scene[:80]!r}", scene=scene)
+    body = await hub.runner.call("read", _export, (assets == "embed",))
+    return Response(body, media_type="application/json",
+                    headers={"Content-Disposition": f'attachment; filename="{scene}.json"'})
+
+
+IMPORTED: dict[int | str, dict[str, Any]] = {
+    400: {"model": ErrorBody, "description": "Not a scene document, or one that fails a check "
+                                             "(the scene is unchanged)"},
+    403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"},
+    413: {"model": ErrorBody, "description": "Larger than the documentBytes limit (too_large)"},
+    429: {"model": ErrorBody, "description": "A limit of the scene or server (limit_exceeded)"}}
+DOCUMENT_BODY = {"requestBody": {"required": True, "description": "what export gave", "content": {
+    "application/json": {"schema": {"type": "object"}}}}}
+
+
+@router.post("/scenes/{scene}/import", responses=IMPORTED, openapi_extra=DOCUMENT_BODY,
+             summary="Replace a scene (made if needed) by a document export gave")
+async def import_(request: Request, scene: str) -> JSONResponse:
+    """Everything in the scene is replaced: its connected clients get a new snapshot;
+    owners of imported objects who are not connected have ``leaveGraceSeconds`` to come
+    back (what they keep stays). A document that fails any check changes nothing. With a
+    server token, ``Authorization: Bearer <token>`` is needed."""
+    request.app.state.access.check_change(request.headers.get("authorization"))
+    hubs = _hubs(request)
+    body = await read_body(request, hubs.limits.document_bytes, "documentBytes", "the document")
+    document = _parse(body)
+    check_document(document)  # before a scene is made for it
+    hubs.reserve(document_owners(document))
+    summary = await hubs.open(scene).runner.call("import", document)
+    return JSONResponse(json.loads(summary))
+
+
+def _parse(body: bytes) -> Any:
+    try:
+        return json.loads(body)
+    except (ValueError, UnicodeDecodeError) as error:
+        raise BadJSON(f"the body is not JSON: {str(error)[:120]}") from None
+
+
+def _export(scene: Scene, embed: bool) -> dict[str, Any]:
+    return export_scene(scene, embed_assets=embed)
 
 
 @router.get("/metrics", responses={200: {"content": {"application/json": {}, "text/plain": {}}}},

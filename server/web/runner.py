@@ -21,6 +21,7 @@ from ..core.assets import AssetLibrary
 from ..core.limits import Limits
 from ..errors import UnknownScene
 from . import worker
+from .state_dir import SceneStore
 
 log = logging.getLogger(__name__)
 Deliver = Callable[[list[tuple[Any, ...]]], None]
@@ -38,7 +39,8 @@ class SceneRunner:
     on the event loop (a final ``("ended", failed)`` when the process is gone)."""
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
-                 setup: worker.SceneSetup | None, deliver: Deliver) -> None:
+                 setup: worker.SceneSetup | None, deliver: Deliver,
+                 store: SceneStore | None = None) -> None:
         self.name = name
         self.tick_rate = tick_rate
         self._deliver = deliver
@@ -46,7 +48,7 @@ class SceneRunner:
         self._pipe, child = _CONTEXT.Pipe()
         self._process = _CONTEXT.Process(
             target=worker.serve, name=f"scene-{name}", daemon=True,
-            args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level))
+            args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store))
         self._child = child
         self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
         self._replies: dict[int, asyncio.Future[Any]] = {}

@@ -18,8 +18,12 @@ keep)``
                                           after ``leaveGraceSeconds``, unless it comes
                                           back (joins as the same client) or keeps them
 ``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)``
+``("import", n, document)``               ``("reply", n, ok, JSON summary or VPError)``:
+                                          the scene replaced (every client gets a new
+                                          snapshot); owners not connected get a grace
+                                          period, as if they had just left
 ``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
-``("stop",)``                             the process ends
+``("stop",)``                             the process ends (its scene saved first)
 each tick                                 ``("frame", [messages])`` for every client
 ========================================  =============================================
 """
@@ -36,31 +40,40 @@ from typing import Any, Callable
 from ..core.assets import AssetLibrary
 from ..core.limits import Limits
 from ..core.messages import encode
+from ..core.ids import owner_of
 from ..core.scene import Scene
+from ..core.scene_document import encode_document, export_scene, import_scene
 from ..core.session import Session
 from ..core.wire import encode_numbers
 from ..errors import InternalError, VPError
 from . import heap
 from .outbox import Outgoing
 from .scene_metrics import SceneMetrics
+from .state_dir import SceneStore
 
 log = logging.getLogger(__name__)
 Animator = Callable[[Scene, float], None]
 SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
+SAVE_SECONDS = 1.0  # a changed scene is saved at most this often (and when it stops)
+SERVER_OWNER = "demo"  # what the server's own setups make: never anyone's to leave
 
 
 def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
-          setup: SceneSetup | None, log_level: int) -> None:
-    """The process's main function: make the scene, then serve it."""
+          setup: SceneSetup | None, log_level: int, store: SceneStore | None = None) -> None:
+    """The process's main function: make the scene (as ``setup`` makes it, then as its
+    saved document says, when there is one), then serve it."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
     logging.basicConfig(level=log_level)
     scene = Scene(name, limits, assets)
     animator = setup(scene) if setup is not None else None
+    worker = SceneWorker(pipe, scene, tick_rate, animator, store)
+    worker.restore()
     heap.settle()
     try:
-        SceneWorker(pipe, scene, tick_rate, animator).run()
+        worker.run()
     finally:
+        worker.save()  # the server stopped it, or the server is gone
         scene.close()
 
 
@@ -68,7 +81,7 @@ class SceneWorker:
     """The loop of a scene's process: commands in arrival order, a tick whenever due."""
 
     def __init__(self, pipe: Pipe, scene: Scene, tick_rate: float,
-                 animator: Animator | None) -> None:
+                 animator: Animator | None, store: SceneStore | None = None) -> None:
         self.scene = scene
         self.tick_rate = tick_rate
         self.metrics = SceneMetrics()
@@ -80,6 +93,8 @@ class SceneWorker:
         self._resync = False
         self._stopping = False
         self._departed: dict[str, tuple[float, Session]] = {}  # client -> (deadline, session)
+        self._store = store
+        self._saved = (scene.revision, 0.0)  # revision saved, and when (monotonic)
 
     def run(self) -> None:
         """Serve until ``stop`` or until the server's end of the pipe closes."""
@@ -137,7 +152,7 @@ class SceneWorker:
               keep: bool = False) -> None:
         self._departed.pop(client_id, None)  # back within the grace period: nothing goes
         session = self._sessions[cid] = Session(self.scene, client_id, role, resume=resume)
-        session.keep = keep
+        session.operations.keep = keep
         self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
                                             Outgoing.of(self.scene.snapshot())]))
 
@@ -151,9 +166,13 @@ class SceneWorker:
 
     def _leave(self, cid: int) -> None:
         session = self._sessions.pop(cid, None)
-        if session is None or session.keep or \
+        if session is None or \
                 any(s.client_id == session.client_id for s in self._sessions.values()):
-            return  # kept, or the client is back already (a new connection took over)
+            return  # the client is back already (a new connection took over)
+        self._depart(session)
+
+    def _depart(self, session: Session) -> None:
+        """What the client made and did not keep goes when its grace period is over."""
         grace = self.scene.limits.leave_grace_seconds
         self._departed[session.client_id] = (time.monotonic() + grace, session)
 
@@ -176,9 +195,60 @@ class SceneWorker:
             reply = ("reply", number, False, InternalError("internal server error"))
         self._events.append(reply)
 
+    def _import(self, number: int, document: Any) -> None:
+        """Replace the scene by a document (``read``'s reply conventions)."""
+        def replace(scene: Scene) -> dict[str, Any]:
+            with scene.journal.transaction():
+                summary = import_scene(scene, document)
+            self._restarted(summary["owners"])
+            return summary
+        self._read(number, replace, ())
+
+    def restore(self) -> None:
+        """Put the scene back as its store last saved it (nothing without a store or file)."""
+        document = self._store.load() if self._store is not None else None
+        if document is None:
+            return
+        try:
+            with self.scene.journal.transaction():
+                summary = import_scene(self.scene, document)
+        except VPError as error:
+            self._store.set_aside(error.message)  # type: ignore[union-attr]
+            return
+        self._restarted(summary["owners"])
+        self._saved = (self.scene.revision, time.monotonic())  # as on the disk already
+        log.info("scene %s restored: %d objects", self.scene.name, summary["objects"])
+
+    def _restarted(self, owners: list[str]) -> None:
+        """After the whole scene was replaced: a fresh snapshot for everyone, and owners
+        who are not here get a grace period to come back, as if they had just left."""
+        self.scene.restart_feed()
+        self._resync = True
+        here = {session.client_id for session in self._sessions.values()}
+        for owner in owners:
+            if owner not in here and owner != SERVER_OWNER:
+                self._depart(Session(self.scene, owner))
+
+    def save(self) -> None:
+        """Write the scene to its store if it changed since it was last written."""
+        if self._store is None or self._saved[0] == self.scene.revision:
+            return
+        revision = self.scene.revision
+        try:
+            self._store.save(encode_document(export_scene(self.scene, embed_assets=False)))
+        except Exception:  # a full disk, say: the scene runs on, the next save tries again
+            log.exception("saving scene %s failed", self.scene.name)
+            revision = self._saved[0]
+        self._saved = (revision, time.monotonic())
+
+    def _autosave(self, now: float) -> None:
+        if now - self._saved[1] >= SAVE_SECONDS:
+            self.save()
+
     def _metrics(self, number: int) -> None:
         summary = self.metrics.summary(time.monotonic(), time.process_time())
-        self._events.append(("reply", number, True, summary))
+        saved = None if self._store is None else self._saved[0] == self.scene.revision
+        self._events.append(("reply", number, True, {**summary, "saved": saved}))
 
     def _stop(self) -> None:
         self._stopping = True
@@ -199,6 +269,7 @@ class SceneWorker:
         if messages:
             self._events.append(("frame", messages))
         self._flush()
+        self._autosave(time.monotonic())
         self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
                             time.process_time())
 

@@ -99,3 +99,16 @@ test('a lost connection rejects every waiter', async () => {
 	await assert.rejects(answer, /gone/);
 	await core.settle();  // nothing is left unanswered
 });
+
+test('a reconnection loses the requests sent before the loss, not those made after it', async () => {
+	const core = new ProtocolCore();
+	const before = core.request({ op: 'ping' }, { wait: true });
+	const sentBefore = core.nextId;   // the connection is lost here
+	const after = core.request({ op: 'ping' }, { wait: true });
+	const settled = core.settle();
+	core.reconnected(new Error('reconnected'), sentBefore);
+	await assert.rejects(before.answer, /reconnected/);
+	core.receive(JSON.stringify({ op: 'ok', id: after.id, result: 7 }));
+	assert.equal(await after.answer, 7);   // it went on the new connection
+	await settled;
+});

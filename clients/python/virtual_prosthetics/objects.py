@@ -69,6 +69,12 @@ class Shown(Posed):
         of the scene)."""
         self._call("setVisible", visible)
 
+    def keep(self, on: bool = True) -> Shown:
+        """Leave the object (and what hangs below it) in the scene when this script's
+        connection ends (not in the manual; ``connect(keep=True)`` keeps everything)."""
+        self._call("keep", on)
+        return self
+
 
 class Slot(Posed):
     """Manual ``Slot()``, ``Slot([x, y, z])`` or ``Slot(x, y, z)``."""

@@ -55,6 +55,7 @@ class Scene:
         self._ids = count(1)
         self._ready = threading.Event()
         token = token if token is not None else os.environ.get("VP_TOKEN")
+        self.token = token  # uploads send it too
         query = urlencode({"scene": scene, "role": role, **({"token": token} if token else {}),
                            **({"keep": "true"} if keep else {})})
         self.connection = Connection(f"{url.rstrip('/')}/ws?{query}", self._on_message,

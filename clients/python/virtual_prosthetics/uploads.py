@@ -21,10 +21,13 @@ def upload_asset(source: str | Path | bytes, scene: Scene | None = None) -> str:
     many triangles: :class:`ServerError` says which (``too_large``, ``bad_asset``…).
     """
     data = source if isinstance(source, bytes) else Path(source).read_bytes()
-    base = (scene or current_scene()).url
+    scene = scene or current_scene()
+    base = scene.url
     http = "https" + base[3:] if base.startswith("wss") else "http" + base[2:]
+    headers = {"Content-Type": "application/octet-stream",
+               **({"Authorization": f"Bearer {scene.token}"} if scene.token else {})}
     request = urllib.request.Request(f"{http}/api/assets", data=data, method="POST",
-                                     headers={"Content-Type": "application/octet-stream"})
+                                     headers=headers)
     try:
         with urllib.request.urlopen(request, timeout=UPLOAD_TIMEOUT) as answer:
             return json.loads(answer.read())["name"]

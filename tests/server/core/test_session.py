@@ -95,6 +95,32 @@ def test_sensing_errors_name_what_was_wrong(scene):
     assert laser["code"] == "wrong_type" and "c1.t" not in scene.nodes
 
 
+
+def test_what_a_client_keeps_stays_with_what_hangs_below_it(scene):
+    mine, theirs = Session(scene, "c1"), Session(scene, "c2")
+    for op in ({"op": "create", "object": "c1.arm", "type": "Robot"},
+               {"op": "create", "object": "c1.m", "type": "MotorZ"},
+               {"op": "call", "object": "c1.arm", "method": "attachChain", "args": [{"ref": "c1.m"}]},
+               {"op": "call", "object": "c1.arm", "method": "keep"},
+               {"op": "call", "object": "c1.arm", "method": "share"},
+               {"op": "create", "object": "c1.loose", "type": "Box"}):
+        send(mine, op)
+    send(theirs, {"op": "create", "object": "c2.b", "type": "Ball"})
+    send(theirs, {"op": "call", "object": "c2.b", "method": "attachToSlot", "args": [{"ref": "c1.m"}]})
+    [refused] = send(theirs, {"op": "call", "id": 3, "object": "c1.arm", "method": "keep", "args": [False]})
+    assert refused["code"] == "forbidden"  # keeping is the owner's call
+    assert sorted(mine.close()) == ["c1.loose"]
+    assert sorted(theirs.close()) == ["c2.b"]  # not kept by being on a kept robot
+    assert sorted(scene.nodes) == ["c1.arm", "c1.m", "c1.m/s0"]
+    assert scene.get("c1.arm").describe()["kept"] is True and not scene.get("c1.m").describe()["kept"]
+
+
+def test_a_connection_that_keeps_keeps_everything_it_makes(scene):
+    keeper = Session(scene, "c1")
+    keeper.operations.keep = True
+    send(keeper, {"op": "create", "object": "c1.1", "type": "EdgedHand"})
+    assert keeper.close() == [] and len(scene.nodes) == 77  # the hand and all inside it
+
 def test_viewers_may_watch_and_a_closed_client_stops_watching(scene):
     Session(scene, "c1").receive(json.dumps({"op": "create", "object": "c1.s",
                                              "type": "Sensor"}))

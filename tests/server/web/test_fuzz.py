@@ -200,8 +200,17 @@ def check_scene(server: RunningServer, watcher: Watcher,
 
 
 def gone(server: RunningServer, client: str) -> bool:
-    nodes = server.nodes(SCENE)
-    return not any(node["id"].startswith(client + ".") for node in nodes)
+    """True when nothing of ``client`` is left but what it kept (``keep``) and what hangs
+    below that of its own."""
+    nodes = {node["id"]: node for node in server.nodes(SCENE)}
+
+    def kept(node_id: str | None) -> bool:
+        while node_id is not None and node_id.startswith(client + "."):
+            if nodes[node_id]["kept"]:
+                return True
+            node_id = nodes[node_id]["parent"]
+        return False
+    return all(kept(i) for i in nodes if i.startswith(client + "."))
 
 
 # the clients' socket threads use the random module while hypothesis draws; harmless here

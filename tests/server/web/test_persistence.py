@@ -1,0 +1,188 @@
+"""Scenes kept with --state-dir come back after a restart, even after kill -9; scenes as
+documents over REST (export, import)."""
+
+from __future__ import annotations
+
+import json
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+import trimesh
+
+import virtual_prosthetics as vp
+from tests.conftest import RunningServer, crash_server, start_server, stop_server
+
+
+def glb() -> bytes:
+    return trimesh.creation.icosphere(1, 0.2).export(file_type="glb")
+
+
+def export(server: RunningServer, scene: str, assets: str = "embed") -> bytes:
+    headers = {"Authorization": f"Bearer {server.token}"} if server.token else {}
+    request = urllib.request.Request(f"{server.http}/api/scenes/{scene}/export?assets={assets}",
+                                     headers=headers)
+    with urllib.request.urlopen(request, timeout=30) as answer:
+        return answer.read()
+
+
+def post(server: RunningServer, path: str, body: bytes, token: str | None = None) -> tuple[int, dict]:
+    headers = {"Content-Type": "application/json",
+               **({"Authorization": f"Bearer {token}"} if token else {})}
+    request = urllib.request.Request(server.http + path, data=body, headers=headers, method="POST")
+    try:
+        with urllib.request.urlopen(request, timeout=30) as answer:
+            return answer.status, json.loads(answer.read())
+    except urllib.error.HTTPError as error:
+        return error.code, json.loads(error.read())
+
+
+def wait_until_saved(server: RunningServer, scene: str) -> None:
+    deadline = time.monotonic() + 10
+    while not server.get("/api/metrics")["scenes"].get(scene, {}).get("saved"):
+        assert time.monotonic() < deadline, "the scene was not saved within 10 s"
+        time.sleep(0.05)
+
+
+def build_lab(url: str, scene: str) -> vp.Scene:
+    """A hand with a recoloured mesh part, a part of an uploaded mesh on it, and more."""
+    connection = vp.connect(url, scene=scene)
+    name = vp.upload_asset(glb())
+    hand = vp.RoundHand(False)
+    hand.set_position(1, 0.5, 0)
+    hand.flex_fingers(0.7)
+    hand.share()
+    palm = hand.get_parts()[0]
+    palm.recolor("white", "orange", 0.2)
+    bead = vp.GLTFPart(name, 0.4)
+    bead.attach_to_slot(hand.get_parts()[-1])
+    arm = vp.Robot()
+    elbow = vp.MotorZ(-1, 1)
+    elbow.set_name("elbow")
+    arm.attach_chain(elbow, vp.Box(0.2, 1, 0.2, "red"))
+    arm.set_angle(0, 0.5)
+    arm.keep()
+    gone = vp.Ball(0.1)
+    connection.sync()
+    gone.delete()
+    vp.set_camera_position(3, 4, 5)
+    connection.sync()
+    return connection
+
+
+@pytest.fixture
+def state(tmp_path) -> Path:
+    return tmp_path / "state"
+
+
+def test_kill_9_loses_nothing(state, scene_name):
+    first = start_server("--no-demo", "--state-dir", str(state))
+    try:
+        client = build_lab(first.ws, scene_name)
+        owner = client.client_id
+        wait_until_saved(first, scene_name)
+        before = export(first, scene_name)
+    finally:
+        crash_server(first)
+    client.close()
+    second = start_server("--no-demo", "--state-dir", str(state))
+    try:
+        assert export(second, scene_name) == before
+        document = json.loads(before)
+        assert [a["bytes"] for a in document["assets"]] == [len(glb())]
+        palm = next(n for n in document["nodes"] if n["type"] == "RoundPalm")
+        assert ["white", "orange", 0.2] in palm["state"]["recolors"]
+        with vp.connect(second.ws, scene=scene_name) as newcomer:
+            assert int(newcomer.client_id[1:]) > int(owner[1:])  # no id handed out twice
+    finally:
+        stop_server(second)
+
+
+def test_a_script_cut_off_by_a_crash_comes_back_as_itself(state, scene_name):
+    options = ["--no-demo", "--state-dir", str(state), "--limit", "leaveGraceSeconds=3"]
+    first = start_server(*options)
+    with vp.connect(first.ws, scene=scene_name) as client:
+        me = client.client_id
+        hand = vp.EdgedHand()
+        hand.flex_fingers(0.4)
+        client.sync()
+        wait_until_saved(first, scene_name)
+        crash_server(first)
+        second = start_server(*options, port=first.port)
+        try:
+            time.sleep(4)  # past the grace period: it came back in time, so nothing went
+            hand.flex_fingers(0.5)
+            client.sync()
+            assert client.client_id == me
+            assert [r["id"] for r in second.robots(scene_name)] == [hand.id]
+        finally:
+            stop_server(second)
+
+
+def test_an_idle_saved_scene_is_stopped_and_comes_back_from_its_file(state, scene_name):
+    server = start_server("--no-demo", "--state-dir", str(state), "--limit", "sceneIdleSeconds=1",
+                          "--limit", "leaveGraceSeconds=1")
+    try:
+        with vp.connect(server.ws, scene=scene_name):
+            vp.Robot().keep()
+            vp.Box()  # not kept: goes after the grace period
+        deadline = time.monotonic() + 15
+        while scene_name in [s["name"] for s in server.get("/api/scenes")]:
+            assert time.monotonic() < deadline, "the idle scene was not stopped"
+            time.sleep(0.2)
+        document = json.loads(export(server, scene_name))  # back from its file
+        assert [n["type"] for n in document["nodes"]] == ["Robot"]
+    finally:
+        stop_server(server)
+
+
+def test_without_a_state_dir_a_scene_with_kept_objects_stays(scene_name):
+    server = start_server("--no-demo", "--limit", "sceneIdleSeconds=1",
+                          "--limit", "leaveGraceSeconds=1")
+    try:
+        with vp.connect(server.ws, scene=scene_name):
+            robot = vp.Robot().keep()
+        time.sleep(4)
+        assert [r["id"] for r in server.robots(scene_name)] == [robot.id]
+        assert server.get("/api/metrics")["scenes"][scene_name]["saved"] is None
+    finally:
+        stop_server(server)
+
+
+def test_a_document_restores_a_scene_under_any_name_and_a_bad_one_changes_nothing(
+        server, scene_name):
+    client = build_lab(server.ws, scene_name)
+    try:
+        original = json.loads(export(server, scene_name))
+        status, summary = post(server, f"/api/scenes/{scene_name}-copy/import",
+                               json.dumps(original).encode())
+        assert status == 200 and summary["objects"] == len(original["nodes"])
+        copied = json.loads(export(server, f"{scene_name}-copy"))
+        assert copied == {**original, "scene": f"{scene_name}-copy"}
+        bad = {**original, "nodes": original["nodes"] + [{"id": "c0.1", "type": "Ball",
+                                                          "args": [-1], "state": {}}]}
+        status, error = post(server, f"/api/scenes/{scene_name}-copy/import", json.dumps(bad).encode())
+        assert status == 400 and error["code"] == "out_of_range" and "c0.1" in error["message"]
+        status, error = post(server, f"/api/scenes/{scene_name}-copy/import", b"{not json")
+        assert status == 400 and error["code"] == "bad_json"
+        status, error = post(server, f"/api/scenes/{scene_name}-other/import", b'{"format": 1}')
+        assert status == 400 and error["code"] == "bad_message"
+        assert json.loads(export(server, f"{scene_name}-copy")) == copied
+        assert f"{scene_name}-other" not in [s["name"] for s in server.get("/api/scenes")]
+    finally:
+        client.close()
+
+
+def test_importing_needs_the_control_token():
+    server = start_server("--no-demo", "--token", "s3cret", "--view-token", "look")
+    server.token = "look"
+    try:
+        document = export(server, "default")
+        assert post(server, "/api/scenes/default/import", document)[0] == 403
+        assert post(server, "/api/scenes/default/import", document, token="look")[0] == 403
+        status, summary = post(server, "/api/scenes/default/import", document, token="s3cret")
+        assert status == 200 and summary["scene"] == "default"
+    finally:
+        stop_server(server)
