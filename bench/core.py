@@ -19,6 +19,7 @@ from server.core.limits import DEFAULT
 from server.core.messages import encode
 from server.core.node import UNIT_SCALE
 from server.core.scene import Scene
+from server.core.scene_document import encode_document, export_scene, import_scene
 from server.core.sensor import Sensor
 from server.core.session import Session
 
@@ -176,6 +177,31 @@ def frame_bytes(ticks: int) -> dict[str, Any]:
         sizes.append(len(encode(frame).encode()))
     bench.close()
     return {"frame_bytes": figure(sizes)}
+
+
+def documents(hands: int, rounds: int) -> dict[str, Any]:
+    """A scene of animated hands as a document: exporting and encoding it (what
+    --state-dir does at most once a second, stalling the scene's ticks meanwhile), its
+    size, and importing it into an empty scene."""
+    bench = Bench(scenes.hands("c1", hands))
+    exports, imports = [], []
+    for n in range(rounds):
+        bench.send(scenes.hand_step("c1", hands, n))
+        bench.scene.tick(PERIOD)
+        started = time.perf_counter()
+        data = encode_document(export_scene(bench.scene, embed_assets=False))
+        exports.append((time.perf_counter() - started) * 1000)
+    document = json.loads(data)
+    for _ in range(max(1, rounds // 10)):
+        target = Scene("copy", LIMITS)
+        started = time.perf_counter()
+        with target.journal.transaction():
+            import_scene(target, document)
+        imports.append((time.perf_counter() - started) * 1000)
+        target.close()
+    bench.close()
+    return {"hands": hands, "objects": len(document["nodes"]), "bytes": len(data),
+            "export_ms": figure(exports), "import_ms": figure(imports)}
 
 
 def max_hands(counts: list[int], ticks: int) -> dict[str, Any]:

@@ -40,15 +40,18 @@ class Sizes:
     viewer_counts: tuple[int, ...]
     viewer_seconds: float
     busy_hands: int
+    document_rounds: int
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
              requests=20_000, frames=300, hand_counts=(10, 20, 30, 40, 50, 60, 80, 100),
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
-             viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20)
+             viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
+             document_rounds=30)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
-              latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2)
+              latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
+              document_rounds=2)
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -67,6 +70,8 @@ def measure(sizes: Sizes) -> dict[str, Any]:
         "requests": lambda: core.requests(sizes.requests),
         "frames": lambda: core.frame_bytes(sizes.frames),
         "max_hands": lambda: core.max_hands(list(sizes.hand_counts), sizes.hand_ticks),
+        "documents": lambda: [core.documents(count, sizes.document_rounds)
+                              for count in (small, large)],
     }
     for name, step in steps.items():
         found[name] = _timed(name, step)

@@ -14,6 +14,7 @@ from __future__ import annotations
 import base64
 import hashlib
 from dataclasses import dataclass
+from functools import cache
 from typing import Any, Callable
 
 from ..errors import BadMessage, UnknownAsset, WrongType
@@ -77,9 +78,10 @@ STATE: dict[type[Node], tuple[Saved, ...]] = {
 }
 
 
-def state_of(cls: type[Node]) -> list[Saved]:
+@cache
+def state_of(cls: type[Node]) -> tuple[Saved, ...]:
     """Every piece of state a node of this class has, its bases' first."""
-    return [saved for base in reversed(cls.__mro__) for saved in STATE.get(base, ())]
+    return tuple(saved for base in reversed(cls.__mro__) for saved in STATE.get(base, ()))
 
 
 # --- export -------------------------------------------------------------------------------
@@ -113,9 +115,15 @@ def _node_entry(node: Node) -> dict[str, Any]:
     for saved in state_of(type(node)):
         value = getattr(node, saved.attribute)
         if value is not None and value != ():
-            state[saved.name] = encode_numbers(value)
+            # state is finite (its setters refuse the rest; encoding would fail loudly)
+            state[saved.name] = _lists(value)
     entry["state"] = state
     return entry
+
+
+def _lists(value: Any) -> Any:
+    """Tuples (and tuples in them) as lists, which JSON documents hold."""
+    return [_lists(item) for item in value] if type(value) is tuple else value
 
 
 def document_owners(document: dict[str, Any]) -> list[str]:

@@ -56,6 +56,7 @@ Animator = Callable[[Scene, float], None]
 SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
 SAVE_SECONDS = 1.0  # a changed scene is saved at most this often (and when it stops)
+SAVE_SHARE = 0.02  # ...and less often when saving it takes longer than this share of the time
 SERVER_OWNER = "demo"  # what the server's own setups make: never anyone's to leave
 
 
@@ -95,6 +96,7 @@ class SceneWorker:
         self._departed: dict[str, tuple[float, Session]] = {}  # client -> (deadline, session)
         self._store = store
         self._saved = (scene.revision, 0.0)  # revision saved, and when (monotonic)
+        self._save_every = SAVE_SECONDS  # a large scene's save stalls its ticks: fewer of them
 
     def run(self) -> None:
         """Serve until ``stop`` or until the server's end of the pipe closes."""
@@ -233,16 +235,17 @@ class SceneWorker:
         """Write the scene to its store if it changed since it was last written."""
         if self._store is None or self._saved[0] == self.scene.revision:
             return
-        revision = self.scene.revision
+        revision, started = self.scene.revision, time.perf_counter()
         try:
             self._store.save(encode_document(export_scene(self.scene, embed_assets=False)))
         except Exception:  # a full disk, say: the scene runs on, the next save tries again
             log.exception("saving scene %s failed", self.scene.name)
             revision = self._saved[0]
+        self._save_every = max(SAVE_SECONDS, (time.perf_counter() - started) / SAVE_SHARE)
         self._saved = (revision, time.monotonic())
 
     def _autosave(self, now: float) -> None:
-        if now - self._saved[1] >= SAVE_SECONDS:
+        if now - self._saved[1] >= self._save_every:
             self.save()
 
     def _metrics(self, number: int) -> None:

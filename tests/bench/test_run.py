@@ -8,6 +8,7 @@ import math
 import subprocess
 
 from bench.report import BEGIN, END, TARGETS
+from bench.run import commit
 from tests.conftest import ROOT
 
 
@@ -17,10 +18,9 @@ def test_bench_quick_writes_every_figure(tmp_path):
     results = json.loads((tmp_path / "results.json").read_text())
     for name in TARGETS:
         assert isinstance(results[name], (int, float)) and math.isfinite(results[name]), name
-    head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True,
-                          text=True, check=True).stdout.strip()
-    assert results["commit"].startswith(head) and results["quick"] is True
+    assert results["commit"] == commit() and results["quick"] is True  # "unknown" without git
     figures = results["figures"]
+    assert [(d["hands"], d["export_ms"]["count"]) for d in figures["documents"]] == [(2, 2), (3, 2)]
     assert figures["hands10"]["bodies"] == 32 and figures["frames"]["frame_bytes"]["count"] == 3
     assert [(row["viewers"], row["stalled"]) for row in figures["viewers"]] == [(2, False), (2, True)]
     assert all(row["fps_median"] > 0 for row in figures["viewers"])  # frames reached them
