@@ -148,6 +148,10 @@ class IdBook:
         """Note ids of :meth:`wire`'s form as used too (a scene restored from a document:
         what its objects were once called stays taken), journaled."""
         for owner_name, entry in used.items():
+            if len(entry["names"]) > self._names_per_owner:
+                raise LimitExceeded(f"{owner_name} used {len(entry['names'])} non-numeric ids; "
+                                    f"a scene keeps at most {self._names_per_owner}",
+                                    limit="clientNames", value=self._names_per_owner)
             owner = self._owners.setdefault(owner_name, _Owner())
             numbers, names = owner.numbers.runs(), set(owner.names)
             self._journal.record(lambda o=owner, r=numbers, n=names: o.reset(r, n))

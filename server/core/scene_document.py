@@ -112,18 +112,24 @@ def _node_entry(node: Node) -> dict[str, Any]:
     if node.slots:
         entry["slots"] = [slot.id for slot in node.slots]
     state = {}
-    for saved in state_of(type(node)):
-        value = getattr(node, saved.attribute)
+    for attribute, key in _keys(type(node)):
+        value = getattr(node, attribute)
         if value is not None and value != ():
             # state is finite (its setters refuse the rest; encoding would fail loudly)
-            state[saved.name] = _lists(value)
+            state[key] = _lists(value) if type(value) is tuple else value
     entry["state"] = state
     return entry
 
 
-def _lists(value: Any) -> Any:
-    """Tuples (and tuples in them) as lists, which JSON documents hold."""
-    return [_lists(item) for item in value] if type(value) is tuple else value
+@cache
+def _keys(cls: type[Node]) -> tuple[tuple[str, str], ...]:
+    """(attribute, document key) of each piece of state of a class (export's hot loop)."""
+    return tuple((saved.attribute, saved.name) for saved in state_of(cls))
+
+
+def _lists(value: tuple[Any, ...]) -> list[Any]:
+    """A tuple (and the tuples in it) as lists, which JSON documents hold."""
+    return [_lists(item) if type(item) is tuple else item for item in value]
 
 
 def document_owners(document: dict[str, Any]) -> list[str]:
@@ -155,13 +161,15 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     mesh files it carries are kept (by content hash: they can only add files)."""
     check_document(document)
     entries = document["nodes"]
+    wanted = {entry["id"] for entry in entries}
+    if len(wanted) != len(entries):
+        raise BadMessage("scene document: an id is listed twice in nodes")
     _store_assets(scene, document["assets"])
     for root in scene.roots():
         scene.delete(root)
     _fresh_ids(scene)
     for entry in entries:
         _make(scene, entry)
-    wanted = {entry["id"] for entry in entries}
     for node in list(scene.nodes.values()):
         if node.parent is not None:
             node._link(None)
@@ -182,7 +190,11 @@ def _store_assets(scene: Scene, assets: list[dict[str, Any]]) -> None:
     for asset in assets:
         name, data = asset["name"], asset.get("data")
         if data is not None:
-            stored = scene.assets.store(base64.b64decode(data), scene.limits)
+            try:
+                decoded = base64.b64decode(data, validate=True)
+            except ValueError:
+                raise BadMessage(f"asset {name}: its data is not base64") from None
+            stored = scene.assets.store(decoded, scene.limits)
             if stored["name"] != name:
                 raise BadMessage(f"asset {name}: its data has another content hash "
                                  f"({stored['name']})")

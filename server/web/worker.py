@@ -217,6 +217,10 @@ class SceneWorker:
         except VPError as error:
             self._store.set_aside(error.message)  # type: ignore[union-attr]
             return
+        except Exception as error:  # a bug: the scene starts empty, the file is kept aside
+            log.exception("restoring scene %s failed", self.scene.name)
+            self._store.set_aside(f"restoring it failed ({error!r})")  # type: ignore[union-attr]
+            return
         self._restarted(summary["owners"])
         self._saved = (self.scene.revision, time.monotonic())  # as on the disk already
         log.info("scene %s restored: %d objects", self.scene.name, summary["objects"])

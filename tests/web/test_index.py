@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from .conftest import open_page, wait_until
@@ -13,6 +14,13 @@ def test_the_index_lists_the_scenes_with_links_to_watch(browser, pages, server):
     row = page.locator("#scenes tbody tr", has_text="default").first
     assert row.locator("a", has_text="watch").get_attribute("href") == "/view?scene=default"
     assert "control" in row.inner_text()
+    export = row.locator("a", has_text="export").get_attribute("href")
+    assert export == "/api/scenes/default/export"
+    with page.expect_download() as download:  # the scene as a document, as a file
+        row.locator("a", has_text="export").click()
+    saved = download.value
+    assert saved.suggested_filename == "default.json"
+    assert json.loads(Path(saved.path()).read_text())["format"] == "virtual-prosthetics-scene"
 
 
 def test_every_example_page_is_linked_from_the_index(browser, pages, server):

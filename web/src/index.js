@@ -12,7 +12,7 @@ function withToken(href) {
 }
 
 function passTokenOn(root) {
-	for (const link of root.querySelectorAll('a[href^="/view"], a[href^="/examples/"]')) {
+	for (const link of root.querySelectorAll('a[href^="/view"], a[href^="/examples/"], a[href^="/api/"]')) {
 		link.setAttribute('href', withToken(link.getAttribute('href')));
 	}
 }
@@ -39,7 +39,8 @@ async function refresh() {
 		cell(row, `${scene.time.toFixed(1)} s`, 'number');
 		const links = row.insertCell();
 		const name = encodeURIComponent(scene.name);
-		links.innerHTML = `<a href="/view?scene=${name}">watch</a> · <a href="/view?scene=${name}&role=controller">control</a>`;
+		links.innerHTML = `<a href="/view?scene=${name}">watch</a> · <a href="/view?scene=${name}&role=controller">control</a>`
+			+ ` · <a href="/api/scenes/${name}/export" download="${name}.json">export</a>`;
 		passTokenOn(links);
 	}
 }

@@ -44,3 +44,21 @@ def test_claims_are_journaled_and_forgotten_per_owner():
         book.claim("c1.hip", "s")
     book.forget("c1")
     assert book.cost() == 0 and not book.used("c1.5")
+
+
+def test_runs_given_in_any_order_merge_and_a_book_absorbs_them_journaled():
+    runs = [[7, 9], [1, 3], [4, 4], [8, 12], [20, 20], [5, 6]]
+    assert IntegerRuns.of(runs).runs() == [[1, 12], [20, 20]]
+    assert IntegerRuns.of(runs[:4]).runs() == [[1, 4], [7, 12]]
+    journal = Journal()
+    book = IdBook(journal, 10)
+    book.claim("c1.5", "s")
+    with pytest.raises(RuntimeError), journal.transaction():
+        book.absorb({"c1": {"numbers": [[1, 3]], "names": ["arm"]}, "c2": {"numbers": [], "names": []}})
+        assert book.used("c1.2") and book.used("c1.arm")
+        raise RuntimeError("the import fails later")
+    assert book.wire() == {"c1": {"numbers": [[5, 5]], "names": []}, "c2": {"numbers": [], "names": []}}
+    book.absorb({"c1": {"numbers": [[1, 3]], "names": ["arm"]}})
+    assert book.wire()["c1"] == {"numbers": [[1, 3], [5, 5]], "names": ["arm"]}
+    with pytest.raises(DuplicateId):
+        book.claim("c1.arm", "s")

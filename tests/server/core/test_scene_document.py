@@ -199,7 +199,14 @@ def cycle(document):
     (lambda d: d["nodes"][0].update(owner="c2"), "belongs to c1"),
     (cycle, "below itself"),
     (lambda d: d["nodes"].append({"id": "c1.1/99", "type": "Ball", "state": {}}), "only slots"),
-    (lambda d: d["nodes"].append({"id": "c1.1", "type": "Ball", "args": [], "state": {}}), "not a Ball"),
+    (lambda d: d["nodes"].append({"id": "c1.1", "type": "Ball", "args": [], "state": {}}), "twice"),
+    (lambda d: d["nodes"].append({"id": "c1.1/77", "type": "Slot", "state": {}}) or
+     entry(d, "c1.1/0").setdefault("slots", []).append("c1.1/77"), "not a slot below"),
+    (lambda d: entry(d, "c1.1/0/s0").update(type="Ball"), "is a Slot when made again, not a Ball"),
+    (lambda d: d["assets"][0].update(data="not base64!"), "not base64"),
+    (lambda d: d["assets"][0].update(data=base64.b64encode(b"glTF" * 9).decode()), "glTF|GLB"),
+    (lambda d: d["ids"].update(c1={"numbers": [], "names": [str(k) + "x" for k in range(1001)]}),
+     "at most 1000"),
 ])
 def test_a_document_that_fails_a_check_changes_nothing(busy, library, change, error):
     target = new_scene("target", library)

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 import trimesh
+from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
 from tests.conftest import RunningServer, crash_server, start_server, stop_server
@@ -188,5 +189,43 @@ def test_importing_needs_the_control_token():
         assert post(server, "/api/scenes/default/import", document, token="look")[0] == 403
         status, summary = post(server, "/api/scenes/default/import", document, token="s3cret")
         assert status == 200 and summary["scene"] == "default"
+    finally:
+        stop_server(server)
+
+
+def test_clients_watching_an_import_get_the_new_scene_in_a_fresh_snapshot(server, scene_name):
+    client = build_lab(server.ws, scene_name)
+    try:
+        document = export(server, scene_name)
+    finally:
+        client.close()
+    target = f"{scene_name}-watched"
+    with vp.connect(server.ws, scene=target) as there, \
+            connect(f"{server.ws}/ws?scene={target}&role=viewer") as viewer:
+        mine = vp.Box()  # the importing replaces it
+        there.sync()
+        assert json.loads(viewer.recv(timeout=10))["op"] == "hello"
+        assert json.loads(viewer.recv(timeout=10))["op"] == "snapshot"
+        status, _ = post(server, f"/api/scenes/{target}/import", document)
+        assert status == 200
+        deadline = time.monotonic() + 10
+        while (message := json.loads(viewer.recv(timeout=10)))["op"] != "snapshot":
+            assert time.monotonic() < deadline, "no fresh snapshot after the import"
+        ids = [node["id"] for node in message["nodes"]]
+        assert sorted(ids) == sorted(n["id"] for n in json.loads(document)["nodes"])
+        assert mine.id not in ids
+        there.sync()
+        assert there.mirror.nodes.get(mine.id) is None  # the script's mirror resynced too
+
+
+def test_a_saved_scene_that_fails_its_checks_is_set_aside_and_the_server_starts(state):
+    (state / "scenes").mkdir(parents=True)
+    (state / "scenes" / "lab.json").write_text('{"format": "virtual-prosthetics-scene"}')
+    log = state / "server.log"
+    server = start_server("--no-demo", "--state-dir", str(state), log=log)
+    try:
+        assert server.nodes("lab") == []  # it runs, empty
+        assert (state / "scenes" / "lab.json.unreadable-1").exists()
+        assert "lab.json not restored: scene document" in log.read_text()
     finally:
         stop_server(server)

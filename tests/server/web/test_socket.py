@@ -5,7 +5,9 @@ import time
 
 from websockets.sync.client import connect
 
+import virtual_prosthetics as vp
 from server.core.messages import check_server_message
+from tests.conftest import start_server, stop_server
 
 from .ws_requests import next_message, request_all, wait_ticks
 
@@ -217,3 +219,20 @@ def test_keep_leaves_what_a_client_made_in_the_scene(server, scene_name):
         request_all(maker, [{"op": "create", "object": f"{me}.1", "type": "Box"}])
     time.sleep(1.5)
     assert f"{me}.1" in [n["id"] for n in server.nodes(scene_name)]
+
+
+def test_with_the_default_grace_a_script_robots_go_ten_seconds_after_it_leaves():
+    server = start_server("--no-demo")  # leaveGraceSeconds 10, as shipped
+    try:
+        with vp.connect(server.ws, scene="default") as script:
+            hand = vp.EdgedHand()
+            script.sync()
+        left = time.monotonic()
+        time.sleep(8)
+        assert [r["id"] for r in server.robots("default")] == [hand.id]  # still in its grace
+        while server.robots("default"):
+            assert time.monotonic() - left < 13, "the robot did not go 10 s after its script left"
+            time.sleep(0.1)
+        assert time.monotonic() - left >= 10
+    finally:
+        stop_server(server)
