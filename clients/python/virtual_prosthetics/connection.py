@@ -163,7 +163,8 @@ class Connection:
         while time.monotonic() < deadline and not self._closing:
             try:
                 socket = ws_connect(url, max_size=None, open_timeout=5).__enter__()
-            except (OSError, InvalidHandshake, TimeoutError):
+            except (OSError, InvalidHandshake, TimeoutError, ConnectionClosed):
+                # a server going down (or still starting) may drop us mid-handshake
                 time.sleep(min(pause, max(0.0, deadline - time.monotonic())))
                 pause = min(RETRY_MAX, pause * 2)
                 continue

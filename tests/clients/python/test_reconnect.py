@@ -4,6 +4,7 @@ nothing made twice (the network cut by a real TCP proxy between it and the serve
 from __future__ import annotations
 
 import socket
+import struct
 import threading
 import time
 
@@ -22,6 +23,7 @@ class CuttableProxy:
         self.port = self.listener.getsockname()[1]
         self.open: list[socket.socket] = []
         self.accepted = 0
+        self.reset_next = 0  # connections to drop at once (a server restarting)
         threading.Thread(target=self._accept, daemon=True).start()
 
     def _accept(self) -> None:
@@ -30,6 +32,12 @@ class CuttableProxy:
                 client, _ = self.listener.accept()
             except OSError:
                 return
+            if self.reset_next:
+                self.reset_next -= 1
+                client.recv(1)  # the handshake has begun
+                client.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
+                client.close()  # a reset, mid-handshake
+                continue
             upstream = socket.create_connection(("127.0.0.1", self.target))
             self.open += [client, upstream]
             self.accepted += 1
@@ -89,6 +97,20 @@ def test_a_dropped_script_comes_back_with_its_robots_and_makes_nothing_twice(ser
         motors = server.get(f"/api/scenes/{scene_name}/robots/{hand.id}")["motors"]
         assert motors[1]["angle"] == pytest.approx(-0.6)
         assert hand.get_angles()[1] == pytest.approx(-0.6)  # the mirror resynced and follows
+
+
+def test_connections_dropped_mid_handshake_do_not_stop_the_reconnection(server, proxy,
+                                                                        scene_name):
+    with vp.connect(f"ws://127.0.0.1:{proxy.port}", scene=scene_name) as scene:
+        me = scene.client_id
+        box = vp.Box()
+        scene.sync()
+        proxy.reset_next = 3  # as a server going down and coming up does
+        proxy.cut()
+        box.set_position(1, 2, 3)  # waits out the reconnection
+        scene.sync()
+        assert scene.client_id == me and proxy.reset_next == 0
+        assert [n["position"] for n in server.nodes(scene_name) if n["id"] == box.id] == [[1, 2, 3]]
 
 
 def test_closing_on_purpose_does_not_come_back(server, proxy, scene_name):
