@@ -17,7 +17,7 @@ HOST_CA   ?= /etc/ssl/certs/ca-certificates.crt
 .PHONY: run test test-container bench bench-quick bench-browser install clean
 
 run: install
-	$(BIN)/vp-server --host $(HOST) --port $(PORT)
+	$(BIN)/vp-server --host $(HOST) --port $(PORT) $(if $(STATE_DIR),--state-dir $(STATE_DIR))
 
 test: install $(CHROMIUM) $(COMPOSE)
 	$(BIN)/python -m pytest $(PYTEST_ARGS)

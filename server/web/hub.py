@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..core.assets import AssetLibrary
+from ..core.ids import owner_of
 from ..core.limits import DEFAULT, Limits
 from ..core.scene import Scene
 from ..errors import LimitExceeded, OutOfRange, UnknownScene
@@ -27,7 +28,7 @@ from . import heap
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .runner import SceneRunner
 from .state_dir import SceneStore, StateDir
-from .worker import SceneSetup
+from .worker import SERVER_OWNER, SceneSetup
 
 log = logging.getLogger(__name__)
 
@@ -167,9 +168,10 @@ class SceneHub:
         self.connections.clear()
 
 
-def object_count(scene: Scene) -> int:
-    """How many objects a scene holds (read in its process)."""
-    return len(scene.nodes)
+def clients_objects(scene: Scene) -> int:
+    """How many objects clients have in a scene (read in its process); the server's own
+    come back with the scene's setup."""
+    return sum(owner_of(node_id) != SERVER_OWNER for node_id in scene.nodes)
 
 
 class Hubs:
@@ -272,7 +274,7 @@ class Hubs:
     @staticmethod
     async def _holds_objects(hub: SceneHub) -> bool:
         try:
-            return json.loads(await hub.runner.call("read", object_count, ())) > 0
+            return json.loads(await hub.runner.call("read", clients_objects, ())) > 0
         except UnknownScene:
             return False
 

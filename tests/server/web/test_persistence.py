@@ -229,3 +229,16 @@ def test_a_saved_scene_that_fails_its_checks_is_set_aside_and_the_server_starts(
         assert "lab.json not restored: scene document" in log.read_text()
     finally:
         stop_server(server)
+
+
+def test_an_idle_demo_scene_without_clients_objects_is_still_removed():
+    server = start_server("--limit", "sceneIdleSeconds=1", "--limit", "leaveGraceSeconds=1")
+    try:
+        with connect(f"{server.ws}/ws?scene=diggers&role=viewer") as viewer:
+            viewer.recv(timeout=10)
+        deadline = time.monotonic() + 15
+        while server.get("/api/metrics")["scenesRemoved"] < 1:
+            assert time.monotonic() < deadline, "the idle Diggers scene kept running"
+            time.sleep(0.2)
+    finally:
+        stop_server(server)
