@@ -6,6 +6,7 @@ import urllib.error
 import urllib.request
 
 import pytest
+import trimesh
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
@@ -87,6 +88,19 @@ def test_the_python_client_controls_with_the_token_and_the_log_never_shows_it(lo
     text = locked.log.read_text()
     assert "/ws?" in text and "token=***" in text  # request lines are logged, blanked
     assert CONTROL not in text and VIEW not in text
+
+
+def test_a_script_uploads_with_its_token(locked):
+    data = trimesh.creation.icosphere(1, 0.2).export(file_type="glb")
+    with vp.connect(locked.ws, scene="uploads", token=CONTROL) as scene:
+        name = vp.upload_asset(data)
+        vp.GLTFPart(name)
+        scene.sync()
+    with vp.connect(locked.ws, scene="uploads", token=CONTROL) as scene:
+        scene.token = None  # as a script that was given no token would send
+        with pytest.raises(vp.ServerError) as refused:
+            vp.upload_asset(data + b" ")
+        assert refused.value.code == "forbidden"
 
 
 def test_a_policy_without_tokens_lets_everyone_in():
