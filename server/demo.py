@@ -12,7 +12,7 @@ from .core.motor import MotorZ
 from .core.parts import EdgedFinger
 from .core.robot import Robot
 from .core.scene import Scene
-from .web.worker import SceneSetup
+from .web.worker import SERVER_OWNER, SceneSetup
 
 # (speed, z position) of robots A, B and C in the manual.
 DIGGERS = ((2.0, 1.0), (3.0, 0.0), (4.0, -1.0))
@@ -44,7 +44,7 @@ def setup_diggers(scene: Scene) -> Callable[[Scene, float], None]:
     numbers = count(1)
     speeds = {}
     for speed, z in DIGGERS:
-        robot = build_digger(scene, lambda: f"demo.{next(numbers)}")
+        robot = build_digger(scene, lambda: f"{SERVER_OWNER}.{next(numbers)}")
         robot.set_position((0.0, 0.0, z))
         robot.share()
         speeds[robot.id] = speed
@@ -83,7 +83,8 @@ def setup_hands(scene: Scene) -> Callable[[Scene, float], None]:
     hands = []
     for kind, x in HANDS:
         for left, z in ((True, -1.2), (False, 1.2)):
-            hand = kind(scene, f"demo.{kind.type_name}-{'left' if left else 'right'}", left)
+            side = "left" if left else "right"
+            hand = kind(scene, f"{SERVER_OWNER}.{kind.type_name}-{side}", left)
             hand.set_position((x, 0.2, z))
             hand.share()  # anyone's motor panel may move it
             hands.append(hand.id)

@@ -84,7 +84,7 @@ class SceneHub:
         self.members: dict[int, Connection] = {}  # joined, admitted or not yet
         self.connections: set[Connection] = set()  # admitted: they get every frame
         self.idle_since: float | None = time.monotonic()
-        self.saved = store is not None  # its scene is kept on disk (and comes back from it)
+        self.stored = store is not None  # its scene is kept on disk (and comes back from it)
         self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events, store)
 
     @property
@@ -263,7 +263,7 @@ class Hubs:
                 and now - hub.idle_since >= grace]
         removed = []
         for hub in idle:
-            if not hub.saved and await self._holds_objects(hub):
+            if not hub.stored and await self._holds_objects(hub):
                 continue  # kept objects: they stay while the server runs
             if self.scenes.get(hub.name) is hub and not hub.members:
                 self.scenes.pop(hub.name).runner.stop()

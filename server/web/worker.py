@@ -40,7 +40,6 @@ from typing import Any, Callable
 from ..core.assets import AssetLibrary
 from ..core.limits import Limits
 from ..core.messages import encode
-from ..core.ids import owner_of
 from ..core.scene import Scene
 from ..core.scene_document import encode_document, export_scene, import_scene
 from ..core.session import Session
@@ -214,12 +213,11 @@ class SceneWorker:
         try:
             with self.scene.journal.transaction():
                 summary = import_scene(self.scene, document)
-        except VPError as error:
-            self._store.set_aside(error.message)  # type: ignore[union-attr]
-            return
-        except Exception as error:  # a bug: the scene starts empty, the file is kept aside
-            log.exception("restoring scene %s failed", self.scene.name)
-            self._store.set_aside(f"restoring it failed ({error!r})")  # type: ignore[union-attr]
+        except Exception as error:  # the scene starts as its setup makes it; the file is kept
+            if not isinstance(error, VPError):  # a bug
+                log.exception("restoring scene %s failed", self.scene.name)
+            self._store.set_aside(  # type: ignore[union-attr]
+                error.message if isinstance(error, VPError) else f"restoring it failed ({error!r})")
             return
         self._restarted(summary["owners"])
         self._saved = (self.scene.revision, time.monotonic())  # as on the disk already
