@@ -127,13 +127,14 @@ def test_a_script_cut_off_by_a_crash_comes_back_as_itself(state, scene_name):
 
 
 def test_an_idle_saved_scene_is_stopped_and_comes_back_from_its_file(state, scene_name):
-    server = start_server("--no-demo", "--state-dir", str(state), "--limit", "sceneIdleSeconds=1",
+    # idle for longer than the grace period, as by default (60 s and 10 s)
+    server = start_server("--no-demo", "--state-dir", str(state), "--limit", "sceneIdleSeconds=3",
                           "--limit", "leaveGraceSeconds=1")
     try:
         with vp.connect(server.ws, scene=scene_name):
             vp.Robot().keep()
             vp.Box()  # not kept: goes after the grace period
-        deadline = time.monotonic() + 15
+        deadline = time.monotonic() + 20
         while scene_name in [s["name"] for s in server.get("/api/scenes")]:
             assert time.monotonic() < deadline, "the idle scene was not stopped"
             time.sleep(0.2)
