@@ -98,9 +98,7 @@ def check_client_message(message: Any) -> dict[str, Any]:
         else:
             validator(op)(message)
     except fastjsonschema.JsonSchemaValueException as error:
-        where = "/".join(str(p) for p in error.path[1:]) or "message"
-        complaint = error.message.split(" ", 1)[1] if " " in error.message else error.message
-        raise BadMessage(f"{op}: {where}: {complaint}", path=where) from None
+        raise _schema_refusal(error, op, "message") from None
     return message
 
 
@@ -113,9 +111,15 @@ def check_document(document: Any) -> None:
     try:
         validator("sceneDocument")(document)
     except fastjsonschema.JsonSchemaValueException as error:
-        where = "/".join(str(p) for p in error.path[1:]) or "document"
-        complaint = error.message.split(" ", 1)[1] if " " in error.message else error.message
-        raise BadMessage(f"scene document: {where}: {complaint}", path=where) from None
+        raise _schema_refusal(error, "scene document", "document") from None
+
+
+def _schema_refusal(error: fastjsonschema.JsonSchemaValueException, what: str,
+                    whole: str) -> BadMessage:
+    """What the schema found wrong, where (``whole`` when it is the value itself)."""
+    where = "/".join(str(p) for p in error.path[1:]) or whole
+    complaint = error.message.split(" ", 1)[1] if " " in error.message else error.message
+    return BadMessage(f"{what}: {where}: {complaint}", path=where)
 
 
 def _numbers_only(args: Any) -> bool:

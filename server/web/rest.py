@@ -143,12 +143,9 @@ async def export(request: Request, scene: str,
     uses, by content hash (``assets=embed``: with their bytes, so that any server can
     import it; ``refer``: by hash alone). No clock: an unchanged scene gives the same bytes."""
     hubs = _hubs(request)
-    hub = hubs.get(scene)
-    if hub is None and hubs.state is not None and scene in hubs.state.saved_scenes():
-        hub = hubs.open(scene)  # saved, not running: back from its file
-    if hub is None:
-        raise UnknownScene(f"no scene named {scene[:80]!r}", scene=scene)
-    body = await hub.runner.call("read", _export, (assets == "embed",))
+    if hubs.get(scene) is None and hubs.state is not None and scene in hubs.state.saved_scenes():
+        hubs.open(scene)  # saved, not running: back from its file
+    body = await _hub(request, scene).runner.call("read", _export, (assets == "embed",))
     return Response(body, media_type="application/json",
                     headers={"Content-Disposition": f'attachment; filename="{scene}.json"'})
 
