@@ -1,5 +1,5 @@
 // The client's copy of the scene as the server describes it: node states by id, camera,
-// clock, contacts and the watched sensors' readings, kept current by the server's
+// server time, contacts and the watched sensors' readings, kept current by the server's
 // messages (sans-I/O: it is handed messages, it never reads a socket).
 
 import { fromWire } from './codec.js';
@@ -7,14 +7,12 @@ import { fromWire } from './codec.js';
 export class Mirror {
 	// wants(id): whether someone listens to contact changes of node `id` (only those
 	// are queued as events).
-	constructor({ wants = () => true, now = () => performance.now() / 1000 } = {}) {
+	constructor({ wants = () => true } = {}) {
 		this.wants = wants;
-		this.clock = now;
 		this.nodes = new Map();    // id -> description (fields as the server sends them)
 		this.camera = null;
 		this.time = 0;
 		this.seq = 0;
-		this.received = this.clock();
 		this.contacts = new Set(); // "a|b"
 		this.readings = new Map(); // sensor id -> {distance, touch, position, objects}
 		this.events = [];          // [kind, a, b] contact changes not yet dispatched
@@ -97,12 +95,6 @@ export class Mirror {
 	tick(message) {
 		this.time = message.time;
 		this.seq = message.seq;
-		this.received = this.clock();
-	}
-
-	// Server time now: the last frame's time plus what elapsed here since it came.
-	now() {
-		return this.time + (this.clock() - this.received);
 	}
 
 	// A node and its descendants, depth first, pre-order.

@@ -23,8 +23,10 @@ class Mirror:
     lock around every use.
     """
 
-    def __init__(self, wants: Callable[[str], bool] = lambda node_id: True) -> None:
+    def __init__(self, wants: Callable[[str], bool] = lambda node_id: True,
+                 clock: Callable[[], float] = time.monotonic) -> None:
         self.wants = wants
+        self.clock = clock
         self.nodes: dict[str, NodeState] = {}
         self.camera: dict[str, list[float]] = {}
         self.time = 0.0
@@ -32,7 +34,8 @@ class Mirror:
         self.contacts: set[tuple[str, str]] = set()
         self.readings: dict[str, dict[str, Any]] = {}
         self.events: deque[ContactEvent] = deque()
-        self._time_received = time.monotonic()
+        self._time_received = clock()
+        self._time_given = float("-inf")
 
     def apply(self, message: dict[str, Any]) -> None:
         """Fold one server message (snapshot, added, frame, removed) into the mirror."""
@@ -91,11 +94,21 @@ class Mirror:
 
     def _clock(self, message: dict[str, Any]) -> None:
         self.time, self.seq = message["time"], message["seq"]
-        self._time_received = time.monotonic()
+        self._time_received = self.clock()
+        if message["op"] == "snapshot":
+            # A new connection may meet a server restarted from its state folder, whose
+            # scene time begins again.
+            self._time_given = float("-inf")
 
     def now(self) -> float:
-        """Server time now: the last frame's time plus what elapsed here since it came."""
-        return self.time + (time.monotonic() - self._time_received)
+        """Server time now: the last frame's time plus what elapsed here since it came.
+
+        Never less than a time already given: a frame read late would otherwise turn the
+        estimate back, and animations would see time run backwards.
+        """
+        estimate = self.time + (self.clock() - self._time_received)
+        self._time_given = max(self._time_given, estimate)
+        return self._time_given
 
     def walk(self, node_id: str) -> Iterator[NodeState]:
         """A node and its descendants in depth-first pre-order."""
