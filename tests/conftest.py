@@ -60,6 +60,15 @@ class RunningServer:
         return [n for n in self.nodes(scene) if "motors" in n]
 
 
+def eventually(check: Any, timeout: float = 5.0) -> None:
+    """Wait until ``check()`` is true: frames, closes and clean-ups happen on the server's
+    schedule, not the test's."""
+    deadline = time.monotonic() + timeout
+    while not check():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.01)
+
+
 def free_port() -> int:
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))

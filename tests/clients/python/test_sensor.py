@@ -3,21 +3,13 @@
 from __future__ import annotations
 
 import math
-import time
 
 import pytest
 
 import virtual_prosthetics as vp
+from tests.conftest import eventually
 
 DOWN = (math.pi, 0, 0)
-
-
-def eventually(check, timeout=5.0):
-    """Wait until ``check()`` is true (frames arrive on their own schedule)."""
-    deadline = time.monotonic() + timeout
-    while not check():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.01)
 
 
 def test_exact_readings_reflect_earlier_writes(scene):
