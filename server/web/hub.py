@@ -186,6 +186,7 @@ class Hubs:
         self.assets = assets or AssetLibrary()  # uploads land here; every scene reads them
         self.state = state
         self.scenes: dict[str, SceneHub] = {}
+        self._stopping: dict[str, SceneRunner] = {}  # removed scenes whose process may run on
         self.removed = 0
         self._setups: dict[str, SceneSetup] = {}
         # signs resume keys: valid until a restart, or for good with a state folder
@@ -220,7 +221,7 @@ class Hubs:
             store = self.state.store(name) if self.state is not None else None
             hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
                                                self.assets, self._setups.get(name), store)
-            hub.runner.start()
+            hub.runner.start(after=self._stopping.pop(name, None))
         return hub
 
     def client_for(self, scene: str, resume: str | None) -> tuple[str, str]:
@@ -266,7 +267,8 @@ class Hubs:
             if not hub.stored and await self._holds_objects(hub):
                 continue  # kept objects: they stay while the server runs
             if self.scenes.get(hub.name) is hub and not hub.members:
-                self.scenes.pop(hub.name).runner.stop()
+                hub.runner.stop()
+                self._stopping[hub.name] = self.scenes.pop(hub.name).runner
                 self.removed += 1
                 removed.append(hub.name)
         return removed
@@ -285,6 +287,8 @@ class Hubs:
             for name in await self.remove_idle(time.monotonic()):
                 log.info("removed scene %s: no clients for %d s", name,
                          self.limits.scene_idle_seconds)
+            self._stopping = {name: runner for name, runner in self._stopping.items()
+                              if not runner.ended}
             heap.trim()  # what past floods of messages used goes back to the system
 
     async def stop(self) -> None:
@@ -293,4 +297,6 @@ class Hubs:
         self.scenes.clear()
         for runner in runners:
             runner.stop()
+        runners += self._stopping.values()  # removed a moment ago: their last saves
+        self._stopping.clear()
         await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])

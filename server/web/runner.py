@@ -27,6 +27,7 @@ log = logging.getLogger(__name__)
 Deliver = Callable[[list[tuple[Any, ...]]], None]
 COMMANDS_PER_SEND = 512  # commands pickled together: fewer, larger writes in a flood
 _STOP = ("stop",)
+PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecessor's last save
 
 _CONTEXT = multiprocessing.get_context("forkserver")
 # Mesh reading too: loaded once in the fork server, a scene's first hand costs no import.
@@ -55,17 +56,33 @@ class SceneRunner:
         self._numbers = itertools.count(1)
         self.ended = False
         self.stopping = False  # asked to stop: however the process ends, it is no failure
+        self._started = threading.Event()
 
     @property
     def pid(self) -> int | None:
         return self._process.pid
 
-    def start(self) -> None:
-        """Start the process and the two threads that talk to it."""
-        self._process.start()
+    def start(self, after: SceneRunner | None = None) -> None:
+        """Start the process and the two threads that talk to it; with ``after`` (the
+        scene's process still stopping), once that has ended: its last save is what this
+        one restores. Commands posted meanwhile wait."""
+        threading.Thread(target=self._launch, args=(after,), name=f"to-{self.name}",
+                         daemon=True).start()
+
+    def _launch(self, after: SceneRunner | None) -> None:
+        if after is not None:
+            after.join(PREDECESSOR_SECONDS)
+        try:
+            self._process.start()
+        except Exception:  # out of processes or memory: the scene ends as a failed one
+            log.exception("the process of scene %s did not start", self.name)
+            self._hand_over(self._end, 1)
+            return
+        finally:
+            self._started.set()
         self._child.close()  # the child's end lives in the child now: EOF when it dies
-        threading.Thread(target=self._write, name=f"to-{self.name}", daemon=True).start()
         threading.Thread(target=self._read, name=f"from-{self.name}", daemon=True).start()
+        self._write()
 
     def post(self, *command: Any) -> None:
         """Send a command; the scene applies commands in the order they were posted."""
@@ -89,6 +106,9 @@ class SceneRunner:
 
     def join(self, timeout: float) -> None:
         """Wait for the process to end (killed after ``timeout`` seconds)."""
+        self._started.wait(timeout)
+        if self._process.pid is None:
+            return  # never started
         self._process.join(timeout)
         if self._process.is_alive():
             self._process.kill()
