@@ -10,14 +10,17 @@ export const SERVER_OPS = Object.freeze(['hello', 'snapshot', 'ok', 'error', 'fr
 
 export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):
-	// what an answer says its request changed; onWarning(text): remarks in answers.
-	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {} } = {}) {
+	// what an answer says its request changed; onWarning(text): remarks in answers;
+	// onRefused(ids): the objects a refused call named (what was set here at once for
+	// them did not happen on the server).
+	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {}, onRefused = () => {} } = {}) {
 		this.onMessage = onMessage;
 		this.onChanges = onChanges;
 		this.onWarning = onWarning;
+		this.onRefused = onRefused;
 		this.nextId = 1;
 		this.waiting = new Map();  // id -> { resolve, reject }
-		this.unanswered = new Set(); // ids, oldest first
+		this.unanswered = new Map(); // id -> the object ids a call names, oldest first
 		this.deferred = [];        // ServerErrors of requests nobody waited for
 		this.settled = [];         // [id, resolve]: called once every request up to id is answered
 	}
@@ -26,7 +29,7 @@ export class ProtocolCore {
 	// the answer's result (rejected with a ServerError for an error answer).
 	request(message, { wait = false } = {}) {
 		const id = this.nextId++;
-		this.unanswered.add(id);
+		this.unanswered.set(id, named(message));
 		const text = encode({ ...message, id });
 		if (!wait) return { id, text, answer: null };
 		const answer = new Promise((resolve, reject) => this.waiting.set(id, { resolve, reject }));
@@ -57,11 +60,13 @@ export class ProtocolCore {
 	}
 
 	answered(message) {
+		const targets = this.unanswered.get(message.id);
 		this.unanswered.delete(message.id);
 		const waiter = this.waiting.get(message.id);
 		this.waiting.delete(message.id);
 		if (message.op === 'error') {
 			const error = ServerError.fromWire(message);
+			if (targets?.length) this.onRefused(targets);
 			if (waiter) waiter.reject(error); else this.deferred.push(error);
 		} else if (waiter) {
 			waiter.resolve(message.result);
@@ -71,7 +76,7 @@ export class ProtocolCore {
 
 	// Resolve the settle() promises whose requests are all answered (or lost).
 	release() {
-		const oldest = this.unanswered.values().next().value ?? Infinity;
+		const oldest = this.unanswered.keys().next().value ?? Infinity;
 		const due = this.settled.filter(([id]) => id < oldest);
 		this.settled = this.settled.filter(([id]) => id >= oldest);
 		for (const [, resolve] of due) resolve();
@@ -95,7 +100,7 @@ export class ProtocolCore {
 	// Requests from `sentBefore` on were made after the loss and wait to go on the new
 	// connection: they are not lost.
 	reconnected(error, sentBefore = this.nextId) {
-		const lost = [...this.unanswered].filter((id) => id < sentBefore);
+		const lost = [...this.unanswered.keys()].filter((id) => id < sentBefore);
 		if (lost.some((id) => !this.waiting.has(id))) this.deferred.push(error);
 		for (const id of lost) {
 			this.unanswered.delete(id);
@@ -112,4 +117,11 @@ export class ProtocolCore {
 		this.unanswered.clear();
 		for (const [, resolve] of this.settled.splice(0)) resolve();
 	}
+}
+
+// The objects a call names: its object, or each one a setTransforms places.
+function named(message) {
+	if (message.op !== 'call') return null;
+	if (message.method === 'setTransforms') return Object.keys(message.args[0] ?? {});
+	return [message.object];
 }

@@ -50,6 +50,7 @@ export class Session {
 			onMessage: (message) => this.heard(message),
 			onChanges: (changes) => this.mirror.applyChanges(changes),
 			onWarning,
+			onRefused: (ids) => this.unsay(ids),
 		});
 		this.ready = new Promise((resolve, reject) => { this.welcome = { resolve, reject }; });
 		this.ended = new Promise((resolve) => { this.end = resolve; });   // resolves with why
@@ -151,6 +152,15 @@ export class Session {
 		}
 		if ('parent' in fields || 'children' in fields) this.place(object, this.mirror.nodes.get(id));
 		if ('name' in fields && fields.name) object.name = fields.name;
+	}
+
+	// Calls the server refused: their objects show what the server holds again (a
+	// setter changed them here at once).
+	unsay(ids) {
+		for (const id of ids) {
+			const object = this.objects.get(id), node = this.mirror.nodes.get(id);
+			if (object && node) this.pose(object, node);
+		}
 	}
 
 	slotCount(node) {

@@ -29,6 +29,21 @@ test('requests get increasing ids and waited answers resolve with their result',
 	assert.deepEqual(await first.answer, { time: 1, seq: 2 });
 });
 
+test('a refused call names the objects it would have changed; an answered one none', () => {
+	const refused = [];
+	const core = new ProtocolCore({ onRefused: (ids) => refused.push(ids) });
+	core.request({ op: 'call', object: 'c1.1', method: 'setPosition', args: [1e9, 0, 0] });
+	core.request({ op: 'call', object: 'scene', method: 'setTransforms',
+		args: [{ 'c1.2': [0, 0, 0, 0, 0, 0, 1], 'c1.3': [1, 0, 0, 0, 0, 0, 1] }] });
+	core.request({ op: 'call', object: 'c1.4', method: 'setAngle', args: [1] });
+	core.request({ op: 'delete', object: 'c1.5' });
+	core.receive('{"op":"error","id":1,"code":"out_of_range","message":"too far"}');
+	core.receive('{"op":"error","id":2,"code":"not_owner","message":"c2 owns c1.3"}');
+	core.receive('{"op":"ok","id":3}');
+	core.receive('{"op":"error","id":4,"code":"not_owner","message":"c2 owns c1.5"}');
+	assert.deepEqual(refused, [['c1.1'], ['c1.2', 'c1.3']]);
+});
+
 test('an error answer rejects its waiter with the wire fields', async () => {
 	const core = new ProtocolCore();
 	const { answer } = core.request({ op: 'create' }, { wait: true });

@@ -43,8 +43,14 @@ test('an error of a request nobody waited for is thrown by the next call', { ski
 	await Prosthetic.connect({ url: URL_, scene: `js-errors-${process.pid}` });
 	try {
 		const part = new Prosthetic.Part();
+		part.setPosition(5, 0, 0);
+		await Prosthetic.sync();
 		part.setPosition(1e9, 0, 0);                      // out of range on the server
 		await assert.rejects(Prosthetic.sync(), (error) => error.code === 'out_of_range');
+		assert.deepEqual(part.position.toArray(), [5, 0, 0], 'the refused position is undone here');
+		part.position.x = 2e9;                            // a direct write, refused as well
+		await assert.rejects(Prosthetic.sync(), (error) => error.code === 'out_of_range');
+		assert.deepEqual(part.position.toArray(), [5, 0, 0]);
 		await Prosthetic.sync();                           // the error was reported once
 	} finally {
 		Prosthetic.close();
