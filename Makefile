@@ -5,6 +5,7 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 PY_STAMP  := $(VENV)/.installed
+SERVER_STAMP := $(VENV)/.server-installed
 JS_STAMP  := clients/js/node_modules/.installed
 CHROMIUM  := /usr/bin/chromium
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
@@ -14,7 +15,7 @@ PORT ?= 8000
 COMPOSE   := /usr/bin/docker-compose
 HOST_CA   ?= /etc/ssl/certs/ca-certificates.crt
 
-.PHONY: run test test-container bench bench-quick bench-browser install clean
+.PHONY: run test test-container bench bench-quick bench-browser install install-server js-packages clean
 
 run: install
 	$(BIN)/vp-server --host $(HOST) --port $(PORT) $(if $(STATE_DIR),--state-dir $(STATE_DIR))
@@ -49,12 +50,21 @@ bench-browser: install $(CHROMIUM)
 
 install: $(PY_STAMP) $(JS_STAMP)
 
+# The server image's two halves (Dockerfile): the server alone in .venv (no test tools,
+# no client) and the npm packages it serves (fetched where Node is).
+install-server: $(SERVER_STAMP)
+js-packages: $(JS_STAMP)
+
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 
 $(PY_STAMP): $(BIN)/python pyproject.toml requirements-dev.txt clients/python/pyproject.toml
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check \
 		-r requirements-dev.txt -e . -e clients/python
+	touch $@
+
+$(SERVER_STAMP): $(BIN)/python pyproject.toml
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e .
 	touch $@
 
 # three.js, lil-gui and ws: the JavaScript client's dependencies (Node), also served to

@@ -29,9 +29,38 @@ def test_the_tests_service_runs_the_readme_test_command():
     assert f"make {command}" in readme.split("```")[1]  # the README's first commands
 
 
-def test_the_image_runs_as_a_plain_user_and_checks_its_own_health():
-    dockerfile = (ROOT / "Dockerfile").read_text()
-    users = re.findall(r"^USER (\S+)", dockerfile, re.MULTILINE)
-    assert users and users[-1] not in ("root", "0")
-    assert re.search(r"^HEALTHCHECK .*\n?.*/api/health", dockerfile, re.MULTILINE)
-    assert "EXPOSE 8000" in dockerfile
+def stages() -> dict[str, tuple[str, str]]:
+    """The Dockerfile's stages: name -> (what it is built FROM, its lines)."""
+    found = re.findall(r"^FROM (\S+) AS (\S+)\n(.*?)(?=^FROM |\Z)",
+                       (ROOT / "Dockerfile").read_text(), re.MULTILINE | re.DOTALL)
+    return {name: (base, body) for base, name, body in found}
+
+
+def lineage(name: str) -> list[str]:
+    """A stage and the stages it is built on, itself first."""
+    every = stages()
+    chain = [name]
+    while every[chain[-1]][0] in every:
+        chain.append(every[chain[-1]][0])
+    return chain
+
+
+def test_both_services_build_a_stage_of_the_dockerfile():
+    compose = (ROOT / "docker-compose.yml").read_text()
+    assert re.findall(r"target: (\S+)", compose) == ["server", "tests"]
+    assert set(lineage("tests")) >= {"tests", "server"}  # the tests run the server's image
+
+
+def test_the_server_image_runs_as_a_plain_user_and_checks_its_own_health():
+    _, body = stages()["server"]
+    assert re.findall(r"^USER (\S+)", body, re.MULTILINE)[-1] not in ("root", "0")
+    assert re.search(r"^HEALTHCHECK .*\n?.*/api/health", body, re.MULTILINE)
+    assert "EXPOSE 8000" in body
+    _, tests = stages()["tests"]
+    assert re.findall(r"^USER (\S+)", tests, re.MULTILINE)[-1] not in ("root", "0")
+
+
+def test_the_server_image_holds_no_browser_and_no_node():
+    installed = " ".join(stages()[stage][1] for stage in lineage("server"))
+    assert "chromium" not in installed and "nodejs" not in installed
+    assert "chromium" in stages()["tests"][1]
