@@ -28,7 +28,8 @@ def _arity(func: Callable[..., None]) -> int:
 
 
 def run(seconds: float | None = None) -> None:
-    """Run the animation (server time) for ``seconds``, or until the connection closes.
+    """Run the animation for ``seconds`` of server time, or until the connection closes
+    (across a server restart too, whose clock begins again).
 
     Before every step the contact callbacks that are due run (``begin_contact`` and
     ``end_contact`` of this client's parts). Without an animation, ``run`` only does that.
@@ -36,15 +37,17 @@ def run(seconds: float | None = None) -> None:
     scene = current_scene()
     func, fps = scene.animation or (None, 30.0)
     arity, period = _arity(func) if func else 0, 1.0 / fps
-    start = last = scene.get_time()
+    last, elapsed = scene.get_time(), 0.0
     next_wake = time.monotonic()
-    while seconds is None or last - start < seconds:
+    while seconds is None or elapsed < seconds:
         if scene.connection.closed is not None:
             raise ConnectionLost(scene.connection.closed)
         scene.dispatch_contacts()
         now = scene.get_time()
+        step = max(0.0, now - last)  # a server restarted from its state folder counts from 0
+        elapsed += step
         if func is not None:
-            func(*(now, now - last)[:arity])
+            func(*(now, step)[:arity])
         last = now
         next_wake = max(next_wake + period, time.monotonic())
         time.sleep(max(0.0, next_wake - time.monotonic()))

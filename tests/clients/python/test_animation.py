@@ -1,0 +1,37 @@
+"""The Python client's animation loop (``set_animation``, ``run``) against real servers."""
+
+from __future__ import annotations
+
+import threading
+
+import virtual_prosthetics as vp
+from tests.conftest import RunningServer, crash_server, start_server, stop_server
+
+
+def test_run_lasts_its_seconds_of_scene_time_across_a_server_restart(tmp_path, scene_name):
+    """A server restarted from its state folder counts the scene's time from 0 again: the
+    script's loop still ends after the time it asked for, never handed a negative step."""
+    options = ["--no-demo", "--state-dir", str(tmp_path), "--limit", "leaveGraceSeconds=8"]
+    first = start_server(*options)
+    servers: list[RunningServer] = [first]
+
+    def crash_and_restart() -> None:
+        crash_server(first)
+        servers.append(start_server(*options, port=first.port))
+
+    steps: list[tuple[float, float]] = []
+    restart = threading.Timer(0.5, crash_and_restart)
+    try:
+        with vp.connect(first.ws, scene=scene_name):
+            vp.Box()
+            vp.set_animation(lambda t, dt: steps.append((t, dt)), 30)
+            restart.start()
+            vp.run(6)
+    finally:
+        restart.join()
+        stop_server(servers[-1])
+    assert len(servers) == 2
+    times = [t for t, _ in steps]
+    assert min(times[10:]) < 1 < max(times), "the restarted clock was seen"
+    assert all(dt >= 0 for _, dt in steps)
+    assert 5.9 < sum(dt for _, dt in steps) < 6.1
