@@ -25,10 +25,11 @@ log = logging.getLogger(__name__)
 CLIENT_BLOCK = 1000  # client ids reserved in server.json at a time
 
 
-def write_atomically(path: Path, data: bytes) -> None:
-    """Replace ``path`` by a file holding ``data``, all at once."""
+def write_atomically(path: Path, data: bytes, mode: int = 0o666) -> None:
+    """Replace ``path`` by a file holding ``data``, all at once; ``mode`` (less the umask)
+    from the moment the file exists."""
     partial = path.with_name(f".{path.name}.{os.getpid()}.part")
-    with open(partial, "wb") as file:
+    with open(os.open(partial, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, mode), "wb") as file:
         file.write(data)
         file.flush()
         os.fsync(file.fileno())
@@ -85,7 +86,8 @@ class StateDir:
         self.secret = bytes.fromhex(saved["secret"]) if "secret" in saved else \
             secrets.token_bytes(32)
         self.clients_reserved = int(saved.get("clientsReserved", 0))
-        self._write()
+        if "secret" not in saved:
+            self._write()
 
     def store(self, scene: str) -> SceneStore:
         """Where the scene ``scene`` is kept (its name is already checked to be a plain one)."""
@@ -114,5 +116,5 @@ class StateDir:
 
     def _write(self) -> None:
         data = {"secret": self.secret.hex(), "clientsReserved": self.clients_reserved}
-        write_atomically(self._file, json.dumps(data).encode())
-        os.chmod(self._file, 0o600)  # the key signs resume keys: not for other users
+        # the key signs resume keys: never readable by other users, not even for a moment
+        write_atomically(self._file, json.dumps(data).encode(), mode=0o600)
