@@ -38,6 +38,7 @@ from multiprocessing.connection import Connection as Pipe
 from typing import Any, Callable
 
 from ..core.assets import AssetLibrary
+from ..core.ids import owner_of
 from ..core.limits import Limits
 from ..core.messages import encode
 from ..core.scene import Scene
@@ -66,9 +67,8 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
     logging.basicConfig(level=log_level)
     scene = Scene(name, limits, assets)
-    animator = setup(scene) if setup is not None else None
-    worker = SceneWorker(pipe, scene, tick_rate, animator, store)
-    worker.restore()
+    worker = SceneWorker(pipe, scene, tick_rate, None, store)
+    worker.prepare(setup)
     heap.settle()
     try:
         worker.run()
@@ -205,11 +205,32 @@ class SceneWorker:
             return summary
         self._read(number, replace, ())
 
-    def restore(self) -> None:
-        """Put the scene back as its store last saved it (nothing without a store or file)."""
+    def prepare(self, setup: SceneSetup | None) -> None:
+        """Make the scene as its store last saved it, the server's own objects as ``setup``
+        says: the saved ones (in their last state) when the file has them, new ones when it
+        has none (a server without this setup saved it), none without a setup."""
         document = self._store.load() if self._store is not None else None
-        if document is None:
-            return
+        saved_own = _holds_server_objects(document)
+        if setup is not None and saved_own:
+            self._animator = setup(self.scene)  # the document's, of the same ids, replace them
+        restored = document is not None and self.restore(document)
+        if setup is not None and not saved_own:
+            self.scene.ids.forget(SERVER_OWNER)  # the setup's ids are its own to make again
+            try:
+                with self.scene.journal.transaction():
+                    self._animator = setup(self.scene)
+            except VPError as error:  # say, a saved client object in the way: no demo then
+                log.error("scene %s restored without its setup: %s", self.scene.name, error)
+        elif setup is None and saved_own and restored:
+            for node in self.scene.roots():
+                if owner_of(node.id) == SERVER_OWNER:
+                    self.scene.delete(node)  # with what clients attached to it
+            self.scene.ids.forget(SERVER_OWNER)
+            log.info("scene %s: the objects of a setup this server has not are gone",
+                     self.scene.name)
+
+    def restore(self, document: Any) -> bool:
+        """Put the scene back as ``document`` (its store's) says; whether it could."""
         try:
             with self.scene.journal.transaction():
                 summary = import_scene(self.scene, document)
@@ -218,10 +239,11 @@ class SceneWorker:
                 log.exception("restoring scene %s failed", self.scene.name)
             self._store.set_aside(  # type: ignore[union-attr]
                 error.message if isinstance(error, VPError) else f"restoring it failed ({error!r})")
-            return
+            return False
         self._restarted(summary["owners"])
         self._saved = (self.scene.revision, time.monotonic())  # as on the disk already
         log.info("scene %s restored: %d objects", self.scene.name, summary["objects"])
+        return True
 
     def _restarted(self, owners: list[str]) -> None:
         """After the whole scene was replaced: a fresh snapshot for everyone, and owners
@@ -284,3 +306,11 @@ class SceneWorker:
             return []
         self._resync = False
         return [Outgoing.of(self.scene.snapshot())]
+
+
+def _holds_server_objects(document: Any) -> bool:
+    """Whether a saved document (checked or not yet) holds objects of the server's own."""
+    nodes = document.get("nodes") if isinstance(document, dict) else None
+    return isinstance(nodes, list) and any(
+        isinstance(node, dict) and isinstance(node.get("id"), str)
+        and owner_of(node["id"]) == SERVER_OWNER for node in nodes)

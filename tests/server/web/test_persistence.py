@@ -245,3 +245,37 @@ def test_an_idle_demo_scene_without_clients_objects_is_still_removed():
             time.sleep(0.2)
     finally:
         stop_server(server)
+
+
+def test_the_servers_own_objects_follow_its_setup_and_clients_objects_stay(state):
+    """Saved with the demo, restarted without it: no frozen demo hands; restarted with it
+    again: the demo is back and moves. A client's kept box is there each time."""
+    def restart(*options: str) -> RunningServer:
+        return start_server(*options, "--state-dir", str(state))
+
+    server = restart()
+    try:
+        with vp.connect(server.ws, scene="default") as client:
+            box = vp.Box().keep()
+            client.sync()
+        wait_until_saved(server, "default")
+    finally:
+        stop_server(server)
+    server = restart("--no-demo")
+    try:
+        assert server.robots("default") == []
+        assert [n["id"] for n in server.nodes("default")] == [box.id]
+    finally:
+        stop_server(server)
+    server = restart()
+    try:
+        robots = server.robots("default")
+        assert len(robots) == 6 and box.id in [n["id"] for n in server.nodes("default")]
+        path = f"/api/scenes/default/robots/{robots[0]['id']}"
+        first = [m["angle"] for m in server.get(path)["motors"]]
+        deadline = time.monotonic() + 10
+        while [m["angle"] for m in server.get(path)["motors"]] == first:
+            assert time.monotonic() < deadline, "the demo's hands stand still"
+            time.sleep(0.1)
+    finally:
+        stop_server(server)
