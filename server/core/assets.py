@@ -23,7 +23,7 @@ import struct
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import Any, Collection
 
 import numpy as np
 
@@ -76,7 +76,9 @@ class AssetLibrary:
         triangles = _check_mesh(data, kind, limits)
         name = f"{hashlib.sha256(data).hexdigest()[:32]}.{kind}"
         path = self.uploads / name
-        if not path.is_file():
+        if path.is_file():
+            os.utime(path)  # uploaded again: as new (see collect)
+        else:
             if len(self.uploaded_names()) >= limits.assets:
                 raise LimitExceeded(f"the server keeps at most {limits.assets} uploaded files",
                                     limit="assets", value=limits.assets)
@@ -85,6 +87,21 @@ class AssetLibrary:
             os.replace(partial, path)  # never a half-written file under the name
         return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data),
                 "triangles": triangles}
+
+    def collect(self, in_use: Collection[str], before: float) -> list[str]:
+        """Remove the uploaded files not ``in_use`` last uploaded before ``before`` (a
+        ``time.time()``), to make room for new ones; their names. Recent ones stay: a
+        script may have uploaded a file it has not used yet."""
+        removed = []
+        for name in self.uploaded_names():
+            path = self.uploads / name  # type: ignore[operator]
+            try:
+                if name not in in_use and path.stat().st_mtime < before:
+                    path.unlink()
+                    removed.append(name)
+            except FileNotFoundError:
+                pass
+        return removed
 
     def uploaded_names(self) -> list[str]:
         """Names of the files uploaded so far."""

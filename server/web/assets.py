@@ -3,22 +3,28 @@
 Uploads are checked (size, glTF, self-contained, triangle count) in a worker thread, so a
 large file does not hold the event loop, and kept under the hash of their bytes
 (:meth:`server.core.assets.AssetLibrary.store`). Scenes read them by that name:
-``GLTFPart('<hash>.glb')``.
+``GLTFPart('<hash>.glb')``. When the folder holds as many files as the ``assets`` limit
+allows, an upload first removes those that no scene (running or saved) is made of and
+that were not uploaded in the last hour; the folder is the server's own.
 """
 
 from __future__ import annotations
 
 import asyncio
+import logging
+import time
 from typing import Any
 
 from fastapi import APIRouter, Request
 from fastapi.responses import FileResponse, JSONResponse
 
 from ..core.assets import AssetLibrary, plain_name
-from ..errors import UnknownAsset
+from ..errors import LimitExceeded, UnknownAsset
 from .rest import NOT_FOUND, ErrorBody, read_body
 
+log = logging.getLogger(__name__)
 router = APIRouter(prefix="/api")
+KEEP_SECONDS = 3600  # an unused upload younger than this stays: its script may be about to use it
 MEDIA_TYPES = {"glb": "model/gltf-binary", "gltf": "model/gltf+json"}
 REFUSED: dict[int | str, dict[str, Any]] = {
     400: {"model": ErrorBody, "description": "Not a usable glTF mesh (bad_asset)"},
@@ -43,9 +49,20 @@ async def upload(request: Request) -> JSONResponse:
     give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene. With a server token,
     ``Authorization: Bearer <token>`` is needed."""
     request.app.state.access.check_change(request.headers.get("authorization"))
-    limits = request.app.state.hubs.limits
-    data = await read_body(request, limits.asset_bytes, "assetBytes", "the file")
-    stored = await asyncio.to_thread(_library(request).store, data, limits)
+    hubs, library = request.app.state.hubs, _library(request)
+    data = await read_body(request, hubs.limits.asset_bytes, "assetBytes", "the file")
+    try:
+        stored = await asyncio.to_thread(library.store, data, hubs.limits)
+    except LimitExceeded as full:
+        if full.details.get("limit") != "assets":
+            raise
+        in_use = await hubs.uploads_in_use()
+        removed = await asyncio.to_thread(library.collect, in_use, time.time() - KEEP_SECONDS)
+        if not removed:
+            raise LimitExceeded(f"{full.message}, each used by a scene or uploaded in the "
+                                f"last {KEEP_SECONDS // 60} minutes", **full.details) from None
+        log.info("%d uploaded files no scene used were removed to make room", len(removed))
+        stored = await asyncio.to_thread(library.store, data, hubs.limits)
     return JSONResponse(stored, status_code=201)
 
 

@@ -23,6 +23,7 @@ from ..core.assets import AssetLibrary
 from ..core.ids import owner_of
 from ..core.limits import DEFAULT, Limits
 from ..core.scene import Scene
+from ..core.scene_document import uploaded_assets
 from ..errors import LimitExceeded, OutOfRange, UnknownScene
 from . import heap
 from .outbox import Outbox, Outgoing, SlowConsumer
@@ -279,6 +280,20 @@ class Hubs:
             return json.loads(await hub.runner.call("read", clients_objects, ())) > 0
         except UnknownScene:
             return False
+
+    async def uploads_in_use(self) -> set[str]:
+        """The uploaded files that running scenes and saved ones are made of."""
+        names: set[str] = set()
+        for hub in list(self.scenes.values()):
+            try:
+                names.update(json.loads(await hub.runner.call("read", uploaded_assets, ())))
+            except UnknownScene:
+                pass  # ended: what it used is in its file, if it has one
+        if self.state is not None:
+            state = self.state
+            names.update(*await asyncio.to_thread(
+                lambda: [state.store(name).asset_names() for name in state.saved_scenes()]))
+        return names
 
     async def sweep(self) -> None:
         """Remove idle scenes, forever (a task of the server's lifetime)."""

@@ -58,6 +58,14 @@ class SceneStore:
             self.set_aside(f"it cannot be read ({error})")
             return None
 
+    def asset_names(self) -> set[str]:
+        """The uploaded files the saved document names (none when it cannot be read)."""
+        try:
+            assets = json.loads(self.path.read_bytes()).get("assets", [])
+            return {asset["name"] for asset in assets if isinstance(asset.get("name"), str)}
+        except (OSError, ValueError, AttributeError, TypeError):
+            return set()
+
     def save(self, data: bytes) -> None:
         """Write the scene's document."""
         write_atomically(self.path, data)

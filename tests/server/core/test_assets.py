@@ -4,6 +4,7 @@ uploads kept by the hash of their bytes."""
 from __future__ import annotations
 
 import hashlib
+import os
 
 import pytest
 import trimesh
@@ -45,6 +46,16 @@ def test_an_upload_is_kept_by_its_hash_and_then_found(tmp_path):
     mesh = library.mesh(stored["name"])
     assert mesh.url == "/api/assets/" + stored["name"] and len(mesh.triangles) == 12
     assert library.mesh("/api/assets/" + stored["name"]) is mesh  # read once
+
+
+def test_collecting_removes_only_old_uploads_nothing_uses(tmp_path):
+    library = AssetLibrary(uploads=tmp_path)
+    used, unused, recent = (library.store(trimesh.creation.icosphere(1, r).export(file_type="glb"),
+                                          DEFAULT)["name"] for r in (0.1, 0.2, 0.3))
+    for name in (used, unused):
+        os.utime(tmp_path / name, (1000.0, 1000.0))  # uploaded long ago
+    assert library.collect({used}, before=2000.0) == [unused]
+    assert sorted(library.uploaded_names()) == sorted([used, recent])
 
 
 def test_a_file_with_coordinates_out_of_bounds_is_refused(tmp_path):

@@ -6,10 +6,13 @@ from __future__ import annotations
 import hashlib
 import http.client
 import json
+import os
+import time
 
 import pytest
 import trimesh
 
+import virtual_prosthetics as vp
 from tests.conftest import start_server, stop_server
 
 SMALL = ["--limit", "assetBytes=200000", "--limit", "assetTriangles=5000", "--limit", "assets=3"]
@@ -131,3 +134,45 @@ def test_the_bundled_folder_serves_nothing_outside_it(server, path):
 def test_an_unknown_upload_name_is_not_found(server):
     status, _, body = request(server, "GET", "/api/assets/" + "0" * 32 + ".glb")
     assert status == 404 and json.loads(body)["code"] == "unknown_asset"
+
+
+def test_a_full_upload_folder_makes_room_from_what_no_scene_uses(tmp_path):
+    """With as many files as the limit allows, an upload removes the old ones that no
+    running or saved scene is made of; used and recent ones stay."""
+    state = tmp_path / "state"
+    server = start_server("--no-demo", "--state-dir", str(state), *SMALL,
+                          "--limit", "sceneIdleSeconds=1", "--limit", "leaveGraceSeconds=1")
+
+    def upload(data: bytes) -> tuple[int, dict]:
+        status, _, body = request(server, "POST", "/api/assets", data)
+        return status, json.loads(body)
+
+    def age_every_upload() -> None:
+        hours_ago = time.time() - 7200
+        for path in (state / "assets").iterdir():
+            os.utime(path, (hours_ago, hours_ago))
+
+    try:
+        live, saved, spare, new, newer = (glb(1, 0.1 + 0.02 * k) for k in range(5))
+        live, saved, spare = (upload(data)[1]["name"] for data in (live, saved, spare))
+        with vp.connect(server.ws, scene="stored") as script:
+            vp.GLTFPart(saved).keep()
+            script.sync()
+        while "stored" in [s["name"] for s in server.get("/api/scenes")]:
+            time.sleep(0.1)  # stopped when idle: its part is in its file only
+        with vp.connect(server.ws, scene="running") as script:
+            vp.GLTFPart(live)
+            script.sync()
+            age_every_upload()
+            status, stored = upload(new)
+            assert status == 201
+            assert sorted(server.get("/api/assets")["uploaded"]) == sorted([live, saved, stored["name"]])
+            age_every_upload()
+            assert upload(new)[0] == 201  # uploaded again: recent again
+            status, refusal = upload(newer)
+            assert status == 429 and "used by a scene or uploaded in the last 60 minutes" \
+                in refusal["message"]
+        document = json.loads(request(server, "GET", "/api/scenes/stored/export")[2])
+        assert [asset["name"] for asset in document["assets"]] == [saved]
+    finally:
+        stop_server(server)
