@@ -27,7 +27,7 @@ from ..core.scene_document import uploaded_assets
 from ..errors import LimitExceeded, OutOfRange, UnknownScene
 from . import heap
 from .outbox import Outbox, Outgoing, SlowConsumer
-from .runner import SceneRunner
+from .runner import PREDECESSOR_SECONDS, SceneRunner
 from .state_dir import SceneStore, StateDir
 from .worker import SERVER_OWNER, SceneSetup
 
@@ -290,9 +290,13 @@ class Hubs:
             except UnknownScene:
                 pass  # ended: what it used is in its file, if it has one
         if self.state is not None:
-            state = self.state
-            names.update(*await asyncio.to_thread(
-                lambda: [state.store(name).asset_names() for name in state.saved_scenes()]))
+            state, stopping = self.state, [r for r in self._stopping.values() if not r.ended]
+
+            def saved() -> list[set[str]]:
+                for runner in stopping:  # their last saves first
+                    runner.join(PREDECESSOR_SECONDS)
+                return [state.store(name).asset_names() for name in state.saved_scenes()]
+            names.update(*await asyncio.to_thread(saved))
         return names
 
     async def sweep(self) -> None:
