@@ -13,7 +13,7 @@ import pytest
 import trimesh
 
 import virtual_prosthetics as vp
-from tests.conftest import start_server, stop_server
+from tests.conftest import eventually, start_server, stop_server
 
 SMALL = ["--limit", "assetBytes=200000", "--limit", "assetTriangles=5000", "--limit", "assets=3"]
 
@@ -158,8 +158,8 @@ def test_a_full_upload_folder_makes_room_from_what_no_scene_uses(tmp_path):
         with vp.connect(server.ws, scene="stored") as script:
             vp.GLTFPart(saved).keep()
             script.sync()
-        while "stored" in [s["name"] for s in server.get("/api/scenes")]:
-            time.sleep(0.1)  # stopped when idle: its part is in its file only
+        # stopped when idle: its part is in its file only
+        eventually(lambda: "stored" not in [s["name"] for s in server.get("/api/scenes")], 20)
         with vp.connect(server.ws, scene="running") as script:
             vp.GLTFPart(live)
             script.sync()
