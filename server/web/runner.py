@@ -80,7 +80,7 @@ class SceneRunner:
             return
         finally:
             self._started.set()
-        self._child.close()  # the child's end lives in the child now: EOF when it dies
+            self._child.close()  # the child's end lives in the child now: EOF when it dies
         threading.Thread(target=self._read, name=f"from-{self.name}", daemon=True).start()
         self._write()
 
