@@ -11,8 +11,8 @@ export const SERVER_OPS = Object.freeze(['hello', 'snapshot', 'ok', 'error', 'fr
 export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):
 	// what an answer says its request changed; onWarning(text): remarks in answers;
-	// onRefused(ids): the objects a refused call named (what was set here at once for
-	// them did not happen on the server).
+	// onRefused(ids): the objects a refused call or creation named (what was done here
+	// at once for them did not happen on the server).
 	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {}, onRefused = () => {} } = {}) {
 		this.onMessage = onMessage;
 		this.onChanges = onChanges;
@@ -119,8 +119,9 @@ export class ProtocolCore {
 	}
 }
 
-// The objects a call names: its object, or each one a setTransforms places.
+// The objects a call or creation names: its object, or each one a setTransforms places.
 function named(message) {
+	if (message.op === 'create') return [message.object];
 	if (message.op !== 'call') return null;
 	if (message.method === 'setTransforms') return Object.keys(message.args[0] ?? {});
 	return [message.object];

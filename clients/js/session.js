@@ -155,11 +155,12 @@ export class Session {
 	}
 
 	// Calls the server refused: their objects show what the server holds again (a
-	// setter changed them here at once).
+	// setter changed them here at once); an object it never made is dropped here too.
 	unsay(ids) {
 		for (const id of ids) {
 			const object = this.objects.get(id), node = this.mirror.nodes.get(id);
 			if (object && node) this.pose(object, node);
+			else if (object && !node) this.mirrored('removed', id);
 		}
 	}
 

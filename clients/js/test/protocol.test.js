@@ -29,7 +29,7 @@ test('requests get increasing ids and waited answers resolve with their result',
 	assert.deepEqual(await first.answer, { time: 1, seq: 2 });
 });
 
-test('a refused call names the objects it would have changed; an answered one none', () => {
+test('a refused call or creation names its objects; an answered one and a deletion none', () => {
 	const refused = [];
 	const core = new ProtocolCore({ onRefused: (ids) => refused.push(ids) });
 	core.request({ op: 'call', object: 'c1.1', method: 'setPosition', args: [1e9, 0, 0] });
@@ -37,11 +37,13 @@ test('a refused call names the objects it would have changed; an answered one no
 		args: [{ 'c1.2': [0, 0, 0, 0, 0, 0, 1], 'c1.3': [1, 0, 0, 0, 0, 0, 1] }] });
 	core.request({ op: 'call', object: 'c1.4', method: 'setAngle', args: [1] });
 	core.request({ op: 'delete', object: 'c1.5' });
+	core.request({ op: 'create', object: 'c1.6', type: 'Box', args: [1e9] });
 	core.receive('{"op":"error","id":1,"code":"out_of_range","message":"too far"}');
 	core.receive('{"op":"error","id":2,"code":"not_owner","message":"c2 owns c1.3"}');
 	core.receive('{"op":"ok","id":3}');
 	core.receive('{"op":"error","id":4,"code":"not_owner","message":"c2 owns c1.5"}');
-	assert.deepEqual(refused, [['c1.1'], ['c1.2', 'c1.3']]);
+	core.receive('{"op":"error","id":5,"code":"out_of_range","message":"too big"}');
+	assert.deepEqual(refused, [['c1.1'], ['c1.2', 'c1.3'], ['c1.6']]);
 });
 
 test('an error answer rejects its waiter with the wire fields', async () => {

@@ -40,7 +40,7 @@ test('objects mirror the server and carry writes both ways', { skip: !URL_ && 'n
 });
 
 test('an error of a request nobody waited for is thrown by the next call', { skip: !URL_ && 'needs VP_URL' }, async () => {
-	await Prosthetic.connect({ url: URL_, scene: `js-errors-${process.pid}` });
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-errors-${process.pid}` });
 	try {
 		const part = new Prosthetic.Part();
 		part.setPosition(5, 0, 0);
@@ -51,6 +51,10 @@ test('an error of a request nobody waited for is thrown by the next call', { ski
 		part.position.x = 2e9;                            // a direct write, refused as well
 		await assert.rejects(Prosthetic.sync(), (error) => error.code === 'out_of_range');
 		assert.deepEqual(part.position.toArray(), [5, 0, 0]);
+		const huge = new Prosthetic.Box(1e9);               // a creation refused: no ghost here
+		await assert.rejects(Prosthetic.sync(), (error) => error.code === 'out_of_range');
+		assert.equal(session.objects.has(huge.vp.id), false);
+		assert.equal(huge.parent, null);
 		await Prosthetic.sync();                           // the error was reported once
 	} finally {
 		Prosthetic.close();
