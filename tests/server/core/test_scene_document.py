@@ -7,6 +7,7 @@ import base64
 import copy
 import json
 import math
+import random
 
 import pytest
 import trimesh
@@ -239,3 +240,53 @@ def test_a_non_document_is_refused_with_what_is_wrong():
     with pytest.raises(BadMessage, match="not a scene document"):
         import_scene(scene, [1, 2])
     scene.close()
+
+
+ODD_VALUES = [float("nan"), float("inf"), -1e308, 1e9, -1, 0, 2 ** 63, "", "x", None, True,
+              [], {}, [1e9] * 3, "c1.1", "c1.9999", {"ref": "c1.1"}, "demo.1"]
+
+
+def _places(value, path=()):
+    """Every path into a JSON value (dict keys and list indexes)."""
+    yield path
+    items = value.items() if isinstance(value, dict) else \
+        enumerate(value) if isinstance(value, list) else ()
+    for key, inner in items:
+        yield from _places(inner, path + (key,))
+
+
+def test_documents_changed_at_random_are_taken_or_refused_and_nothing_else(busy, library):
+    """A saved file or an upload can hold anything: 300 documents with one to three values
+    replaced by odd ones or left out are each made or refused with a VPError that changes
+    nothing (an exception of another kind would be a bug; PyBullet must never see them)."""
+    base = json.loads(encode_document(export_scene(busy)))
+    places = [p for p in _places(base) if p]
+    draw = random.Random(12)
+    target = new_scene("target", library)
+    empty = encode_document(export_scene(target))
+    taken = 0
+    for _ in range(300):
+        document = copy.deepcopy(base)
+        for path in draw.sample(places, draw.randint(1, 3)):
+            holder = document
+            try:
+                for key in path[:-1]:
+                    holder = holder[key]
+                if draw.random() < 0.15:
+                    del holder[path[-1]]
+                else:
+                    holder[path[-1]] = draw.choice(ODD_VALUES)
+            except (KeyError, IndexError, TypeError):
+                pass  # an earlier change took this place away
+        try:
+            with target.journal.transaction():
+                import_scene(target, document)
+        except VPError:
+            assert encode_document(export_scene(target)) == empty
+            continue
+        taken += 1
+        target.tick(1 / 60)
+        with target.journal.transaction():
+            import_scene(target, json.loads(empty))
+    assert 0 < taken < 300  # both kinds were met
+    target.close()
