@@ -191,9 +191,11 @@ def test_the_motor_panel_page_moves_its_arm_and_a_viewer_follows(browser, pages,
                                                                  scene_name):
     page = _sensor_page(browser, pages, server, scene_name, "motor-panel")
     wait_until(page, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Arm'")
-    labels = page.evaluate("() => [...document.querySelectorAll('.lil-gui .lil-controller.lil-number "
-                           ".lil-name')].map((e) => e.textContent)")
-    assert labels == ["turn", "shoulder", "2", "3"]
+    # the panel is the page's at once; its sliders come once the server has made the arm
+    labels = "() => [...document.querySelectorAll('.lil-gui .lil-controller.lil-number .lil-name')]" \
+             ".map((e) => e.textContent)"
+    wait_until(page, f"() => ({labels})().length === 4")
+    assert page.evaluate(labels) == ["turn", "shoulder", "2", "3"]
     field = page.locator(".lil-gui .lil-controller.lil-number input").nth(1)
     field.fill("1.2")
     field.press("Enter")
