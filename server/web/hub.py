@@ -17,7 +17,7 @@ import re
 import secrets
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 from ..core.assets import AssetLibrary
 from ..core.ids import owner_of
@@ -275,20 +275,22 @@ class Hubs:
         return removed
 
     @staticmethod
-    async def _holds_objects(hub: SceneHub) -> bool:
+    async def _ask(hub: SceneHub, question: Callable[[Scene], Any]) -> Any | None:
+        """``question(scene)``, answered in the scene's process; None once it has ended."""
         try:
-            return json.loads(await hub.runner.call("read", clients_objects, ())) > 0
+            return json.loads(await hub.runner.call("read", question, ()))
         except UnknownScene:
-            return False
+            return None
+
+    async def _holds_objects(self, hub: SceneHub) -> bool:
+        return (await self._ask(hub, clients_objects) or 0) > 0
 
     async def uploads_in_use(self) -> set[str]:
         """The uploaded files that running scenes and saved ones are made of."""
         names: set[str] = set()
         for hub in list(self.scenes.values()):
-            try:
-                names.update(json.loads(await hub.runner.call("read", uploaded_assets, ())))
-            except UnknownScene:
-                pass  # ended: what it used is in its file, if it has one
+            # an ended scene's files are in its saved file, if it has one
+            names.update(await self._ask(hub, uploaded_assets) or ())
         if self.state is not None:
             state, stopping = self.state, [r for r in self._stopping.values() if not r.ended]
 

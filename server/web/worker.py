@@ -67,7 +67,7 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
     logging.basicConfig(level=log_level)
     scene = Scene(name, limits, assets)
-    worker = SceneWorker(pipe, scene, tick_rate, None, store)
+    worker = SceneWorker(pipe, scene, tick_rate, store)
     worker.prepare(setup)
     heap.settle()
     try:
@@ -81,12 +81,12 @@ class SceneWorker:
     """The loop of a scene's process: commands in arrival order, a tick whenever due."""
 
     def __init__(self, pipe: Pipe, scene: Scene, tick_rate: float,
-                 animator: Animator | None, store: SceneStore | None = None) -> None:
+                 store: SceneStore | None = None) -> None:
         self.scene = scene
         self.tick_rate = tick_rate
         self.metrics = SceneMetrics()
         self._pipe = pipe
-        self._animator = animator
+        self._animator: Animator | None = None  # the setup's (prepare)
         self._sessions: dict[int, Session] = {}
         self._commands: deque[tuple[Any, ...]] = deque()
         self._events: list[tuple[Any, ...]] = []

@@ -18,7 +18,7 @@ from server.web.worker import SceneWorker
 def worker():
     server_end, scene_end = multiprocessing.Pipe()
     scene = Scene("w", DEFAULT.with_values(["leaveGraceSeconds=1"]))
-    loop = SceneWorker(scene_end, scene, 60.0, None)
+    loop = SceneWorker(scene_end, scene, 60.0)
     thread = threading.Thread(target=loop.run)
     thread.start()
     yield server_end
