@@ -258,9 +258,9 @@ def test_the_servers_own_objects_follow_its_setup_and_clients_objects_stay(state
         with vp.connect(server.ws, scene="default") as client:
             box = vp.Box().keep()
             client.sync()
-        wait_until_saved(server, "default")
     finally:
-        stop_server(server)
+        stop_server(server)  # saves on the way out (the demo moves: its file is never
+        # up to date for long, so "saved" in the metrics is no signal to wait for)
     server = restart("--no-demo")
     try:
         assert server.robots("default") == []
