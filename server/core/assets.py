@@ -16,10 +16,8 @@ from __future__ import annotations
 
 import hashlib
 import io
-import json
 import os
 import re
-import struct
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -28,7 +26,8 @@ from typing import Any, Collection
 import numpy as np
 
 from ..errors import BadAsset, Forbidden, LimitExceeded, TooLarge, UnknownAsset
-from .limits import MAX_SIZE, Limits
+from . import gltf_file
+from .limits import DEFAULT, MAX_SIZE, Limits
 
 BUNDLED_DIR = Path(__file__).resolve().parents[2] / "assets" / "gltf"
 BUNDLED_URL = "/assets/gltf/"
@@ -49,9 +48,11 @@ class Mesh:
 class AssetLibrary:
     """Finds mesh files by name: bundled ones, then those uploaded to ``uploads``."""
 
-    def __init__(self, bundled: Path = BUNDLED_DIR, uploads: Path | None = None) -> None:
+    def __init__(self, bundled: Path = BUNDLED_DIR, uploads: Path | None = None,
+                 limits: Limits = DEFAULT) -> None:
         self.bundled = bundled
         self.uploads = uploads
+        self.limits = limits  # what a file read for a part may expand to
 
     def locate(self, filename: str) -> tuple[Path, str]:
         """The file a part's filename means and the URL viewers load it from."""
@@ -72,8 +73,7 @@ class AssetLibrary:
         if len(data) > limits.asset_bytes:
             raise TooLarge(f"the file has {len(data)} bytes; at most {limits.asset_bytes} "
                            f"are taken", limit="assetBytes", value=limits.asset_bytes)
-        kind = "glb" if data[:4] == b"glTF" else "gltf"
-        triangles = _check_mesh(data, kind, limits)
+        kind, triangles = _check_mesh(data, limits)
         name = f"{hashlib.sha256(data).hexdigest()[:32]}.{kind}"
         path = self.uploads / name
         if path.is_file():
@@ -116,7 +116,7 @@ class AssetLibrary:
     def mesh(self, filename: str) -> Mesh:
         """The mesh of a file (read once per process)."""
         path, url = self.locate(filename)
-        return _read_mesh(str(path), url, path.stat().st_mtime_ns)
+        return _read_mesh(str(path), url, path.stat().st_mtime_ns, self.limits)
 
 
 def plain_name(filename: str) -> str:
@@ -133,59 +133,35 @@ def plain_name(filename: str) -> str:
     return name
 
 
-def _check_mesh(data: bytes, kind: str, limits: Limits) -> int:
-    """The triangle count of a self-contained glTF file's mesh, or :class:`BadAsset`."""
-    _check_embedded(_gltf_document(data, kind))
-    import trimesh
-
-    try:
-        mesh = trimesh.load(io.BytesIO(data), file_type=kind, force="mesh", process=False)
-        vertices, faces = np.asarray(mesh.vertices, float), np.asarray(mesh.faces)
-    except Exception as error:  # trimesh raises many kinds for broken files
-        raise BadAsset(f"the file does not read as a glTF mesh: {str(error)[:200]}") from None
-    if len(faces) == 0:
-        raise BadAsset("the file holds no triangles")
-    if len(faces) > limits.asset_triangles:
-        raise LimitExceeded(f"the mesh has {len(faces)} triangles; at most "
-                            f"{limits.asset_triangles} are taken", limit="assetTriangles",
-                            value=limits.asset_triangles)
+def _check_mesh(data: bytes, limits: Limits) -> tuple[str, int]:
+    """The kind (``glb``/``gltf``) and triangle count of a self-contained glTF file's mesh,
+    judged from its layout before anything is loaded (:mod:`server.core.gltf_file`), then
+    read; or :class:`BadAsset` / :class:`LimitExceeded`."""
+    summary = gltf_file.inspect(data, limits)
+    faces, vertices = _load(io.BytesIO(data), summary.kind)
+    if len(faces) != summary.triangles or (len(faces) and faces.max() >= len(vertices)):
+        raise BadAsset("the file's mesh does not read as its layout says")  # a loader quirk
     if not np.isfinite(vertices).all() or np.abs(vertices).max() > MAX_SIZE:
         raise BadAsset(f"the mesh's coordinates must be finite and within ±{MAX_SIZE:g}")
-    return len(faces)
+    return summary.kind, summary.triangles
 
 
-def _gltf_document(data: bytes, kind: str) -> dict[str, Any]:
-    """The JSON part of a GLB or glTF file."""
+def _load(source: Any, kind: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Triangles and vertices of a checked file, its placements applied (materials and
+    textures are not read: geometry is all the server needs)."""
+    import trimesh  # only scenes that use meshes pay for it
+
     try:
-        if kind == "glb":
-            length, chunk_type = struct.unpack_from("<I4s", data, 12)
-            if chunk_type != b"JSON":
-                raise ValueError("the first chunk is not JSON")
-            text = data[20:20 + length]
-        else:
-            text = data
-        document = json.loads(text)
-    except (ValueError, struct.error, UnicodeDecodeError):
-        raise BadAsset("the file is neither GLB nor glTF JSON") from None
-    if not isinstance(document, dict) or "asset" not in document:
-        raise BadAsset("the file is not glTF: it has no 'asset' object")
-    return document
-
-
-def _check_embedded(document: dict[str, Any]) -> None:
-    """Refuse files that point at other files or hosts: everything must be inside."""
-    for group in ("buffers", "images"):
-        for item in document.get(group) or []:
-            uri = item.get("uri") if isinstance(item, dict) else None
-            if isinstance(uri, str) and not uri.startswith("data:"):
-                raise BadAsset(f"the file refers to {uri[:60]!r}; upload a GLB or a glTF "
-                               f"with its {group} embedded (data: URIs)")
+        mesh = trimesh.load(source, file_type=kind, force="mesh", process=False,
+                            skip_materials=True)
+        return np.asarray(mesh.faces, dtype=np.int64), np.asarray(mesh.vertices, dtype=float)
+    except Exception as error:  # trimesh raises many kinds for broken files
+        raise BadAsset(f"the file does not read as a glTF mesh: {str(error)[:200]}") from None
 
 
 @lru_cache(maxsize=64)
-def _read_mesh(path: str, url: str, version: int) -> Mesh:
-    import trimesh  # only scenes that use meshes pay for it
-
-    loaded = trimesh.load(path, force="mesh", process=False)
-    return Mesh(url, np.asarray(loaded.vertices, dtype=float),
-                np.asarray(loaded.faces, dtype=np.int64))
+def _read_mesh(path: str, url: str, version: int, limits: Limits) -> Mesh:
+    data = Path(path).read_bytes()  # checked again: a file may have been put there by hand
+    kind, _ = _check_mesh(data, limits)
+    faces, vertices = _load(io.BytesIO(data), kind)
+    return Mesh(url, vertices, faces)

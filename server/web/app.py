@@ -21,6 +21,7 @@ from . import assets, heap, rest, socket
 from .access import AccessPolicy, redact_tokens_in_logs, viewing_allowed
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
+from .offload import Offload
 from .pages import mount_pages
 from .state_dir import StateDir
 
@@ -43,7 +44,7 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
         uploads = state.assets if state is not None else \
             Path(tempfile.mkdtemp(prefix="vp-uploads-"))
     uploads.mkdir(parents=True, exist_ok=True)
-    hubs = Hubs(tick_rate, limits, AssetLibrary(uploads=uploads), state)
+    hubs = Hubs(tick_rate, limits, AssetLibrary(uploads=uploads, limits=limits), state)
     for name, setup in (setups or {}).items():
         hubs.prepare(name, setup)
 
@@ -58,12 +59,14 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
         heap.settle()
         yield
         sweeper.cancel()
+        offload.close()
         await hubs.stop()
         if temporary:
             shutil.rmtree(uploads, ignore_errors=True)
 
     app = FastAPI(title="Virtual Prosthetics", version=rest.VERSION, lifespan=lifespan)
     app.state.hubs = hubs
+    app.state.offload = offload = Offload()
     app.state.access = access
     app.state.started = time.monotonic()
     app.include_router(rest.router, dependencies=[Depends(viewing_allowed)])

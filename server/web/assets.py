@@ -1,7 +1,8 @@
 """Mesh files over HTTP: ``POST /api/assets`` takes an upload, ``GET`` lists and serves them.
 
-Uploads are checked (size, glTF, self-contained, triangle count) in a worker thread, so a
-large file does not hold the event loop, and kept under the hash of their bytes
+Uploads are checked (size, layout, what they expand to, indices, then read) in the checking
+process (:mod:`server.web.offload`), so no file holds the event loop or its memory, and
+kept under the hash of their bytes
 (:meth:`server.core.assets.AssetLibrary.store`). Scenes read them by that name:
 ``GLTFPart('<hash>.glb')``. When the folder holds as many files as the ``assets`` limit
 allows, an upload first removes those that no scene (running or saved) is made of and
@@ -49,10 +50,10 @@ async def upload(request: Request) -> JSONResponse:
     give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene. With a server token,
     ``Authorization: Bearer <token>`` is needed."""
     request.app.state.access.check_change(request.headers.get("authorization"))
-    hubs, library = request.app.state.hubs, _library(request)
+    hubs, library, offload = request.app.state.hubs, _library(request), request.app.state.offload
     data = await read_body(request, hubs.limits.asset_bytes, "assetBytes", "the file")
     try:
-        stored = await asyncio.to_thread(library.store, data, hubs.limits)
+        stored = await offload.run(library.store, data, hubs.limits)
     except LimitExceeded as full:
         if full.details.get("limit") != "assets":
             raise
@@ -62,7 +63,7 @@ async def upload(request: Request) -> JSONResponse:
             raise LimitExceeded(f"{full.message}, each used by a scene or uploaded in the "
                                 f"last {KEEP_SECONDS // 60} minutes", **full.details) from None
         log.info("%d uploaded files no scene used were removed to make room", len(removed))
-        stored = await asyncio.to_thread(library.store, data, hubs.limits)
+        stored = await offload.run(library.store, data, hubs.limits)
     return JSONResponse(stored, status_code=201)
 
 

@@ -29,9 +29,9 @@ COMMANDS_PER_SEND = 512  # commands pickled together: fewer, larger writes in a 
 _STOP = ("stop",)
 PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecessor's last save
 
-_CONTEXT = multiprocessing.get_context("forkserver")
+CONTEXT = multiprocessing.get_context("forkserver")
 # Mesh reading too: loaded once in the fork server, a scene's first hand costs no import.
-_CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial", "scipy.optimize"])
+CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial", "scipy.optimize"])
 sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 
@@ -46,8 +46,8 @@ class SceneRunner:
         self.tick_rate = tick_rate
         self._deliver = deliver
         self._loop = asyncio.get_running_loop()
-        self._pipe, child = _CONTEXT.Pipe()
-        self._process = _CONTEXT.Process(
+        self._pipe, child = CONTEXT.Pipe()
+        self._process = CONTEXT.Process(
             target=worker.serve, name=f"scene-{name}", daemon=True,
             args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store))
         self._child = child

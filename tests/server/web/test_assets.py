@@ -14,6 +14,7 @@ import trimesh
 
 import virtual_prosthetics as vp
 from tests.conftest import eventually, start_server, stop_server
+from tests.server.core.gltf_fuzz import glb_parts, pack_glb
 
 SMALL = ["--limit", "assetBytes=200000", "--limit", "assetTriangles=5000", "--limit", "assets=3"]
 
@@ -78,7 +79,7 @@ def test_oversize_files_are_refused_unread(small_server):
 
 @pytest.mark.parametrize("body, words", [
     (b"hello, not a mesh", "neither GLB nor glTF"),
-    (b"glTF" + bytes(40), "neither GLB nor glTF"),
+    (b"glTF" + bytes(40), "a GLB of version 0"),
     (json.dumps({"hello": 1}).encode(), "no 'asset'"),
     (json.dumps({"asset": {"version": "2.0"}, "buffers": [{"uri": "../../etc/passwd",
                                                            "byteLength": 10}]}).encode(),
@@ -176,3 +177,34 @@ def test_a_full_upload_folder_makes_room_from_what_no_scene_uses(tmp_path):
         assert [asset["name"] for asset in document["assets"]] == [saved]
     finally:
         stop_server(server)
+
+
+def peak_megabytes(pid: int) -> float:
+    """The most memory a process has held so far (its resident high-water mark)."""
+    status = open(f"/proc/{pid}/status").read()
+    return int(status.split("VmHWM:")[1].split()[0]) / 1024
+
+
+def test_a_small_file_that_expands_to_millions_of_triangles_costs_the_server_nothing():
+    document, rest = glb_parts(glb(subdivisions=5, radius=1.0))  # 20 480 triangles
+    document["nodes"] = [{"mesh": 0} for _ in range(1000)]
+    document["scenes"] = [{"nodes": list(range(1000))}]
+    bomb = pack_glb(document, rest)
+    assert len(bomb) < 400_000
+    server = start_server("--no-demo")  # the default limits
+    try:
+        for _ in range(3):
+            refused(server, bomb, 429, "limit_exceeded", "make 20480000 triangles")
+        assert peak_megabytes(server.process.pid) < 500  # loaded, it took 2.6 GB
+    finally:
+        stop_server(server)
+
+
+def test_a_mesh_whose_indices_point_past_its_vertices_is_refused(small_server):
+    document, rest = glb_parts(glb())
+    indices = document["accessors"][document["meshes"][0]["primitives"][0]["indices"]]
+    start = 8 + document["bufferViews"][indices["bufferView"]].get("byteOffset", 0)
+    data = bytearray(rest)
+    data[start:start + 4] = (5000).to_bytes(4, "little")
+    refused(small_server, pack_glb(document, bytes(data)), 400, "bad_asset",
+            "index 5000 points past its 42 vertices")

@@ -1,0 +1,56 @@
+"""Work that must not run in the event loop's process: checking uploads, reading saved files.
+
+Parsing JSON and reading meshes hold the GIL in long C calls (``json.loads`` of 8 MiB takes
+~100 ms in one), so a thread would still stall every viewer's frames. Here such work runs in
+a process of its own, whose memory is capped: a file that a check missed runs out of room
+there (and is refused) instead of taking the server's memory with it.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import resource
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from typing import Any, Callable
+
+from ..errors import InternalError, TooLarge
+from .runner import CONTEXT
+
+log = logging.getLogger(__name__)
+MEMORY_BYTES = 3 << 30  # address space of the checking process (numpy and trimesh included)
+
+
+def _cap_memory() -> None:
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_BYTES, resource.RLIM_INFINITY))
+
+
+class Offload:
+    """One checking process, started on first use and again after it died."""
+
+    def __init__(self) -> None:
+        self._pool: ProcessPoolExecutor | None = None
+
+    async def run(self, function: Callable[..., Any], *args: Any) -> Any:
+        """``function(*args)`` in the checking process; its VPErrors are raised here."""
+        if self._pool is None:
+            self._pool = ProcessPoolExecutor(1, mp_context=CONTEXT, initializer=_cap_memory)
+        pool = self._pool
+        try:
+            return await asyncio.get_running_loop().run_in_executor(pool, function, *args)
+        except MemoryError:
+            raise TooLarge(f"checking this needs more than the {MEMORY_BYTES >> 30} GiB the "
+                           f"server allows; nothing was kept") from None
+        except BrokenProcessPool:
+            log.error("the checking process ended; it starts again")
+            if self._pool is pool:
+                self._pool = None
+                pool.shutdown(wait=False, cancel_futures=True)
+            raise InternalError("the process checking this ended; nothing was kept") from None
+
+    def close(self) -> None:
+        """Stop the checking process."""
+        if self._pool is not None:
+            self._pool.shutdown(wait=False, cancel_futures=True)
+            self._pool = None
