@@ -6,6 +6,7 @@ import argparse
 import logging
 import os
 import resource
+import sys
 from pathlib import Path
 
 import uvicorn
@@ -18,6 +19,7 @@ from .web.guard import ConnectionCount, guarded_protocol
 
 WS_MAX_BYTES = 16 << 20  # beyond the protocol's 1 MiB: those get an answer, not a hang-up
 PING_SECONDS = 20.0  # a WebSocket whose peer does not answer a ping this long is closed
+UNSAVED = 4  # exit code: the server stopped with changes of some scene it could not save
 log = logging.getLogger("vp-server")
 
 
@@ -54,6 +56,11 @@ def main(argv: list[str] | None = None) -> None:
                         help="browser pages of this origin (https://host:port; * for any) may "
                              "connect besides this server's own (repeatable; default: "
                              "$VP_ALLOWED_ORIGINS, comma-separated)")
+    parser.add_argument("--allow-host", action="append", metavar="NAME",
+                        default=[h for h in os.environ.get("VP_ALLOWED_HOSTS", "").split(",") if h],
+                        help="answer requests that name this server NAME (its Host header) "
+                             "besides its IP addresses, localhost and --host (repeatable; * "
+                             "for any; default: $VP_ALLOWED_HOSTS, comma-separated)")
     parser.add_argument("--log-level", default="info",
                         choices=["critical", "error", "warning", "info", "debug"])
     args = parser.parse_args(argv)
@@ -67,7 +74,8 @@ def main(argv: list[str] | None = None) -> None:
         parser.error(str(error))
     logging.basicConfig(level=args.log_level.upper())
     _raise_file_limit(limits)
-    access = AccessPolicy(args.token or None, args.view_token or None, tuple(args.allow_origin))
+    access = AccessPolicy.serving(args.host, args.token or None, args.view_token or None,
+                                  tuple(args.allow_origin), tuple(args.allow_host))
     app = create_app(tick_rate=args.tick_rate, setups=None if args.no_demo else DEMOS,
                      limits=limits, uploads=args.assets_dir, access=access,
                      state_dir=args.state_dir)
@@ -78,6 +86,10 @@ def main(argv: list[str] | None = None) -> None:
                 ws_max_size=WS_MAX_BYTES, ws_per_message_deflate=False, ws_ping_interval=args.ping_seconds,
                 ws_ping_timeout=args.ping_seconds,
                 h11_max_incomplete_event_size=limits.header_bytes)
+    if app.state.unsaved:
+        log.error("the last changes of scene %s could not be saved",
+                  ", ".join(app.state.unsaved))
+        sys.exit(UNSAVED)
 
 
 def _raise_file_limit(limits: Limits) -> None:

@@ -6,11 +6,12 @@
 import { encode } from './codec.js';
 import { ProtocolError, ServerError } from './errors.js';
 
-export const SERVER_OPS = Object.freeze(['hello', 'snapshot', 'ok', 'error', 'frame', 'added', 'removed']);
+export const SERVER_OPS = Object.freeze(['hello', 'snapshot', 'ok', 'error', 'frame', 'added', 'removed', 'warning']);
 
 export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):
-	// what an answer says its request changed; onWarning(text): remarks in answers;
+	// what an answer says its request changed; onWarning(text): remarks in answers and the
+	// scene's warnings;
 	// onRefused(ids): the objects a refused call or creation named (what was done here
 	// at once for them did not happen on the server).
 	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {}, onRefused = () => {} } = {}) {
@@ -48,6 +49,7 @@ export class ProtocolCore {
 			throw new ProtocolError(`the server sent an unknown message: ${String(text).slice(0, 80)}`);
 		}
 		const isAnswer = (message.op === 'ok' || message.op === 'error') && message.id != null;
+		if (message.op === 'warning') this.onWarning(`scene ${message.code}: ${message.message}`);
 		if (!isAnswer) {
 			if (message.op === 'error') this.deferred.push(ServerError.fromWire(message));
 			this.onMessage(message);

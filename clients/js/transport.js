@@ -8,6 +8,7 @@ import { Session } from './session.js';
 
 const OPEN = 1;
 const RETRY_FIRST = 100, RETRY_MAX = 1000;   // ms between attempts to connect again
+const REPLACED = 4001;   // close code: this client connected again elsewhere (no coming back here)
 
 async function socketClass() {
 	if (globalThis.WebSocket) return globalThis.WebSocket;
@@ -52,6 +53,7 @@ export async function openSession(url, classes, onMessage = null) {
 		};
 		socket.onclose = (event) => {
 			if (!opened) return resolve(false);
+			if (event.code === REPLACED) return session.lost(event.reason);
 			lost(`connection closed (${event.code}${event.reason ? `: ${event.reason}` : ''})`);
 		};
 		socket.onerror = () => {};   // the close that follows says it

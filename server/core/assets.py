@@ -25,7 +25,8 @@ from typing import Any, Collection
 
 import numpy as np
 
-from ..errors import BadAsset, Forbidden, LimitExceeded, TooLarge, UnknownAsset
+from ..errors import (BadAsset, Forbidden, InternalError, LimitExceeded, TooLarge,
+                      UnknownAsset)
 from . import gltf_file
 from .limits import DEFAULT, MAX_SIZE, Limits
 
@@ -83,8 +84,13 @@ class AssetLibrary:
                 raise LimitExceeded(f"the server keeps at most {limits.assets} uploaded files",
                                     limit="assets", value=limits.assets)
             partial = path.with_name(f".{name}.{os.getpid()}.part")
-            partial.write_bytes(data)
-            os.replace(partial, path)  # never a half-written file under the name
+            try:
+                partial.write_bytes(data)
+                os.replace(partial, path)  # never a half-written file under the name
+            except OSError as error:
+                partial.unlink(missing_ok=True)
+                raise InternalError(f"the upload folder cannot be written ({error.strerror}); "
+                                    f"nothing was kept") from None
         return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data),
                 "triangles": triangles}
 
@@ -107,7 +113,10 @@ class AssetLibrary:
         """Names of the files uploaded so far."""
         if self.uploads is None:
             return []
-        return sorted(p.name for p in self.uploads.iterdir() if _NAME.fullmatch(p.name))
+        try:
+            return sorted(p.name for p in self.uploads.iterdir() if _NAME.fullmatch(p.name))
+        except FileNotFoundError:  # a folder that could not be made: nothing was uploaded
+            return []
 
     def bundled_names(self) -> list[str]:
         """Names of the files that come with the server."""

@@ -13,11 +13,12 @@ from __future__ import annotations
 
 import base64
 import hashlib
+import json
 from dataclasses import dataclass
 from functools import cache
 from typing import Any, Callable
 
-from ..errors import BadMessage, UnknownAsset, WrongType
+from ..errors import BadJSON, BadMessage, Forbidden, UnknownAsset, WrongType
 from . import api
 from .api import Param
 from .arguments import bind
@@ -135,6 +136,42 @@ def _lists(value: tuple[Any, ...]) -> list[Any]:
 def document_owners(document: dict[str, Any]) -> list[str]:
     """Every owner a (checked) document names: of its objects and of the ids it used."""
     return sorted({owner_of(entry["id"]) for entry in document["nodes"]} | set(document["ids"]))
+
+
+def scene_owners(scene: Scene) -> list[str]:
+    """Every owner a scene knows: of its objects and of the ids used in it."""
+    return sorted({owner_of(node_id) for node_id in scene.nodes} | set(scene.ids.wire()))
+
+
+def parse_document(body: bytes) -> Any:
+    """A document's JSON from the bytes of a request or file (:class:`BadJSON` if it is not
+    JSON, nested too deep included); checked by :func:`import_scene`."""
+    try:
+        return json.loads(body)
+    except (ValueError, UnicodeDecodeError, RecursionError) as error:
+        raise BadJSON(f"the body is not JSON: {str(error)[:120]}") from None
+
+
+def check_document_bytes(body: bytes) -> None:
+    """Refuse bytes that are not a scene document (:func:`parse_document`, the schema)."""
+    check_document(parse_document(body))
+
+
+def check_import(scene: Scene, document: Any, present: set[str], replace: bool) -> None:
+    """Refuse an import that would take what belongs to clients ``present`` in the scene
+    (connected, or within their grace period): objects or ids of theirs in the document
+    would become theirs, and without ``replace`` their objects in the scene would go."""
+    check_document(document)
+    theirs = sorted(set(document_owners(document)) & present)
+    if theirs:
+        raise Forbidden(f"the document holds objects or ids of {', '.join(theirs[:5])}, a "
+                        f"client of scene {scene.name} now: they would become that client's; "
+                        f"import it when that client has left", clients=", ".join(theirs[:5]))
+    holding = sorted({owner_of(node_id) for node_id in scene.nodes} & present)
+    if holding and not replace:
+        raise Forbidden(f"scene {scene.name} holds objects of {', '.join(holding[:5])}, "
+                        f"connected now: importing deletes them; add ?replace=true to replace "
+                        f"the scene anyway (they are told)", clients=", ".join(holding[:5]))
 
 
 def uploaded_assets(scene: Scene) -> list[str]:

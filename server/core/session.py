@@ -9,7 +9,7 @@ from __future__ import annotations
 import logging
 import re
 import time
-from typing import Any
+from typing import Any, Callable
 
 from ..errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
 from . import api
@@ -37,6 +37,8 @@ class Session:
         self.role = role
         self.operations = Operations(scene, client_id)
         self.resume = resume  # what a reconnecting client sends to be this client again
+        # told of every request that changed the scene, once it is applied (the journal)
+        self.on_change: Callable[[Session, dict[str, Any]], None] | None = None
         now = time.monotonic()
         self._ops = TokenBucket(scene.limits.ops_per_second, now)
         self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
@@ -97,7 +99,10 @@ class Session:
             self._authorize(message)
             with self.scene.recording() as changes, self.scene.journal.transaction():
                 result = self.operations.apply(message)
-                return self._answer(answer_id, result, changes)
+                answer = self._answer(answer_id, result, changes)
+            if changes and self.on_change is not None:
+                self.on_change(self, message)
+            return answer
         except VPError as error:
             return _encoded(error.to_wire(answer_id, op))
         except Exception:  # a bug: the transaction was undone, the client is told

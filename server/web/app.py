@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import logging
 import shutil
 import tempfile
 import time
@@ -16,12 +17,11 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.assets import AssetLibrary
 from ..core.limits import DEFAULT, Limits
-from ..errors import Forbidden, LimitExceeded, LookupFailure, TooLarge, VPError
+from ..errors import Forbidden, InternalError, LimitExceeded, LookupFailure, TooLarge, VPError
 from . import assets, heap, rest, socket
-from .access import AccessPolicy, redact_tokens_in_logs, viewing_allowed
+from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
-from .offload import Offload
 from .pages import mount_pages
 from .state_dir import StateDir
 
@@ -36,14 +36,19 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     """The server: the ``default`` scene exists from the start; ``setups`` prepare scenes
     by name (whenever one starts). Uploaded meshes are kept in ``uploads`` (by default
     the state folder's, else a temporary folder removed when the server stops).
-    ``access``: tokens and origins. ``state_dir``: scenes are saved there and come back
-    from there (:mod:`server.web.state_dir`)."""
+    ``access``: tokens, origins and host names. ``state_dir``: scenes are saved there and
+    come back from there (:mod:`server.web.state_dir`); after the server stopped,
+    ``app.state.unsaved`` names the scenes whose last changes could not be saved."""
     state = StateDir(state_dir) if state_dir is not None else None
     temporary = uploads is None and state is None
     if uploads is None:
         uploads = state.assets if state is not None else \
             Path(tempfile.mkdtemp(prefix="vp-uploads-"))
-    uploads.mkdir(parents=True, exist_ok=True)
+    try:
+        uploads.mkdir(parents=True, exist_ok=True)
+    except OSError as error:  # a state folder that cannot be written: reported there
+        logging.getLogger(__name__).error("the upload folder %s cannot be made (%s)", uploads,
+                                          error.strerror)
     hubs = Hubs(tick_rate, limits, AssetLibrary(uploads=uploads, limits=limits), state)
     for name, setup in (setups or {}).items():
         hubs.prepare(name, setup)
@@ -52,21 +57,18 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         asyncio.get_running_loop().set_exception_handler(LoopErrorLog().handle)
         redact_tokens_in_logs()  # uvicorn has set its loggers up by now
-        hubs.open(DEFAULT_SCENE)
-        for name in state.saved_scenes() if state is not None else []:
-            hubs.open(name)  # each restores itself from its file
+        hubs.open(DEFAULT_SCENE)  # saved scenes open when they are first used
         sweeper = asyncio.create_task(hubs.sweep())
         heap.settle()
         yield
         sweeper.cancel()
-        offload.close()
-        await hubs.stop()
+        app.state.unsaved = await hubs.stop()
         if temporary:
             shutil.rmtree(uploads, ignore_errors=True)
 
     app = FastAPI(title="Virtual Prosthetics", version=rest.VERSION, lifespan=lifespan)
     app.state.hubs = hubs
-    app.state.offload = offload = Offload()
+    app.state.unsaved = []  # scenes whose last changes could not be saved (the exit code)
     app.state.access = access
     app.state.started = time.monotonic()
     app.include_router(rest.router, dependencies=[Depends(viewing_allowed)])
@@ -78,6 +80,11 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
         status = next((s for kind, s in HTTP_STATUS.items() if isinstance(error, kind)), 400)
         return rest.error_response(error, status)
 
+    @app.exception_handler(Exception)
+    async def internal_error(request: Request, error: Exception) -> JSONResponse:
+        # a bug: logged with its traceback by the server; the client gets the usual form
+        return rest.error_response(InternalError("internal server error"), 500)
+
     @app.exception_handler(StarletteHTTPException)
     async def http_error(request: Request, error: StarletteHTTPException) -> Response:
         # every error body has the documented form, unmatched paths included
@@ -86,4 +93,5 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
                             status_code=error.status_code, headers=error.headers)
 
     mount_pages(app)
+    app.add_middleware(HostCheck, policy=access)
     return app

@@ -21,6 +21,7 @@ from fastapi.responses import FileResponse, JSONResponse
 
 from ..core.assets import AssetLibrary, plain_name
 from ..errors import LimitExceeded, UnknownAsset
+from .access import changing_allowed
 from .rest import NOT_FOUND, ErrorBody, read_body
 
 log = logging.getLogger(__name__)
@@ -49,11 +50,11 @@ async def upload(request: Request) -> JSONResponse:
     """The body is the file. The answer names it: ``{"name", "url", "bytes", "triangles"}``;
     give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene. With a server token,
     ``Authorization: Bearer <token>`` is needed."""
-    request.app.state.access.check_change(request.headers.get("authorization"))
-    hubs, library, offload = request.app.state.hubs, _library(request), request.app.state.offload
+    changing_allowed(request)
+    hubs, library = request.app.state.hubs, _library(request)
     data = await read_body(request, hubs.limits.asset_bytes, "assetBytes", "the file")
     try:
-        stored = await offload.run(library.store, data, hubs.limits)
+        stored = await hubs.offload.run(library.store, data, hubs.limits)
     except LimitExceeded as full:
         if full.details.get("limit") != "assets":
             raise
@@ -63,7 +64,7 @@ async def upload(request: Request) -> JSONResponse:
             raise LimitExceeded(f"{full.message}, each used by a scene or uploaded in the "
                                 f"last {KEEP_SECONDS // 60} minutes", **full.details) from None
         log.info("%d uploaded files no scene used were removed to make room", len(removed))
-        stored = await offload.run(library.store, data, hubs.limits)
+        stored = await hubs.offload.run(library.store, data, hubs.limits)
     return JSONResponse(stored, status_code=201)
 
 

@@ -8,6 +8,7 @@ made (:mod:`server.web.runner`).
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import hashlib
 import hmac
 import itertools
@@ -17,26 +18,29 @@ import re
 import secrets
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any, AsyncIterator, Callable
 
 from ..core.assets import AssetLibrary
 from ..core.ids import owner_of
 from ..core.limits import DEFAULT, Limits
 from ..core.scene import Scene
 from ..core.scene_document import uploaded_assets
-from ..errors import LimitExceeded, OutOfRange, UnknownScene
+from ..errors import LimitExceeded, OutOfRange, UnknownScene, VPError
 from . import heap
 from .outbox import Outbox, Outgoing, SlowConsumer
+from .offload import Offload
 from .runner import PREDECESSOR_SECONDS, SceneRunner
-from .state_dir import SceneStore, StateDir
+from .state_dir import SCENE_NAME, SceneStore, StateDir
 from .worker import SERVER_OWNER, SceneSetup
 
 log = logging.getLogger(__name__)
 
-SCENE_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
 CLIENT_ID = re.compile(r"c[0-9]{1,15}")
 DEFAULT_SCENE = "default"
 INFLIGHT_BYTES = 4 << 20  # text a connection may have waiting on its scene's process
+REPLACED = 4001  # close code: the same client connected again; clients do not reconnect
+SILENT_SECONDS = 3.0  # a scene that sent nothing this long (60 frames a second) is unresponsive
+RESTART_SECONDS = (1.0, 60.0)  # a failed setup scene starts again after 1 s, doubling to 60 s
 _numbers = itertools.count(1)
 
 
@@ -55,6 +59,8 @@ class Connection:
     inflight: int = 0
     drained: asyncio.Event = field(default_factory=asyncio.Event)
     farewell: Outgoing | None = None  # the last message, sent as the connection closes
+    close_code: int = 1000
+    close_reason: str = ""
 
     def __post_init__(self) -> None:
         self.drained.set()
@@ -80,12 +86,22 @@ class SceneHub:
     """One scene: its process and the connections that receive its messages."""
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
-                 setup: SceneSetup | None = None, store: SceneStore | None = None) -> None:
+                 setup: SceneSetup | None = None, store: SceneStore | None = None,
+                 owners: Callable[[list[str]], None] = lambda owners: None,
+                 ended: Callable[[SceneHub, bool], None] = lambda hub, failed: None) -> None:
         self.name = name
         self.members: dict[int, Connection] = {}  # joined, admitted or not yet
         self.connections: set[Connection] = set()  # admitted: they get every frame
         self.idle_since: float | None = time.monotonic()
         self.stored = store is not None  # its scene is kept on disk (and comes back from it)
+        self.failed = False  # its process ended without being asked to
+        self.heard = time.monotonic()  # when its process last sent anything (frames: 60 a second)
+        self.figures: dict[str, Any] | None = None  # its last metrics, for when it is silent
+        self.summary: dict[str, Any] | None = None  # its last counts, likewise
+        self.saving: dict[str, Any] = {}  # what its process last said of its files
+        self._owners, self._on_end = owners, ended
+        self._open = asyncio.Event()  # made (restored), and no import under way
+        self._imports = 0
         self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events, store)
 
     @property
@@ -96,7 +112,43 @@ class SceneHub:
     def ended(self) -> bool:
         return self.runner.ended
 
+    @property
+    def silent(self) -> float:
+        """Seconds since the scene's process last sent anything."""
+        return time.monotonic() - self.heard
+
+    @property
+    def state(self) -> str:
+        """``starting``, ``running``, ``unresponsive`` (silent for SILENT_SECONDS: stopped,
+        or stuck in one long step), ``failed`` (its process died) or ``stopped``."""
+        if self.ended:
+            return "failed" if self.failed else "stopped"
+        if not self._open.is_set() and not self._imports:
+            return "starting"
+        return "unresponsive" if self.silent > SILENT_SECONDS else "running"
+
+    async def settled(self) -> None:
+        """Wait until the scene is made and no import is under way: only then may a
+        newcomer's client id be chosen (the owners it holds are reserved by then)."""
+        await self._open.wait()
+        if self.ended:
+            raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
+
+    @contextlib.asynccontextmanager
+    async def importing(self) -> AsyncIterator[None]:
+        """While the scene is replaced: newcomers wait (:meth:`settled`)."""
+        await self.settled()
+        self._imports += 1
+        self._open.clear()
+        try:
+            yield
+        finally:
+            self._imports -= 1
+            if not self._imports:
+                self._open.set()
+
     def _events(self, events: list[tuple[Any, ...]]) -> None:
+        self.heard = time.monotonic()
         for event in events:
             kind = event[0]
             if kind == "frame":
@@ -105,6 +157,12 @@ class SceneHub:
                 self._answered(*event[1:])
             elif kind == "admit":
                 self._admit(*event[1:])
+            elif kind == "saving":
+                self.saving = event[1]
+            elif kind == "ready":
+                self._owners(event[1])
+                if not self._imports:
+                    self._open.set()
             elif kind == "ended":
                 self._ended(event[1])
 
@@ -119,6 +177,8 @@ class SceneHub:
             raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
         for other in list(self.members.values()):  # the same client back: the new one wins
             if other.client_id == connection.client_id:
+                other.close_code, other.close_reason = REPLACED, \
+                    f"replaced: client {other.client_id} connected again (resumed) elsewhere"
                 other.closed.set()
         self.members[connection.number] = connection
         self.idle_since = None
@@ -159,6 +219,9 @@ class SceneHub:
 
     def _ended(self, failed: bool) -> None:
         """The scene's process is gone: its clients are disconnected (they may rejoin)."""
+        self.failed = failed
+        self._open.set()  # whoever waits hears that it ended
+        self._on_end(self, failed)
         for connection in self.members.values():
             if failed:
                 connection.farewell = Outgoing.of(UnknownScene(
@@ -167,6 +230,11 @@ class SceneHub:
             connection.closed.set()
             connection.admitted.set()
         self.connections.clear()
+
+
+def _saved_asset_names(stores: list[SceneStore]) -> set[str]:
+    """The uploaded files saved documents name (read in the checking process)."""
+    return set().union(*(store.asset_names() for store in stores))
 
 
 def clients_objects(scene: Scene) -> int:
@@ -189,7 +257,9 @@ class Hubs:
         self.scenes: dict[str, SceneHub] = {}
         self._stopping: dict[str, SceneRunner] = {}  # removed scenes whose process may run on
         self.removed = 0
+        self.offload = Offload()  # reading saved files and checking uploads, off this process
         self._setups: dict[str, SceneSetup] = {}
+        self._restarts: dict[str, float] = {}  # a failed setup scene's next pause
         # signs resume keys: valid until a restart, or for good with a state folder
         self._secret = state.secret if state is not None else secrets.token_bytes(32)
         self._clients = state.clients_reserved if state is not None else 0
@@ -221,9 +291,28 @@ class Hubs:
                                     limit="scenes", value=self.limits.scenes)
             store = self.state.store(name) if self.state is not None else None
             hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
-                                               self.assets, self._setups.get(name), store)
+                                               self.assets, self._setups.get(name), store,
+                                               self.reserve, self._ended)
             hub.runner.start(after=self._stopping.pop(name, None))
         return hub
+
+    def _ended(self, hub: SceneHub, failed: bool) -> None:
+        """A scene's process ended: the server's own scenes start again by themselves (after
+        a pause that grows while they keep failing); others when a client comes back."""
+        if not failed or (hub.name not in self._setups and hub.name != DEFAULT_SCENE):
+            return
+        low, high = RESTART_SECONDS
+        pause = self._restarts.get(hub.name, low)
+        self._restarts[hub.name] = min(high, pause * 2)
+        log.error("scene %s failed; it starts again in %.0f s", hub.name, pause)
+        asyncio.get_running_loop().call_later(pause, self._restart, hub)
+
+    def _restart(self, hub: SceneHub) -> None:
+        if self.scenes.get(hub.name) is hub:  # nobody opened it meanwhile
+            try:
+                self.open(hub.name)
+            except VPError as error:
+                log.error("scene %s could not start again: %s", hub.name, error.message)
 
     def client_for(self, scene: str, resume: str | None) -> tuple[str, str]:
         """The client id of a connection and its resume key: the id ``resume`` names when
@@ -255,6 +344,34 @@ class Hubs:
     def _reserve(self, upto: int) -> None:
         if self.state is not None and upto >= self._reserved:
             self._reserved = self.state.reserve_clients(upto)
+
+    def discard(self, hub: SceneHub) -> None:
+        """Stop a scene nobody has joined (made for an import that was refused)."""
+        if self.scenes.get(hub.name) is hub and not hub.members:
+            hub.runner.stop()
+            self._stopping[hub.name] = self.scenes.pop(hub.name).runner
+
+    def problems(self) -> list[str]:
+        """What fails now, in words (``/api/health``): scenes that failed or are silent,
+        scenes whose changes cannot be saved, the state folder."""
+        found = []
+        for hub in list(self.scenes.values()):
+            state = hub.state
+            if state == "failed":
+                found.append(f"scene {hub.name} failed (its process ended)" +
+                             ("; it starts again by itself" if hub.name in self._setups
+                              or hub.name == DEFAULT_SCENE else
+                              "; it starts again when a client connects"))
+            elif state == "unresponsive":
+                found.append(f"scene {hub.name} has sent nothing for {hub.silent:.0f} s")
+            if hub.saving.get("saveError"):
+                found.append(f"scene {hub.name}: {hub.saving['saveError']}" +
+                             ("; its changes last only until the server stops"
+                              if hub.saving.get("durable") is False else
+                              "; its changes are kept in its journal"))
+        if self.state is not None:
+            found += self.state.problems.values()
+        return found
 
     async def remove_idle(self, now: float) -> list[str]:
         """Stop the scenes that have had no client for the grace period and hold nothing
@@ -292,13 +409,11 @@ class Hubs:
             # an ended scene's files are in its saved file, if it has one
             names.update(await self._ask(hub, uploaded_assets) or ())
         if self.state is not None:
-            state, stopping = self.state, [r for r in self._stopping.values() if not r.ended]
-
-            def saved() -> list[set[str]]:
-                for runner in stopping:  # their last saves first
-                    runner.join(PREDECESSOR_SECONDS)
-                return [state.store(name).asset_names() for name in state.saved_scenes()]
-            names.update(*await asyncio.to_thread(saved))
+            stopping = [r for r in self._stopping.values() if not r.ended]
+            # their last saves first
+            await asyncio.to_thread(lambda: [r.join(PREDECESSOR_SECONDS) for r in stopping])
+            stores = [self.state.store(name) for name in self.state.saved_scenes()]
+            names.update(await self.offload.run(_saved_asset_names, stores))
         return names
 
     async def sweep(self) -> None:
@@ -312,12 +427,15 @@ class Hubs:
                               if not runner.ended}
             heap.trim()  # what past floods of messages used goes back to the system
 
-    async def stop(self) -> None:
-        """Stop every scene and wait for their processes to end."""
+    async def stop(self) -> list[str]:
+        """Stop every scene and wait for their processes to end; the scenes whose last
+        changes could not be saved."""
         runners = [hub.runner for hub in self.scenes.values()]
         self.scenes.clear()
         for runner in runners:
             runner.stop()
         runners += self._stopping.values()  # removed a moment ago: their last saves
         self._stopping.clear()
+        self.offload.close()
         await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])
+        return sorted({runner.name for runner in runners if runner.unsaved})

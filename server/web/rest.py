@@ -7,6 +7,7 @@ that read travel to the process by name, so they are defined at the top level he
 
 from __future__ import annotations
 
+import asyncio
 import json
 import time
 from typing import Any, Callable, Literal
@@ -16,17 +17,19 @@ from fastapi.responses import JSONResponse
 from pydantic import BaseModel
 
 from ..core import reports
-from ..core.messages import PROTOCOL_VERSION, check_document
-from ..core.scene_document import document_owners, export_scene
+from ..core.messages import PROTOCOL_VERSION
+from ..core.scene_document import check_document_bytes, export_scene
 from ..core.robot import Robot
 from ..core.scene import Scene
 from ..core.sensor import Sensor
-from ..errors import BadJSON, TooLarge, UnknownObject, UnknownScene, VPError
+from ..errors import TooLarge, UnknownObject, UnknownScene, VPError
 from . import prometheus
+from .access import changing_allowed
 from .hub import Hubs, SceneHub
 
 router = APIRouter(prefix="/api")
 VERSION = "0.1.0"
+ANSWER_SECONDS = 1.0  # what lists and metrics wait for one scene before using its last answer
 
 
 class ErrorBody(BaseModel):
@@ -55,10 +58,25 @@ def _hubs(request: Request) -> Hubs:
 
 
 def _hub(request: Request, scene: str) -> SceneHub:
-    hub = _hubs(request).get(scene)
+    """A running scene's hub; a saved scene that is not running starts (from its file)."""
+    hubs = _hubs(request)
+    hub = hubs.get(scene)
+    if hub is None and hubs.state is not None and scene in hubs.state.saved_scenes():
+        hub = hubs.open(scene)
     if hub is None:
         raise UnknownScene(f"no scene named {scene[:80]!r}", scene=scene)
     return hub
+
+
+async def _within(hub: SceneHub, verb: str, *args: Any) -> Any:
+    """A scene's answer, or None when it has ended or has not answered in ANSWER_SECONDS
+    (stopped, or working through a backlog): one scene never holds up a whole list."""
+    if hub.ended:
+        return None
+    try:
+        return await asyncio.wait_for(hub.runner.call(verb, *args), ANSWER_SECONDS)
+    except (asyncio.TimeoutError, UnknownScene):
+        return None
 
 
 async def read_body(request: Request, limit: int, name: str, what: str) -> bytes:
@@ -80,28 +98,49 @@ async def _read(request: Request, scene: str, report: Callable[..., Any],
     return Response(body, media_type="application/json")
 
 
-async def _summary(hub: SceneHub) -> dict[str, Any]:
+async def _summary(hub: SceneHub, wait: bool = False) -> dict[str, Any]:
+    """A scene's counts; from its last answer (``state`` says why) when it does not answer
+    in time, unless ``wait``."""
     viewers = sum(c.role == "viewer" for c in hub.connections)
-    summary = json.loads(await hub.runner.call("read", reports.scene_summary, ()))
-    return {**summary, "clients": len(hub.connections), "viewers": viewers,
+    if wait:
+        hub.summary = json.loads(await hub.runner.call("read", reports.scene_summary, ()))
+    else:
+        answer = await _within(hub, "read", reports.scene_summary, ())
+        if answer is not None:
+            hub.summary = json.loads(answer)
+    return {"name": hub.name, **(hub.summary or {}), "state": hub.state,
+            "clients": len(hub.connections), "viewers": viewers,
             "controllers": len(hub.connections) - viewers, "tickRate": hub.tick_rate}
 
 
-@router.get("/health", summary="Is the server up")
+@router.get("/health", summary="Is the server up, and what is failing")
 async def health(request: Request) -> dict[str, Any]:
+    """``status`` is ``ok``, or ``degraded`` with ``problems`` saying what fails: a scene
+    that failed or is silent, changes that cannot be saved, a state folder that cannot be
+    written. Answered at once, without asking any scene."""
     hubs = _hubs(request)
-    return {"status": "ok", "version": VERSION, "protocol": PROTOCOL_VERSION,
+    problems = hubs.problems()
+    return {"status": "degraded" if problems else "ok", "problems": problems,
+            "version": VERSION, "protocol": PROTOCOL_VERSION,
             "uptime": time.monotonic() - request.app.state.started, "scenes": len(hubs.scenes)}
 
 
-@router.get("/scenes", summary="Every scene with its robot and client counts")
-async def scenes(request: Request) -> list[dict[str, Any]]:
-    return [await _summary(hub) for hub in list(_hubs(request).scenes.values())]
+@router.get("/scenes", summary="Every running scene with its robot and client counts "
+                               "(saved=true adds the saved scenes that are not running)")
+async def scenes(request: Request, saved: bool = False) -> list[dict[str, Any]]:
+    hubs = _hubs(request)
+    running = list(hubs.scenes.values())
+    listed = list(await asyncio.gather(*(_summary(hub) for hub in running)))
+    if saved and hubs.state is not None:
+        names = {hub.name for hub in running}
+        listed += [{"name": name, "state": "saved"} for name in hubs.state.saved_scenes()
+                   if name not in names]
+    return listed
 
 
 @router.get("/scenes/{scene}", responses=NOT_FOUND, summary="One scene: clock, counts, camera")
 async def scene_detail(request: Request, scene: str) -> dict[str, Any]:
-    return await _summary(_hub(request, scene))
+    return await _summary(_hub(request, scene), wait=True)
 
 
 @router.get("/scenes/{scene}/snapshot", responses=NOT_FOUND, summary="The whole scene, as the WebSocket snapshot",
@@ -142,9 +181,6 @@ async def export(request: Request, scene: str,
     """Structure, angles, poses, names, recolours, owners and the uploaded mesh files it
     uses, by content hash (``assets=embed``: with their bytes, so that any server can
     import it; ``refer``: by hash alone). No clock: an unchanged scene gives the same bytes."""
-    hubs = _hubs(request)
-    if hubs.get(scene) is None and hubs.state is not None and scene in hubs.state.saved_scenes():
-        hubs.open(scene)  # saved, not running: back from its file
     body = await _hub(request, scene).runner.call("read", _export, (assets == "embed",))
     return Response(body, media_type="application/json",
                     headers={"Content-Disposition": f'attachment; filename="{scene}.json"'})
@@ -153,7 +189,9 @@ async def export(request: Request, scene: str,
 IMPORTED: dict[int | str, dict[str, Any]] = {
     400: {"model": ErrorBody, "description": "Not a scene document, or one that fails a check "
                                              "(the scene is unchanged)"},
-    403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"},
+    403: {"model": ErrorBody, "description": "The server's token was not given, a page of "
+                                             "another site sent it, or it would take what "
+                                             "connected clients own (forbidden)"},
     413: {"model": ErrorBody, "description": "Larger than the documentBytes limit (too_large)"},
     429: {"model": ErrorBody, "description": "A limit of the scene or server (limit_exceeded)"}}
 DOCUMENT_BODY = {"requestBody": {"required": True, "description": "what export gave", "content": {
@@ -162,26 +200,31 @@ DOCUMENT_BODY = {"requestBody": {"required": True, "description": "what export g
 
 @router.post("/scenes/{scene}/import", responses=IMPORTED, openapi_extra=DOCUMENT_BODY,
              summary="Replace a scene (made if needed) by a document export gave")
-async def import_(request: Request, scene: str) -> JSONResponse:
-    """Everything in the scene is replaced: its connected clients get a new snapshot;
-    owners of imported objects who are not connected have ``leaveGraceSeconds`` to come
-    back (what they keep stays). A document that fails any check changes nothing. With a
-    server token, ``Authorization: Bearer <token>`` is needed."""
-    request.app.state.access.check_change(request.headers.get("authorization"))
+async def import_(request: Request, scene: str, replace: bool = False) -> JSONResponse:
+    """Everything in the scene is replaced: its connected clients get a warning and a new
+    snapshot; owners of imported objects who are not connected have ``leaveGraceSeconds`` to
+    come back (what they keep stays). Refused (``forbidden``) when clients connected to the
+    scene own objects in it (``replace=true`` replaces them anyway) or in the document (it
+    would make those theirs). A document that fails any check changes nothing. With a
+    server token, ``Authorization: Bearer <token>`` is needed; pages of other sites may not.
+    The document is read and checked in the scene's process: no other scene waits."""
+    changing_allowed(request)
     hubs = _hubs(request)
     body = await read_body(request, hubs.limits.document_bytes, "documentBytes", "the document")
-    document = _parse(body)
-    check_document(document)  # before a scene is made for it
-    hubs.reserve(document_owners(document))
-    summary = await hubs.open(scene).runner.call("import", document)
-    return JSONResponse(json.loads(summary))
-
-
-def _parse(body: bytes) -> Any:
+    made = (hubs.get(scene) is None or hubs.scenes[scene].ended) and not (
+        hubs.state is not None and scene in hubs.state.saved_scenes())
+    if made:  # checked before a scene's process is started for it (in the checking process)
+        await hubs.offload.run(check_document_bytes, body)
+    hub = _hub(request, scene) if not made else hubs.open(scene)
     try:
-        return json.loads(body)
-    except (ValueError, UnicodeDecodeError) as error:
-        raise BadJSON(f"the body is not JSON: {str(error)[:120]}") from None
+        async with hub.importing():  # no newcomer gets an id the document brings meanwhile
+            summary = json.loads(await hub.runner.call("import", body, replace))
+            hubs.reserve(summary["owners"])
+    except VPError:
+        if made:
+            hubs.discard(hub)  # a refused document leaves no scene behind
+        raise
+    return JSONResponse(summary)
 
 
 def _export(scene: Scene, embed: bool) -> dict[str, Any]:
@@ -194,16 +237,22 @@ def _export(scene: Scene, embed: bool) -> dict[str, Any]:
                                  "queues (format=prometheus: Prometheus's text format)")
 async def metrics(request: Request, format: Literal["json", "prometheus"] = "json") -> Any:
     hubs = _hubs(request)
-    figures = {"scenesRemoved": hubs.removed,
-               "scenes": {name: await _scene_metrics(hub) for name, hub in list(hubs.scenes.items())}}
+    running = list(hubs.scenes.items())
+    figures = {"scenesRemoved": hubs.removed, "scenes": dict(zip(
+        [name for name, _ in running],
+        await asyncio.gather(*(_scene_metrics(hub) for _, hub in running))))}
     if format == "prometheus":
         return Response(prometheus.exposition(figures), media_type=prometheus.CONTENT_TYPE)
     return figures
 
 
 async def _scene_metrics(hub: SceneHub) -> dict[str, Any]:
-    stats = await hub.runner.call("metrics")
-    return {"tickRate": hub.tick_rate, **stats, "pid": hub.runner.pid,
+    """A scene's figures; its last ones (``state`` says why) when it does not answer in time."""
+    stats = await _within(hub, "metrics")
+    if stats is not None:
+        hub.figures = stats
+    return {"tickRate": hub.tick_rate, **(hub.figures or {}), "state": hub.state,
+            "silentSeconds": round(hub.silent, 3), "pid": hub.runner.pid,
             "clients": len(hub.connections),
             "queued": sum(len(c.outbox) for c in hub.connections),
             "queuedBytes": sum(c.outbox.bytes for c in hub.connections),

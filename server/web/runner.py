@@ -164,6 +164,11 @@ class SceneRunner:
         else:
             future.set_exception(value)
 
+    @property
+    def unsaved(self) -> bool:
+        """Whether the process ended with changes it could not save."""
+        return self._process.pid is not None and self._process.exitcode == worker.SAVE_FAILED
+
     def _end(self, exitcode: int | None) -> None:
         self.ended = True
         self._pipe.close()

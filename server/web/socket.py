@@ -44,6 +44,7 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
             raise OutOfRange(f"engine {engine[:40]!r} is not available; this server runs "
                              f"{ENGINE}", engine=engine)
         hub = hubs.open(scene)
+        await hub.settled()  # restored (its owners reserved), no import under way
     except VPError as error:
         code = TRY_AGAIN_LATER if isinstance(error, LimitExceeded) else POLICY_VIOLATION
         await websocket.send_text(Outgoing.of(error.to_wire()).text)
@@ -65,7 +66,7 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
             task.cancel()
         hub.leave(connection)
         await _say_farewell(websocket, connection)
-        await _close_quietly(websocket)
+        await _close_quietly(websocket, connection.close_code, connection.close_reason)
 
 
 async def _read(websocket: WebSocket, connection: Connection, hub: SceneHub) -> None:
@@ -98,8 +99,8 @@ async def _say_farewell(websocket: WebSocket, connection: Connection) -> None:
             pass
 
 
-async def _close_quietly(websocket: WebSocket) -> None:
+async def _close_quietly(websocket: WebSocket, code: int = 1000, reason: str = "") -> None:
     try:
-        await websocket.close()
+        await websocket.close(code, reason)
     except (RuntimeError, WebSocketDisconnect):
         pass

@@ -18,12 +18,16 @@ keep)``
                                           after ``leaveGraceSeconds``, unless it comes
                                           back (joins as the same client) or keeps them
 ``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)``
-``("import", n, document)``               ``("reply", n, ok, JSON summary or VPError)``:
-                                          the scene replaced (every client gets a new
-                                          snapshot); owners not connected get a grace
-                                          period, as if they had just left
+``("import", n, body, replace)``          ``("reply", n, ok, JSON summary or VPError)``:
+                                          the document's bytes parsed and checked here,
+                                          the scene replaced (every client gets a warning
+                                          and a new snapshot) unless it would take what
+                                          clients here own; owners not connected get a
+                                          grace period, as if they had just left
 ``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
-``("stop",)``                             the process ends (its scene saved first)
+``("stop",)``                             the process ends (its scene saved first; exit
+                                          code SAVE_FAILED if its changes could not be)
+once made (or restored)                   ``("ready", owners)``: the owners of its objects
 each tick                                 ``("frame", [messages])`` for every client
 ========================================  =============================================
 """
@@ -32,6 +36,7 @@ from __future__ import annotations
 
 import logging
 import signal
+import sys
 import time
 from collections import deque
 from multiprocessing.connection import Connection as Pipe
@@ -42,22 +47,23 @@ from ..core.ids import owner_of
 from ..core.limits import Limits
 from ..core.messages import encode
 from ..core.scene import Scene
-from ..core.scene_document import encode_document, export_scene, import_scene
+from ..core.command_log import replay
+from ..core.scene_document import check_import, import_scene, parse_document, scene_owners
 from ..core.session import Session
 from ..core.wire import encode_numbers
 from ..errors import InternalError, VPError
 from . import heap
 from .outbox import Outgoing
+from .saving import SceneSaver
 from .scene_metrics import SceneMetrics
-from .state_dir import SceneStore
+from .scene_store import SceneStore
 
 log = logging.getLogger(__name__)
 Animator = Callable[[Scene, float], None]
 SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
-SAVE_SECONDS = 1.0  # a changed scene is saved at most this often (and when it stops)
-SAVE_SHARE = 0.02  # ...and less often when saving it takes longer than this share of the time
 SERVER_OWNER = "demo"  # what the server's own setups make: never anyone's to leave
+SAVE_FAILED = 75  # exit code of a scene's process that stopped with changes it could not save
 
 
 def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
@@ -69,12 +75,15 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
     scene = Scene(name, limits, assets)
     worker = SceneWorker(pipe, scene, tick_rate, store)
     worker.prepare(setup)
+    worker.ready()
     heap.settle()
     try:
         worker.run()
     finally:
-        worker.save()  # the server stopped it, or the server is gone
+        durable = worker.saver.close()  # the server stopped it, or the server is gone
         scene.close()
+    if not durable:
+        sys.exit(SAVE_FAILED)
 
 
 class SceneWorker:
@@ -93,9 +102,11 @@ class SceneWorker:
         self._resync = False
         self._stopping = False
         self._departed: dict[str, tuple[float, Session]] = {}  # client -> (deadline, session)
+        self._left: set[str] = set()  # of those, the clients that were connected here
         self._store = store
-        self._saved = (scene.revision, 0.0)  # revision saved, and when (monotonic)
-        self._save_every = SAVE_SECONDS  # a large scene's save stalls its ticks: fewer of them
+        self._notices: list[Outgoing] = []  # warnings for every client, sent with the next tick
+        self.saver = SceneSaver(scene, store, self._tell,
+                                lambda report: self._events.append(("saving", report)))
 
     def run(self) -> None:
         """Serve until ``stop`` or until the server's end of the pipe closes."""
@@ -136,6 +147,7 @@ class SceneWorker:
         return True
 
     def _flush(self) -> None:
+        self.saver.commit()  # changes are on the disk before their answers leave
         if self._events:
             events, self._events = self._events, []
             try:
@@ -152,8 +164,10 @@ class SceneWorker:
     def _join(self, cid: int, client_id: str, role: str, resume: str | None = None,
               keep: bool = False) -> None:
         self._departed.pop(client_id, None)  # back within the grace period: nothing goes
+        self._left.discard(client_id)
         session = self._sessions[cid] = Session(self.scene, client_id, role, resume=resume)
         session.operations.keep = keep
+        session.on_change = self.saver.changed
         self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
                                             Outgoing.of(self.scene.snapshot())]))
 
@@ -171,6 +185,7 @@ class SceneWorker:
                 any(s.client_id == session.client_id for s in self._sessions.values()):
             return  # the client is back already (a new connection took over)
         self._depart(session)
+        self._left.add(session.client_id)
 
     def _depart(self, session: Session) -> None:
         """What the client made and did not keep goes when its grace period is over."""
@@ -182,7 +197,10 @@ class SceneWorker:
         for client_id, (deadline, session) in list(self._departed.items()):
             if now >= deadline:
                 del self._departed[client_id]
-                if session.close():
+                self._left.discard(client_id)
+                deleted = session.close()
+                self.saver.left(client_id)
+                if deleted:
                     heap.trim()  # what the client's objects used goes back to the system
 
     def _read(self, number: int, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
@@ -196,14 +214,34 @@ class SceneWorker:
             reply = ("reply", number, False, InternalError("internal server error"))
         self._events.append(reply)
 
-    def _import(self, number: int, document: Any) -> None:
-        """Replace the scene by a document (``read``'s reply conventions)."""
-        def replace(scene: Scene) -> dict[str, Any]:
+    def _import(self, number: int, body: bytes, replace: bool = False) -> None:
+        """Replace the scene by a document's bytes (``read``'s reply conventions), unless it
+        would take what a client here owns (:func:`check_import`)."""
+        def replace_scene(scene: Scene) -> dict[str, Any]:
+            document = parse_document(body)
+            check_import(scene, document, self._present(), replace)
             with scene.journal.transaction():
                 summary = import_scene(scene, document)
             self._restarted(summary["owners"])
+            self._tell("replaced", f"scene {scene.name} was replaced by an import "
+                                   f"({summary['objects']} objects)")
+            self.saver.save(replaced=True)
             return summary
-        self._read(number, replace, ())
+        self._read(number, replace_scene, ())
+
+    def _present(self) -> set[str]:
+        """Clients connected to the scene, or that were and are within their grace period."""
+        return {s.client_id for s in self._sessions.values()} | self._left
+
+    def _tell(self, code: str, message: str) -> None:
+        """A warning for every client of the scene, sent with the next tick."""
+        self._notices.append(Outgoing.of({"op": "warning", "code": code, "message": message}))
+
+    def ready(self) -> None:
+        """Tell the server the scene is made, with every owner of its objects and ids: no
+        newcomer may be given one of those ids."""
+        self._events.append(("ready", scene_owners(self.scene)))
+        self._flush()
 
     def prepare(self, setup: SceneSetup | None) -> None:
         """Make the scene as its store last saved it, the server's own objects as ``setup``
@@ -228,6 +266,18 @@ class SceneWorker:
             self.scene.ids.forget(SERVER_OWNER)
             log.info("scene %s: the objects of a setup this server has not are gone",
                      self.scene.name)
+        self._replay()
+        for owner in sorted({owner_of(node_id) for node_id in self.scene.nodes}):
+            if owner != SERVER_OWNER:  # nobody is connected yet: each may come back in time
+                self._depart(Session(self.scene, owner))
+
+    def _replay(self) -> None:
+        """Make again the changes journaled since the document was written."""
+        lines = self._store.journal() if self._store is not None else []
+        if lines:
+            applied, skipped = replay(self.scene, lines)
+            log.info("scene %s: %d journaled changes made again (%d not)", self.scene.name,
+                     applied, skipped)
 
     def restore(self, document: Any) -> bool:
         """Put the scene back as ``document`` (its store's) says; whether it could."""
@@ -240,8 +290,7 @@ class SceneWorker:
             self._store.set_aside(  # type: ignore[union-attr]
                 error.message if isinstance(error, VPError) else f"restoring it failed ({error!r})")
             return False
-        self._restarted(summary["owners"])
-        self._saved = (self.scene.revision, time.monotonic())  # as on the disk already
+        self.saver.restored()  # as on the disk already
         log.info("scene %s restored: %d objects", self.scene.name, summary["objects"])
         return True
 
@@ -255,27 +304,9 @@ class SceneWorker:
             if owner not in here and owner != SERVER_OWNER:
                 self._depart(Session(self.scene, owner))
 
-    def save(self) -> None:
-        """Write the scene to its store if it changed since it was last written."""
-        if self._store is None or self._saved[0] == self.scene.revision:
-            return
-        revision, started = self.scene.revision, time.perf_counter()
-        try:
-            self._store.save(encode_document(export_scene(self.scene, embed_assets=False)))
-        except Exception:  # a full disk, say: the scene runs on, the next save tries again
-            log.exception("saving scene %s failed", self.scene.name)
-            revision = self._saved[0]
-        self._save_every = max(SAVE_SECONDS, (time.perf_counter() - started) / SAVE_SHARE)
-        self._saved = (revision, time.monotonic())
-
-    def _autosave(self, now: float) -> None:
-        if now - self._saved[1] >= self._save_every:
-            self.save()
-
     def _metrics(self, number: int) -> None:
         summary = self.metrics.summary(time.monotonic(), time.process_time())
-        saved = None if self._store is None else self._saved[0] == self.scene.revision
-        self._events.append(("reply", number, True, {**summary, "saved": saved}))
+        self._events.append(("reply", number, True, {**summary, **self.saver.report()}))
 
     def _stop(self) -> None:
         self._stopping = True
@@ -286,7 +317,9 @@ class SceneWorker:
         try:
             if self._animator is not None:
                 self._animator(self.scene, self.scene.time + dt)
-            messages = self._resynced() + [Outgoing.of(m) for m in self.scene.tick(dt)]
+            messages = self._notices + self._resynced() + \
+                [Outgoing.of(m) for m in self.scene.tick(dt)]
+            self._notices = []
         except Exception:  # the scene kept what it had not sent; clients resync later
             self.metrics.tick_failures += 1
             self._resync = True
@@ -296,7 +329,7 @@ class SceneWorker:
         if messages:
             self._events.append(("frame", messages))
         self._flush()
-        self._autosave(time.monotonic())
+        self.saver.tick(time.monotonic())
         self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
                             time.process_time())
 

@@ -129,3 +129,13 @@ test('a reconnection loses the requests sent before the loss, not those made aft
 	assert.equal(await after.answer, 7);   // it went on the new connection
 	await settled;
 });
+
+test("the scene's warnings (changes not saved, replaced) go to onWarning and onMessage", () => {
+	const seen = { messages: [], warnings: [] };
+	const core = new ProtocolCore({
+		onMessage: (m) => seen.messages.push(m.op), onWarning: (w) => seen.warnings.push(w),
+	});
+	core.receive('{"op":"warning","code":"not_saved","message":"changes to scene lab cannot be saved"}');
+	assert.deepEqual(seen, { messages: ['warning'],
+		warnings: ['scene not_saved: changes to scene lab cannot be saved'] });
+});

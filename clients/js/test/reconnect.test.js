@@ -65,3 +65,19 @@ test('a dropped script comes back with its robots and makes nothing twice', { sk
 		proxy.close();
 	}
 });
+
+test('a script whose client connected again elsewhere (resume) stays closed, does not fight back', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const scene = `js-replaced-${process.pid}`;
+	const session = await Prosthetic.connect({ url: URL_, scene });
+	const { default: WebSocket } = await import('ws');
+	const thief = new WebSocket(`${URL_}/ws?scene=${scene}&resume=${session.hello.resume}`);
+	try {
+		const reason = await session.ended;
+		assert.match(reason, /replaced/);
+		await new Promise((resolve) => setTimeout(resolve, 500));   // no reconnection meanwhile
+		assert.equal(thief.readyState, WebSocket.OPEN);
+	} finally {
+		thief.close();
+		Prosthetic.close();
+	}
+});

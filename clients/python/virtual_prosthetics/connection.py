@@ -20,6 +20,7 @@ from .protocol import Handler, ProtocolCore, Request
 
 ANSWER_TIMEOUT = 30.0
 RETRY_FIRST, RETRY_MAX = 0.1, 1.0  # seconds between attempts to connect again
+REPLACED = 4001  # close code: this client connected again elsewhere (no coming back here)
 
 
 class Connection:
@@ -133,7 +134,8 @@ class Connection:
         while True:
             reason = self._read_until_closed()
             with self._lock:
-                self._reconnecting = not self._closing and self.core.resume is not None
+                self._reconnecting = not self._closing and self.core.resume is not None \
+                    and self._ws.close_code != REPLACED
             if not self._reconnecting or not self._reconnect():
                 break
         with self._lock:
@@ -149,6 +151,8 @@ class Connection:
                     self._lock.notify_all()
             return "the server closed the connection"
         except ConnectionClosed as error:
+            if error.rcvd is not None and error.rcvd.code == REPLACED:
+                return error.rcvd.reason  # the server says why: another connection took over
             return f"connection closed: {error}"
         except Exception as error:  # a broken message must not leave waiters hanging
             return f"reading failed: {error!r}"

@@ -15,7 +15,8 @@ from .codec import decode, encode
 from .errors import ConnectionLost, ProtocolError, ServerError
 
 Handler = Callable[[dict[str, Any]], None]
-SERVER_OPS = frozenset({"hello", "snapshot", "ok", "error", "frame", "added", "removed"})
+SERVER_OPS = frozenset({"hello", "snapshot", "ok", "error", "frame", "added", "removed",
+                        "warning"})
 
 
 @dataclass(frozen=True)
@@ -66,6 +67,8 @@ class ProtocolCore:
             raise ProtocolError(f"the server sent an unknown message: {str(text)[:80]}")
         if message["op"] in ("ok", "error") and message.get("id") is not None:
             self._answered(message)
+        elif message["op"] == "warning":  # the scene's, not a request's: issued the same way
+            self.warnings.append(f"scene {message['code']}: {message['message']}")
         else:
             if message["op"] == "hello":
                 self.resume = message.get("resume")

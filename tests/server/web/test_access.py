@@ -1,12 +1,15 @@
 """Tokens and origins with a real server: controlling needs the token, viewing the view
 token, browsers must come from an allowed origin, and no token reaches the log."""
 
+import http.client
 import json
+import socket
 import urllib.error
 import urllib.request
 
 import pytest
 import trimesh
+from websockets.exceptions import InvalidStatus
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
@@ -22,8 +25,8 @@ CONTROL, VIEW = "s3cret-control", "s3cret-view"
 def locked(tmp_path_factory):
     log = tmp_path_factory.mktemp("access") / "server.log"
     running = start_server("--no-demo", "--token", CONTROL, "--view-token", VIEW,
-                           "--allow-origin", "https://friend.example", "--log-level", "info",
-                           log=log)
+                           "--allow-origin", "https://friend.example", "--allow-host",
+                           "lab.example", "--log-level", "info", log=log)
     running.log = log
     yield running
     stop_server(running)
@@ -121,3 +124,50 @@ def test_rest_reads_need_the_view_token_but_health_does_not(locked):
                                      headers={"Authorization": f"Bearer {CONTROL}"})
     with urllib.request.urlopen(request, timeout=10) as answer:
         assert "scenes" in json.loads(answer.read())
+
+
+def raw(server, method: str, path: str, headers: dict, body: bytes | None = None):
+    """Status and JSON body of a request sent exactly so (Host included)."""
+    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=10)
+    try:
+        connection.putrequest(method, path, skip_host=True)
+        for name, value in {"Content-Length": str(len(body or b"")), **headers}.items():
+            connection.putheader(name, value)
+        connection.endheaders(body)
+        answer = connection.getresponse()
+        return answer.status, json.loads(answer.read() or b"null")
+    finally:
+        connection.close()
+
+
+def test_a_page_of_another_site_cannot_import_or_upload_even_on_an_open_server(server):
+    before = server.nodes("default")
+    document = json.dumps({"format": "virtual-prosthetics-scene"}).encode()
+    for path in ("/api/scenes/default/import", "/api/assets"):
+        status, error = raw(server, "POST", path, {
+            "Host": f"127.0.0.1:{server.port}", "Origin": "https://evil.example",
+            "Content-Type": "text/plain"}, document)  # a form needs no preflight
+        assert (status, error["code"]) == (403, "forbidden") and "evil.example" in error["message"]
+    assert server.nodes("default") == before
+
+
+def test_a_name_the_server_does_not_answer_to_is_refused_dns_rebinding(locked):
+    evil = f"rebind.evil.example:{locked.port}"
+    status, error = raw(locked, "GET", f"/api/scenes?token={VIEW}", {"Host": evil})
+    assert (status, error["code"]) == (403, "forbidden")
+    assert "--allow-host rebind.evil.example" in error["message"]
+    with pytest.raises(InvalidStatus) as refused:  # the handshake itself, as a controller
+        connect(f"ws://{evil}/ws?scene=a&token={CONTROL}", origin=f"http://{evil}",
+                sock=socket.create_connection(("127.0.0.1", locked.port))).close()
+    assert refused.value.response.status_code == 403
+    for allowed in (f"lab.example:{locked.port}", f"localhost:{locked.port}", "[::1]:1"):
+        assert raw(locked, "GET", f"/api/scenes?token={VIEW}", {"Host": allowed})[0] == 200
+
+
+def test_resume_keys_never_reach_the_log(locked):
+    with connect(f"{locked.ws}/ws?scene=resumed&token={CONTROL}") as ws:
+        key = json.loads(ws.recv(timeout=10))["resume"]
+    with connect(f"{locked.ws}/ws?scene=resumed&token={CONTROL}&resume={key}") as ws:
+        assert json.loads(ws.recv(timeout=10))["resume"] == key  # the same client again
+    text = locked.log.read_text()
+    assert "resume=***" in text and key not in text and key.split(":")[1] not in text

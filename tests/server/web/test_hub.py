@@ -4,34 +4,34 @@ from __future__ import annotations
 
 import asyncio
 import json
+import os
+import signal
 from pathlib import Path
 
-from server.core.operations import Operations
-from server.core.scene import Scene
-from server.core.scene_document import export_scene
+from websockets.sync.client import connect
+
 from server.web.hub import Hubs, clients_objects
 from server.web.state_dir import StateDir
+from tests.conftest import eventually, start_server, stop_server
+from tests.server.web.test_state_dir import saved_scene
 
 
-def document_with_boxes(count: int) -> dict:
-    scene = Scene("made")
-    ops = Operations(scene, "c7")
-    for k in range(count):
-        ops.create(f"c7.{k}", "Box", [])
-    try:
-        return export_scene(scene)
-    finally:
-        scene.close()
+def boxes(count: int) -> str:
+    """A client's text making ``count`` boxes."""
+    return json.dumps([{"op": "create", "object": f"c7.{k}", "type": "Box"}
+                       for k in range(count)])
 
 
 def test_a_saved_scene_opened_again_while_it_stops_gets_its_last_change(tmp_path: Path) -> None:
-    """Stopped less than a second after a change (not saved yet but on stopping), then
-    opened at once: the new process waits for the old one's final save."""
+    """Stopped less than a second after a change (not in its document yet but on stopping),
+    then opened at once: the new process waits for the old one's final save."""
     async def scenario() -> tuple[int, int]:
         hubs = Hubs(state=StateDir(tmp_path))
         try:
             first = hubs.open("lab")
-            await first.runner.call("import", document_with_boxes(400))
+            first.runner.post("join", 1, "c7", "controller", None, True)
+            first.runner.post("text", 1, boxes(400))
+            assert json.loads(await first.runner.call("read", clients_objects, ())) == 400
             assert await hubs.remove_idle(float("inf")) == ["lab"]
             again = hubs.open("lab")
             held = json.loads(await again.runner.call("read", clients_objects, ()))
@@ -39,3 +39,46 @@ def test_a_saved_scene_opened_again_while_it_stops_gets_its_last_change(tmp_path
         finally:
             await hubs.stop()
     assert asyncio.run(scenario()) == (400, True)
+
+
+# --- with a real server ------------------------------------------------------------------
+
+def test_the_owners_of_a_restored_scene_are_never_handed_out_again(tmp_path):
+    state = tmp_path / "state"
+    saved_scene(state, "lab", "c1001")
+    saved_scene(state, "hall", "c1")
+    (state / "server.json").write_text("{broken")  # set aside: the count of ids is gone
+    server = start_server("--no-demo", "--state-dir", str(state))
+    try:
+        for scene, owner in (("lab", "c1001"), ("hall", "c1")):
+            with connect(f"{server.ws}/ws?scene={scene}") as ws:
+                me = json.loads(ws.recv(timeout=10))["client"]
+                assert int(me[1:]) > 1001  # a stranger is nobody the scene knows
+                ws.send(json.dumps({"op": "delete", "object": f"{owner}.arm", "id": 1}))
+                while (answer := json.loads(ws.recv(timeout=10)))["op"] not in ("ok", "error"):
+                    pass
+                assert answer["code"] == "forbidden" and owner in answer["message"]
+            assert [n["id"] for n in server.nodes(scene)] == [f"{owner}.arm"]
+    finally:
+        stop_server(server)
+
+
+def test_a_failed_demo_scene_starts_again_by_itself_and_rest_answers_meanwhile():
+    server = start_server("--limit", "leaveGraceSeconds=1")
+    try:
+        pid = server.get("/api/metrics")["scenes"]["default"]["pid"]
+        os.kill(pid, signal.SIGKILL)  # as a crash inside PyBullet would end it
+        seen = set()
+
+        def back() -> bool:  # every answer meanwhile is a 200 that says how the scene is
+            figures = server.get("/api/metrics")["scenes"]["default"]
+            listed = {s["name"]: s for s in server.get("/api/scenes")}
+            seen.add(figures["state"])
+            assert "default" in listed
+            return figures["state"] == "running" and figures["pid"] != pid
+        eventually(back, 15)
+        assert "failed" in seen or "starting" in seen
+        assert len(server.robots("default")) == 6  # the demo's hands are back
+        assert server.get("/api/health")["status"] == "ok"
+    finally:
+        stop_server(server)

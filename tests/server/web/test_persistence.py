@@ -4,6 +4,8 @@ documents over REST (export, import)."""
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 import time
 import urllib.error
 import urllib.request
@@ -14,7 +16,8 @@ import trimesh
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
-from tests.conftest import RunningServer, crash_server, start_server, stop_server
+from tests.conftest import ROOT, RunningServer, crash_server, start_server, stop_server
+from tests.server.web.test_assets import peak_megabytes
 
 
 def glb() -> bytes:
@@ -194,7 +197,8 @@ def test_importing_needs_the_control_token():
         stop_server(server)
 
 
-def test_clients_watching_an_import_get_the_new_scene_in_a_fresh_snapshot(server, scene_name):
+def test_clients_watching_an_import_are_told_and_get_the_new_scene_in_a_fresh_snapshot(
+        server, scene_name):
     client = build_lab(server.ws, scene_name)
     try:
         document = export(server, scene_name)
@@ -207,11 +211,17 @@ def test_clients_watching_an_import_get_the_new_scene_in_a_fresh_snapshot(server
         there.sync()
         assert json.loads(viewer.recv(timeout=10))["op"] == "hello"
         assert json.loads(viewer.recv(timeout=10))["op"] == "snapshot"
-        status, _ = post(server, f"/api/scenes/{target}/import", document)
+        status, refusal = post(server, f"/api/scenes/{target}/import", document)
+        assert status == 403 and "?replace=true" in refusal["message"]  # the box is hers
+        assert there.client_id in refusal["message"]
+        status, _ = post(server, f"/api/scenes/{target}/import?replace=true", document)
         assert status == 200
         deadline = time.monotonic() + 10
+        told = []
         while (message := json.loads(viewer.recv(timeout=10)))["op"] != "snapshot":
+            told += [message] if message["op"] == "warning" else []
             assert time.monotonic() < deadline, "no fresh snapshot after the import"
+        assert [m["code"] for m in told] == ["replaced"] and target in told[0]["message"]
         ids = [node["id"] for node in message["nodes"]]
         assert sorted(ids) == sorted(n["id"] for n in json.loads(document)["nodes"])
         assert mine.id not in ids
@@ -219,6 +229,8 @@ def test_clients_watching_an_import_get_the_new_scene_in_a_fresh_snapshot(server
         while mine.id in there.mirror.nodes:
             assert time.monotonic() < deadline, "the script kept the replaced box"
             time.sleep(0.02)
+        with pytest.warns(vp.ServerWarning, match="replaced"):
+            there.sync()  # the script hears it too
 
 
 def test_a_saved_scene_that_fails_its_checks_is_set_aside_and_the_server_starts(state):
@@ -277,5 +289,26 @@ def test_the_servers_own_objects_follow_its_setup_and_clients_objects_stay(state
         while [m["angle"] for m in server.get(path)["motors"]] == first:
             assert time.monotonic() < deadline, "the demo's hands stand still"
             time.sleep(0.1)
+    finally:
+        stop_server(server)
+
+
+def test_ten_thousand_fuzzed_documents_each_through_import_and_state_files(tmp_path):
+    """Taken or refused with a structured 4xx, never a 500; files restored or set aside,
+    never a failed start; the server's memory bounded throughout."""
+    server = start_server("--no-demo")
+    fuzz = [sys.executable, "-m", "tests.server.web.document_fuzz"]
+    try:
+        rest = subprocess.Popen([*fuzz, "rest", "--url", server.http, "--cases", "10000"],
+                                cwd=ROOT, stdout=subprocess.PIPE)
+        files = json.loads(subprocess.run([*fuzz, "files", "--cases", "10000"], cwd=ROOT,
+                                          capture_output=True, timeout=300, check=True).stdout)
+        posted = json.loads(rest.communicate(timeout=300)[0])
+        assert files["crashes"] == [] and posted["crashes"] == []
+        assert files["restored"] > 1000 and files["setAside"] > 1000
+        assert posted["taken"] > 1000 and posted["refused"] > 1000
+        assert files["peakMegabytes"] < 400
+        assert peak_megabytes(server.process.pid) < 400
+        assert server.get("/api/health")["status"] == "ok"
     finally:
         stop_server(server)

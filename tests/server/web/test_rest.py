@@ -1,12 +1,20 @@
 """REST inspection against a real server."""
 
+import http.client
 import json
+import os
+import signal
 import time
 import urllib.error
 import urllib.request
 
 import pytest
 from websockets.sync.client import connect
+
+from server.core.operations import Operations
+from server.core.scene import Scene
+from server.core.scene_document import encode_document, export_scene
+from tests.conftest import eventually, start_server, stop_server
 
 from .ws_requests import request_all, wait_ticks
 
@@ -158,3 +166,63 @@ def test_robots_with_unlimited_motors_report_and_impossible_limits_are_refused(s
         with pytest.raises(urllib.error.HTTPError) as missing:
             server.get(f"/api/scenes/{scene_name}/robots/{me}.3")
         assert missing.value.code == 404
+
+
+def test_deeply_nested_json_to_import_is_a_structured_error(server, scene_name):
+    request = urllib.request.Request(f"{server.http}/api/scenes/{scene_name}/import",
+                                     data=b"[" * 200_000 + b"]" * 200_000, method="POST")
+    with pytest.raises(urllib.error.HTTPError) as refused:
+        urllib.request.urlopen(request, timeout=30)
+    assert refused.value.code == 400 and refused.value.headers["Content-Type"] == "application/json"
+    assert json.loads(refused.value.read())["code"] == "bad_json"
+    assert scene_name not in [s["name"] for s in server.get("/api/scenes")]  # none left behind
+
+
+def cpu_seconds(pid: int) -> float:
+    """User and system CPU a process has used so far."""
+    fields = open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def test_a_large_import_is_read_and_checked_in_its_scenes_process_not_the_servers(scene_name):
+    scene = Scene("big")
+    operations = Operations(scene, "c5")
+    for k in range(9_000):
+        operations.create(f"c5.{k}", "Robot", [])
+    document = encode_document(export_scene(scene))
+    scene.close()
+    server = start_server("--no-demo")
+    try:
+        connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=60)
+        connection.request("POST", f"/api/scenes/{scene_name}/import", body=b"{}")
+        connection.getresponse().read()  # the scene's process exists (the document refused)
+        before = cpu_seconds(server.process.pid)
+        connection.request("POST", f"/api/scenes/{scene_name}/import", body=document)
+        answer = connection.getresponse()
+        assert answer.status == 200 and json.loads(answer.read())["objects"] == 9_000
+        spent = cpu_seconds(server.process.pid) - before
+        # parsing and checking it took ~0.15 s of CPU here, sending it on as objects more;
+        # now the server's own process only moves its bytes (~0.02 s)
+        assert spent < 0.1, f"the server's own process spent {spent:.2f} s on the import"
+    finally:
+        stop_server(server)
+
+
+def test_a_stopped_scene_is_marked_as_such_and_holds_up_no_list(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
+        json.loads(ws.recv(timeout=10))
+        pid = server.get("/api/metrics")["scenes"][scene_name]["pid"]
+        os.kill(pid, signal.SIGSTOP)
+        try:
+            def marked() -> bool:  # answered while the scene is stopped: it was not waited for
+                figures = server.get("/api/metrics")["scenes"]
+                listed = {s["name"]: s for s in server.get("/api/scenes")}
+                assert figures["default"]["state"] == "running"
+                return figures[scene_name]["state"] == listed[scene_name]["state"] == "unresponsive"
+            eventually(marked, 10)
+            health = server.get("/api/health")
+            assert health["status"] == "degraded"
+            assert any(f"scene {scene_name} has sent nothing" in p for p in health["problems"])
+        finally:
+            os.kill(pid, signal.SIGCONT)
+        eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["state"] == "running")

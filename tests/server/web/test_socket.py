@@ -3,11 +3,13 @@
 import json
 import time
 
+import pytest
+from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
 from server.core.messages import check_server_message
-from tests.conftest import start_server, stop_server
+from tests.conftest import eventually, start_server, stop_server
 
 from .ws_requests import next_message, request_all, wait_ticks
 
@@ -236,3 +238,27 @@ def test_with_the_default_grace_a_script_robots_go_ten_seconds_after_it_leaves()
         assert time.monotonic() - left >= 10
     finally:
         stop_server(server)
+
+
+def test_a_connection_its_client_replaced_is_closed_with_a_reason_and_stays_closed(server, scene_name):
+    first, hello, _ = open_client(server, scene_name)
+    with first:
+        again, hello2, _ = open_client(server, scene_name + f"&resume={hello['resume']}")
+        with again:
+            with pytest.raises(ConnectionClosed) as closed:
+                while True:
+                    first.recv(timeout=10)
+            assert closed.value.rcvd.code == 4001 and "replaced" in closed.value.rcvd.reason
+            assert hello2["client"] == hello["client"]
+
+
+def test_a_python_client_replaced_elsewhere_does_not_fight_back(server, scene_name):
+    with vp.connect(server.ws, scene=scene_name) as client:
+        resume = client.connection.core.resume
+        with connect(f"{server.ws}/ws?scene={scene_name}&resume={resume}") as thief:
+            json.loads(thief.recv(timeout=10))
+            eventually(lambda: client.connection.closed is not None)
+            assert "replaced" in client.connection.closed
+            thief.send(json.dumps({"op": "ping", "id": 1}))
+            while json.loads(thief.recv(timeout=10))["op"] != "ok":
+                pass  # the newer connection is still the client's

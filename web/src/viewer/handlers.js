@@ -45,6 +45,10 @@ export function makeHandlers(view) {
 		error(message) {
 			console.warn(`server: ${message.code}: ${message.message}`);
 		},
+		warning(message) {
+			console.warn(`scene ${message.code}: ${message.message}`);
+			status.warn(message.code === 'saved' ? null : message.message);
+		},
 	};
 }
 

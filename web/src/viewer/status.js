@@ -18,11 +18,18 @@ export class StatusLine {
 		this.clients = null;
 		this.frames = 0;
 		this.since = null;   // counting starts with the first frame
+		this.warning = null;   // the scene's last warning (changes not saved, replaced), if any
 		setInterval(() => this.countClients(), COUNT_EVERY);
 	}
 
 	setState(state) {
 		this.state = state;
+		this.show();
+	}
+
+	// The scene's warning, shown until the next one (null: all is well again).
+	warn(text) {
+		this.warning = text;
 		this.show();
 	}
 
@@ -62,6 +69,7 @@ export class StatusLine {
 			parts.push(`${viewers} viewer${viewers === 1 ? '' : 's'}`);
 			if (controllers) parts.push(`${controllers} controller${controllers === 1 ? '' : 's'}`);
 		}
+		if (this.warning) parts.push(`⚠ ${this.warning}`);
 		this.element.textContent = parts.join(' · ');
 		if (this.watchLink) {
 			const link = Object.assign(document.createElement('a'), { href: this.watchLink, textContent: 'watch link', target: '_blank' });
