@@ -28,6 +28,9 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
     "frame_bytes_two_hands": ("≤ 1 KB (1024 B)", lambda v: v <= 1024),
     "max_hands_60hz": ("≥ 100", lambda v: v >= 100),
     "two_scenes_fps_min": ("both at 60 Hz", lambda v: v >= AT_60_HZ),
+    "chaos_faults": ("≥ 200 faults injected", lambda v: v >= 200),
+    "chaos_changes_lost": ("0 acknowledged changes lost", lambda v: v == 0),
+    "chaos_bystander_gap_ms": ("< 100 ms between frames", lambda v: v < 100),
 }
 
 
@@ -62,7 +65,7 @@ def lines(results: dict[str, Any], found: dict[str, Any]) -> list[str]:
            f"Commit `{results['commit']}`, {run}, {results['seconds']} s. Everything ran on "
            "this one machine; clients (drivers, viewers) in processes of their own at nice 10.",
            "", *headline_table(results), "", *figure_table(found), "",
-           *viewer_table(found["viewers"]), ""]
+           *viewer_table(found["viewers"]), "", *chaos_table(found["chaos"]), ""]
     return out
 
 
@@ -127,6 +130,23 @@ def viewer_table(rows: list[dict[str, Any]]) -> list[str]:
         out.append(f"| {row['viewers']} | {'yes' if row['stalled'] else 'no'} | "
                    f"{row['fps_min']:.1f} / {row['fps_median']:.1f} | {row['late_pct']:.2f} % | "
                    f"{row['skipped_pct']:.2f} % | {row['server_cores']:.2f} |")
+    return out
+
+
+def chaos_table(run: dict[str, Any]) -> list[str]:
+    """The chaos run (bench/chaos.py): faults, changes, the bystander's worst gaps."""
+    out = [f"Chaos run ({run['seconds']:.0f} s): a script changed one scene as fast as its "
+           f"answers came while {run['faults']} faults were injected ({run['rounds']} rounds "
+           f"of each kind); after each, every acknowledged change was looked for. "
+           f"{run['acknowledged']:,} changes acknowledged, **{run['lost']} lost** "
+           f"({run['uncertain']} left unanswered by a fault, not counted). A viewer of "
+           f"another scene noted each frame; its longest gap during each kind of fault:", "",
+           "| fault | injected | bystander's longest gap, median / worst |", "|---|---|---|"]
+    for kind, count in run["by_kind"].items():
+        gap = run["gap_ms"].get(kind)
+        shown = f"{_ms(gap.median)} / {_ms(run['gap_worst_ms'][kind])}" if gap else \
+            "(the server itself restarts: not a bystander's gap)"
+        out.append(f"| {kind} | {count} | {shown} |")
     return out
 
 

@@ -25,6 +25,10 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert [(row["viewers"], row["stalled"]) for row in figures["viewers"]] == [(2, False), (2, True)]
     assert all(row["fps_median"] > 0 for row in figures["viewers"])  # frames reached them
     assert figures["latency"]["rounds"] == 5
+    chaos = figures["chaos"]
+    assert chaos["faults"] == 7 and set(chaos["by_kind"].values()) == {1}
+    assert chaos["acknowledged"] > 0 and chaos["lost"] == 0  # the journal's promise
+    assert chaos["bystander_frames"] > 0
     markdown = (tmp_path / "RESULTS.md").read_text()
     assert markdown.count(BEGIN) == 1 and markdown.count(END) == 1
     for name in TARGETS:

@@ -27,16 +27,18 @@ function cell(row, text, className) {
 async function refresh() {
 	const headers = TOKEN ? { Authorization: `Bearer ${TOKEN}` } : {};
 	const [health, scenes] = await Promise.all(
-		['/api/health', '/api/scenes'].map((url) => fetch(url, { headers }).then((r) => r.json())));
+		['/api/health', '/api/scenes?saved=true'].map((url) => fetch(url, { headers }).then((r) => r.json())));
+	const problems = health.problems?.length ? ` · ${health.status}: ${health.problems.join('; ')}` : '';
 	document.getElementById('health').textContent =
-		`version ${health.version}, protocol ${health.protocol}, up ${Math.round(health.uptime)} s`;
+		`version ${health.version}, protocol ${health.protocol}, up ${Math.round(health.uptime)} s${problems}`;
 	const body = document.querySelector('#scenes tbody');
 	body.replaceChildren();
 	for (const scene of scenes) {
 		const row = body.insertRow();
-		cell(row, scene.name);
-		for (const key of ['robots', 'objects', 'viewers', 'controllers']) cell(row, scene[key], 'number');
-		cell(row, `${scene.time.toFixed(1)} s`, 'number');
+		// a saved scene that is not running, or one that failed or is silent, says so
+		cell(row, scene.state === 'running' ? scene.name : `${scene.name} (${scene.state})`);
+		for (const key of ['robots', 'objects', 'viewers', 'controllers']) cell(row, scene[key] ?? '–', 'number');
+		cell(row, scene.time === undefined ? '–' : `${scene.time.toFixed(1)} s`, 'number');
 		const links = row.insertCell();
 		const name = encodeURIComponent(scene.name);
 		links.innerHTML = `<a href="/view?scene=${name}">watch</a> · <a href="/view?scene=${name}&role=controller">control</a>`

@@ -1,0 +1,301 @@
+"""The chaos run: a server with ``--state-dir`` under a script that keeps changing a scene,
+while faults are injected one after another, and after each one every change the server
+acknowledged is looked for.
+
+Faults, in turn: ``kill -9`` of the whole server (then started again), a graceful restart,
+``kill -9`` of the changed scene's process, ``SIGSTOP`` of it for a second, the scenes
+folder made unwritable for 1.5 s, a 5 MB import into a third scene and a 7 MB upload.
+A bystander viewer of another scene (a process of its own) notes when each frame arrives;
+the worst gap between two frames during each fault (the server's own restarts aside) is
+what the bystander saw of it. Loopback only; everything stops when the run ends.
+"""
+
+from __future__ import annotations
+
+import json
+import multiprocessing
+import os
+import random
+import signal
+import subprocess
+import tempfile
+import threading
+import time
+import urllib.request
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+import trimesh
+from websockets.exceptions import ConnectionClosed, InvalidHandshake
+from websockets.sync.client import connect
+
+from server.core.operations import Operations
+from server.core.scene import Scene
+from server.core.scene_document import encode_document, export_scene
+from tests.conftest import RunningServer, crash_server, start_server, stop_server, unwritable
+
+from .stats import figure
+
+WORK, BYSTANDER, IMPORTS = "work", "bystander", "imports"
+KINDS = ("server_kill", "scene_kill", "scene_stop", "unwritable", "import", "upload",
+         "restart")
+GAP_KINDS = ("scene_kill", "scene_stop", "unwritable", "import", "upload")  # server runs on
+
+
+@dataclass
+class Ledger:
+    """What the server acknowledged: each object's last position (None once deleted);
+    objects with a request lost in flight are uncertain and left out of the checks."""
+
+    objects: dict[str, list[float] | None] = field(default_factory=dict)
+    uncertain: set[str] = field(default_factory=set)
+    acknowledged: int = 0
+
+    def lost_in(self, nodes: list[dict[str, Any]]) -> list[str]:
+        """The acknowledged states a scene's nodes do not show."""
+        there = {n["id"]: n["position"] for n in nodes}
+        lost = []
+        for object_id, position in self.objects.items():
+            if object_id in self.uncertain:
+                continue
+            if position is None and object_id in there or position is not None and (
+                    object_id not in there or
+                    any(abs(a - b) > 1e-9 for a, b in zip(there[object_id], position))):
+                lost.append(object_id)
+        return lost
+
+
+class Changer(threading.Thread):
+    """One script changing scene WORK as fast as its answers come, as the same client
+    throughout (its resume key), its objects kept; it waits while told to pause."""
+
+    def __init__(self, url: Callable[[], str], ledger: Ledger, seed: int) -> None:
+        super().__init__(daemon=True)
+        self.url, self.ledger, self.rng = url, ledger, random.Random(seed)
+        self.resume: str | None = None
+        self.client = ""
+        self.running = threading.Event()
+        self.idle = threading.Event()
+        self.stopped = False
+        self.next = 1
+
+    def run(self) -> None:
+        while not self.stopped:
+            if not self.running.is_set():
+                self.idle.set()
+                self.running.wait(0.1)
+                continue
+            self.idle.clear()
+            try:
+                self._session()
+            except (OSError, ConnectionClosed, InvalidHandshake, TimeoutError, ValueError):
+                time.sleep(0.05)  # the server or the scene is going or coming back
+
+    def _session(self) -> None:
+        query = f"scene={WORK}&keep=true" + (f"&resume={self.resume}" if self.resume else "")
+        with connect(f"{self.url()}/ws?{query}", open_timeout=5, max_size=None) as ws:
+            hello = json.loads(ws.recv(timeout=10))
+            if hello["op"] != "hello":
+                raise ValueError(hello.get("message", "refused"))
+            self.client, self.resume = hello["client"], hello["resume"]
+            while self.running.is_set() and not self.stopped:
+                self._change(ws)
+
+    def _change(self, ws: Any) -> None:
+        mine = [i for i, p in self.ledger.objects.items() if p is not None
+                and i not in self.ledger.uncertain]
+        kind = self.rng.choice(["create", "move", "move", "delete"] if mine else ["create"])
+        if kind == "create":
+            object_id, self.next = f"{self.client}.{self.next}", self.next + 1
+            request = {"op": "create", "object": object_id, "type": "Box", "args": [0.1]}
+            after: list[float] | None = [0.0, 0.0, 0.0]
+        else:
+            object_id = self.rng.choice(mine)
+            if kind == "move":
+                after = [round(self.rng.uniform(-5, 5), 3) for _ in range(3)]
+                request = {"op": "call", "object": object_id, "method": "setPosition",
+                           "args": after}
+            else:
+                request, after = {"op": "delete", "object": object_id}, None
+        self.ledger.uncertain.add(object_id)  # until its answer says
+        ws.send(json.dumps({**request, "id": 1}))
+        while (answer := json.loads(ws.recv(timeout=10)))["op"] not in ("ok", "error") \
+                or answer.get("id") != 1:
+            pass
+        if answer["op"] == "ok":
+            self.ledger.objects[object_id] = after
+            self.ledger.acknowledged += 1
+        self.ledger.uncertain.discard(object_id)  # answered: done, or refused and not done
+
+
+def watch(url: str, scene: str, pipe: Any, stop: Any) -> None:
+    """The bystander (a process of its own): notes each frame's arrival until told to stop,
+    then sends the times back."""
+    times: list[float] = []
+    while not stop.is_set():
+        try:
+            with connect(f"{url}/ws?scene={scene}&role=viewer", open_timeout=5,
+                         max_size=None) as ws:
+                while not stop.is_set():
+                    if json.loads(ws.recv(timeout=5))["op"] == "frame":
+                        times.append(time.monotonic())
+        except (OSError, ConnectionClosed, InvalidHandshake, TimeoutError):
+            time.sleep(0.05)
+    pipe.send(times)
+
+
+class Chaos:
+    """A server, its changer and bystander, and the faults."""
+
+    def __init__(self, state: Path, seed: int) -> None:
+        self.state = state
+        self.ledger = Ledger()
+        self.windows: list[tuple[str, float, float]] = []
+        self.checks: list[dict[str, Any]] = []
+        self.document = big_document()
+        self.mesh = trimesh.creation.icosphere(6, 1.0).export(file_type="glb")
+        self.server = self._start()
+        self.changer = Changer(lambda: self.server.ws, self.ledger, seed)
+
+    def _start(self, port: int | None = None) -> RunningServer:
+        return start_server("--no-demo", "--state-dir", str(self.state), port=port)
+
+    # --- faults ----------------------------------------------------------------------------
+
+    def server_kill(self) -> None:
+        crash_server(self.server)
+        self.server = self._start(self.server.port)
+
+    def restart(self) -> None:
+        stop_server(self.server)
+        self.server = self._start(self.server.port)
+
+    def scene_kill(self) -> None:
+        os.kill(self._pid(), signal.SIGKILL)
+        time.sleep(0.3)
+
+    def scene_stop(self) -> None:
+        pid = self._pid()
+        os.kill(pid, signal.SIGSTOP)
+        time.sleep(1.0)
+        os.kill(pid, signal.SIGCONT)
+
+    def unwritable(self) -> None:
+        with unwritable(self.state / "scenes"):
+            time.sleep(1.5)
+
+    def import_(self) -> None:
+        self._post(f"/api/scenes/{IMPORTS}/import?replace=true", self.document)
+
+    def upload(self) -> None:
+        self._post("/api/assets", self.mesh)
+
+    def _post(self, path: str, body: bytes) -> None:
+        request = urllib.request.Request(self.server.http + path, data=body, method="POST")
+        with urllib.request.urlopen(request, timeout=60) as answer:
+            assert answer.status in (200, 201)
+
+    def _pid(self) -> int:
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            figures = self.server.get("/api/metrics")["scenes"].get(WORK)
+            if figures and figures["state"] == "running":
+                return figures["pid"]
+            time.sleep(0.05)
+        raise TimeoutError("the changed scene did not come back")
+
+    # --- a round ---------------------------------------------------------------------------
+
+    def fault(self, kind: str) -> None:
+        """Inject one fault while the changer runs, then check every acknowledged change."""
+        self.changer.running.set()
+        time.sleep(0.3)
+        started = time.monotonic()
+        getattr(self, {"import": "import_"}.get(kind, kind))()
+        self.windows.append((kind, started, time.monotonic() + 0.3))
+        time.sleep(0.3)
+        self.changer.running.clear()
+        self.changer.idle.wait(30)
+        nodes = self._nodes()
+        lost = self.ledger.lost_in(nodes)
+        self.checks.append({"kind": kind, "lost": lost, "acknowledged": self.ledger.acknowledged})
+
+    def _nodes(self) -> list[dict[str, Any]]:
+        deadline = time.monotonic() + 30
+        while True:
+            try:
+                return self.server.get(f"/api/scenes/{WORK}/snapshot")["nodes"]
+            except OSError:  # the scene is starting again
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(0.1)
+
+
+def big_document() -> bytes:
+    """A scene document of about 5 MB (robots with motors and fingers)."""
+    scene = Scene(IMPORTS)
+    ops = Operations(scene, "c9")
+    for k in range(0, 3000, 2):
+        ops.create(f"c9.{k}", "Robot", [])
+        ops.create(f"c9.{k + 1}", "MotorZ", [])
+        ops.call(f"c9.{k}", "attachChain", [{"ref": f"c9.{k + 1}"}])
+    try:
+        return encode_document(export_scene(scene))
+    finally:
+        scene.close()
+
+
+def run(faults: int, seed: int = 1) -> dict[str, Any]:
+    """``faults`` faults, the kinds in turn; what was acknowledged, lost and seen."""
+    with tempfile.TemporaryDirectory(prefix="vp-chaos-") as folder:
+        chaos = Chaos(Path(folder) / "state", seed)
+        context = multiprocessing.get_context("spawn")
+        mine, theirs = context.Pipe()
+        stop = context.Event()
+        bystander = context.Process(target=watch, args=(chaos.server.ws, BYSTANDER, theirs, stop))
+        bystander.start()
+        chaos.changer.start()
+        started = time.monotonic()
+        try:
+            for k in range(faults):
+                chaos.fault(KINDS[k % len(KINDS)])
+        finally:
+            stop.set()
+            frames = mine.recv() if mine.poll(30) else []
+            bystander.join(10)
+            chaos.changer.stopped = True
+            stop_server(chaos.server)
+        return summary(chaos, frames, time.monotonic() - started)
+
+
+def summary(chaos: Chaos, frames: list[float], seconds: float) -> dict[str, Any]:
+    """The run in figures: faults, acknowledged and lost changes, bystander gaps by kind."""
+    gaps: dict[str, list[float]] = {kind: [] for kind in GAP_KINDS}
+    for kind, start, end in chaos.windows:
+        if kind in gaps:
+            gaps[kind].append(_worst_gap(frames, start, end))
+    lost = sorted({object_id for check in chaos.checks for object_id in check["lost"]})
+    return {"faults": len(chaos.checks), "rounds": len(chaos.checks) // len(KINDS),
+            "by_kind": {kind: sum(c["kind"] == kind for c in chaos.checks) for kind in KINDS},
+            "acknowledged": chaos.ledger.acknowledged, "lost": len(lost), "lost_ids": lost[:20],
+            "uncertain": len(chaos.ledger.uncertain), "seconds": round(seconds, 1),
+            "gap_ms": {kind: figure(values) for kind, values in gaps.items() if values},
+            "gap_worst_ms": {kind: max(values) for kind, values in gaps.items() if values},
+            "worst_gap_ms": max((max(v) for v in gaps.values() if v), default=0.0),
+            "bystander_frames": len(frames)}
+
+
+def _worst_gap(frames: list[float], start: float, end: float) -> float:
+    """The longest time between two frames that overlaps [start, end], in milliseconds."""
+    worst = 0.0
+    for before, after in zip(frames, frames[1:]):
+        if after >= start and before <= end:
+            worst = max(worst, after - before)
+    return worst * 1000
+
+
+if __name__ == "__main__":
+    import sys
+    print(json.dumps(run(int(sys.argv[1]) if len(sys.argv) > 1 else len(KINDS)),
+                     default=lambda f: f.as_dict(), indent=1))
