@@ -25,7 +25,8 @@ from ..core.sensor import Sensor
 from ..errors import TooLarge, UnknownObject, UnknownScene, VPError
 from . import prometheus
 from .access import changing_allowed
-from .hub import Hubs, SceneHub
+from .hub import Hubs
+from .scene_hub import SceneHub
 
 router = APIRouter(prefix="/api")
 VERSION = "0.1.0"

@@ -18,7 +18,8 @@ from ..core.physics import ENGINE
 from ..core.session import ROLES
 from ..errors import LimitExceeded, OutOfRange, VPError
 from .access import AccessPolicy
-from .hub import Connection, Hubs, SceneHub
+from .hub import Hubs
+from .scene_hub import Connection, SceneHub
 from .outbox import Outbox, Outgoing
 
 log = logging.getLogger(__name__)

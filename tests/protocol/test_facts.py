@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import re
 
-from server.web.hub import REPLACED
+from server.web.scene_hub import REPLACED
 from tests.conftest import ROOT
 from virtual_prosthetics import connection, protocol
 

@@ -7,10 +7,11 @@ posts them to a real server's import and wants a 200 or a structured 4xx, never 
 dropped connection. The file fuzzer restores them as a scene's process does at start
 (:meth:`SceneWorker.prepare`), which must never raise: a file it cannot use is set aside.
 
-Run as a program each prints a JSON summary with its process's peak memory::
+Run as a program each prints a JSON summary with its process's peak memory (``rest``
+starts a server of its own unless given one, and adds that server's peak and health)::
 
     python -m tests.server.web.document_fuzz files --cases 10000
-    python -m tests.server.web.document_fuzz rest --url http://127.0.0.1:8000 --cases 10000
+    python -m tests.server.web.document_fuzz rest [--url http://127.0.0.1:8000] --cases 10000
 """
 
 from __future__ import annotations
@@ -20,7 +21,6 @@ import http.client
 import json
 import multiprocessing
 import random
-import resource
 import sys
 import tempfile
 import threading
@@ -34,6 +34,7 @@ from server.core.scene import Scene
 from server.core.scene_document import encode_document, export_scene, import_scene
 from server.web.scene_store import SceneStore
 from server.web.worker import SceneWorker
+from tests.server.core.gltf_fuzz import peak_megabytes
 
 ODD = [None, True, -1, 0, 1e308, -1e308, 2 ** 64, 1.5, "", "x" * 300, "c1.1", "c2.1",
        "demo.1", "ground", "../../etc/passwd", [], [1], [0, 0, 0], [[1, 2], [3]], {},
@@ -201,8 +202,22 @@ def _post_all(url: str, cases: int, seed: int, scene: str, outcome: dict[str, An
 
 
 def _finish(outcome: dict[str, Any]) -> dict[str, Any]:
-    outcome["peakMegabytes"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    outcome["peakMegabytes"] = peak_megabytes()
     return outcome
+
+
+def fuzz_own_server(cases: int, seed: int = 0) -> dict[str, Any]:
+    """:func:`fuzz_rest` against a server started for it: with its peak memory and health."""
+    from tests.conftest import start_server, stop_server
+
+    server = start_server("--no-demo")
+    try:
+        outcome = fuzz_rest(server.http, cases, seed)
+        outcome["serverPeakMegabytes"] = peak_megabytes(server.process.pid)
+        outcome["serverHealth"] = server.get("/api/health")["status"]
+        return outcome
+    finally:
+        stop_server(server)
 
 
 if __name__ == "__main__":
@@ -210,8 +225,12 @@ if __name__ == "__main__":
     parser.add_argument("where", choices=["files", "rest"])
     parser.add_argument("--cases", type=int, default=10_000)
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--url", default="http://127.0.0.1:8000")
+    parser.add_argument("--url", default=None)
     options = parser.parse_args()
-    result = fuzz_files(options.cases, options.seed) if options.where == "files" else \
-        fuzz_rest(options.url, options.cases, options.seed)
+    if options.where == "files":
+        result = fuzz_files(options.cases, options.seed)
+    elif options.url is None:
+        result = fuzz_own_server(options.cases, options.seed)
+    else:
+        result = fuzz_rest(options.url, options.cases, options.seed)
     json.dump(result, sys.stdout)

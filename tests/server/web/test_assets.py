@@ -14,7 +14,7 @@ import trimesh
 
 import virtual_prosthetics as vp
 from tests.conftest import eventually, start_server, stop_server
-from tests.server.core.gltf_fuzz import glb_parts, pack_glb
+from tests.server.core.gltf_fuzz import glb_parts, pack_glb, peak_megabytes
 
 SMALL = ["--limit", "assetBytes=200000", "--limit", "assetTriangles=5000", "--limit", "assets=3"]
 
@@ -177,12 +177,6 @@ def test_a_full_upload_folder_makes_room_from_what_no_scene_uses(tmp_path):
         assert [asset["name"] for asset in document["assets"]] == [saved]
     finally:
         stop_server(server)
-
-
-def peak_megabytes(pid: int) -> float:
-    """The most memory a process has held so far (its resident high-water mark)."""
-    status = open(f"/proc/{pid}/status").read()
-    return int(status.split("VmHWM:")[1].split()[0]) / 1024
 
 
 def test_a_small_file_that_expands_to_millions_of_triangles_costs_the_server_nothing():

@@ -10,6 +10,11 @@ from pathlib import Path
 
 from websockets.sync.client import connect
 
+import virtual_prosthetics as vp
+from server.core.operations import Operations
+from server.core.scene import Scene
+from server.core.scene_document import encode_document, export_scene
+
 from server.web.hub import Hubs, clients_objects
 from server.web.state_dir import StateDir
 from tests.conftest import eventually, start_server, stop_server
@@ -80,5 +85,24 @@ def test_a_failed_demo_scene_starts_again_by_itself_and_rest_answers_meanwhile()
         assert "failed" in seen or "starting" in seen
         assert len(server.robots("default")) == 6  # the demo's hands are back
         assert server.get("/api/health")["status"] == "ok"
+    finally:
+        stop_server(server)
+
+
+def test_a_scene_slow_to_restore_is_not_stopped_as_idle_while_a_client_waits_for_it(tmp_path):
+    state = tmp_path / "state"
+    scene = Scene("slow")
+    operations = Operations(scene, "c5")
+    for k in range(40):  # a few seconds to make again
+        operations.create(f"c5.{k}", "EdgedHand", [])
+        scene.get(f"c5.{k}").keep()
+    (state / "scenes").mkdir(parents=True)
+    (state / "scenes" / "slow.json").write_bytes(encode_document(export_scene(scene)))
+    scene.close()
+    server = start_server("--no-demo", "--state-dir", str(state), "--limit", "sceneIdleSeconds=1")
+    try:
+        with vp.connect(server.ws, scene="slow") as client:  # waited for, never stopped
+            assert len(client.mirror.nodes) == len(server.nodes("slow"))
+            assert len(server.robots("slow")) == 40
     finally:
         stop_server(server)

@@ -4,8 +4,6 @@ documents over REST (export, import)."""
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 import time
 import urllib.error
 import urllib.request
@@ -16,8 +14,7 @@ import trimesh
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
-from tests.conftest import ROOT, RunningServer, crash_server, start_server, stop_server
-from tests.server.web.test_assets import peak_megabytes
+from tests.conftest import RunningServer, crash_server, start_server, stop_server
 
 
 def glb() -> bytes:
@@ -293,22 +290,18 @@ def test_the_servers_own_objects_follow_its_setup_and_clients_objects_stay(state
         stop_server(server)
 
 
-def test_ten_thousand_fuzzed_documents_each_through_import_and_state_files(tmp_path):
-    """Taken or refused with a structured 4xx, never a 500; files restored or set aside,
-    never a failed start; the server's memory bounded throughout."""
-    server = start_server("--no-demo")
-    fuzz = [sys.executable, "-m", "tests.server.web.document_fuzz"]
-    try:
-        rest = subprocess.Popen([*fuzz, "rest", "--url", server.http, "--cases", "10000"],
-                                cwd=ROOT, stdout=subprocess.PIPE)
-        files = json.loads(subprocess.run([*fuzz, "files", "--cases", "10000"], cwd=ROOT,
-                                          capture_output=True, timeout=300, check=True).stdout)
-        posted = json.loads(rest.communicate(timeout=300)[0])
-        assert files["crashes"] == [] and posted["crashes"] == []
-        assert files["restored"] > 1000 and files["setAside"] > 1000
-        assert posted["taken"] > 1000 and posted["refused"] > 1000
-        assert files["peakMegabytes"] < 400
-        assert peak_megabytes(server.process.pid) < 400
-        assert server.get("/api/health")["status"] == "ok"
-    finally:
-        stop_server(server)
+@pytest.mark.beside("tests.server.web.document_fuzz", "rest", "--cases", "10000")
+def test_ten_thousand_fuzzed_documents_through_import_are_taken_or_refused(beside):
+    """Each a 200 or a structured 4xx, never a 500 or a dropped connection, the server's
+    memory bounded and its health ok after."""
+    assert beside["crashes"] == [] and beside["cases"] == 10_000
+    assert beside["taken"] > 1000 and beside["refused"] > 1000
+    assert beside["serverPeakMegabytes"] < 400 and beside["serverHealth"] == "ok"
+
+
+@pytest.mark.beside("tests.server.web.document_fuzz", "files", "--cases", "10000")
+def test_ten_thousand_fuzzed_state_files_are_restored_or_set_aside(beside):
+    """A scene's process restores each (document and journal) or sets it aside; never fails."""
+    assert beside["crashes"] == [] and beside["cases"] == 10_000
+    assert beside["restored"] > 1000 and beside["setAside"] > 1000
+    assert beside["peakMegabytes"] < 400

@@ -1,0 +1,228 @@
+"""One scene as the event loop sees it: its process and the connections that receive its
+messages (:class:`SceneHub`), each connection's outbox and text in flight (:class:`Connection`).
+
+Every method here runs on the event loop; the scene itself lives in a process of its own
+(:mod:`server.web.worker`), whose events arrive here in the order they were made
+(:mod:`server.web.runner`).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import itertools
+import logging
+import time
+from dataclasses import dataclass, field
+from typing import Any, AsyncIterator, Callable
+
+from ..core.assets import AssetLibrary
+from ..core.limits import Limits
+from ..errors import UnknownScene
+from .outbox import Outbox, Outgoing, SlowConsumer
+from .runner import SceneRunner
+from .scene_store import SceneStore
+from .worker import SceneSetup
+
+log = logging.getLogger(__name__)
+INFLIGHT_BYTES = 4 << 20  # text a connection may have waiting on its scene's process
+REPLACED = 4001  # close code: the same client connected again; clients do not reconnect
+SILENT_SECONDS = 3.0  # a scene that sent nothing this long (60 frames a second) is unresponsive
+_numbers = itertools.count(1)
+
+
+@dataclass(eq=False)
+class Connection:
+    """A client as the loop sees it: its id and role, outbox, and text not yet applied."""
+
+    client_id: str
+    role: str
+    outbox: Outbox
+    resume: str | None = None  # sent in hello: how this client comes back as itself
+    keep: bool = False  # what it made stays in the scene when it leaves
+    number: int = field(default_factory=lambda: next(_numbers))
+    closed: asyncio.Event = field(default_factory=asyncio.Event)
+    admitted: asyncio.Event = field(default_factory=asyncio.Event)
+    inflight: int = 0
+    drained: asyncio.Event = field(default_factory=asyncio.Event)
+    farewell: Outgoing | None = None  # the last message, sent as the connection closes
+    close_code: int = 1000
+    close_reason: str = ""
+
+    def __post_init__(self) -> None:
+        self.drained.set()
+
+    def send(self, items: list[Outgoing]) -> None:
+        """Queue messages; a connection that stopped reading is marked closed."""
+        try:
+            for item in items:
+                self.outbox.put(item)
+        except SlowConsumer as reason:
+            if not self.closed.is_set():
+                log.warning("closing %s: %s", self.client_id, reason)
+            self.closed.set()
+
+    def applied(self, size: int) -> None:
+        """``size`` bytes of this connection's text were applied by its scene."""
+        self.inflight -= size
+        if self.inflight <= INFLIGHT_BYTES:
+            self.drained.set()
+
+
+class SceneHub:
+    """One scene: its process and the connections that receive its messages."""
+
+    def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
+                 setup: SceneSetup | None = None, store: SceneStore | None = None,
+                 owners: Callable[[list[str]], None] = lambda owners: None,
+                 ended: Callable[[SceneHub, bool], None] = lambda hub, failed: None) -> None:
+        self.name = name
+        self.members: dict[int, Connection] = {}  # joined, admitted or not yet
+        self.connections: set[Connection] = set()  # admitted: they get every frame
+        self.idle_since: float | None = time.monotonic()
+        self.stored = store is not None  # its scene is kept on disk (and comes back from it)
+        self.failed = False  # its process ended without being asked to
+        self.heard = time.monotonic()  # when its process last sent anything (frames: 60 a second)
+        self.figures: dict[str, Any] | None = None  # its last metrics, for when it is silent
+        self.summary: dict[str, Any] | None = None  # its last counts, likewise
+        self.saving: dict[str, Any] = {}  # what its process last said of its files
+        self._owners, self._on_end = owners, ended
+        self._open = asyncio.Event()  # made (restored), and no import under way
+        self._imports = 0
+        self._arriving = 0  # connections waiting for it to settle
+        self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events, store)
+
+    @property
+    def tick_rate(self) -> float:
+        return self.runner.tick_rate
+
+    @property
+    def ended(self) -> bool:
+        return self.runner.ended
+
+    @property
+    def silent(self) -> float:
+        """Seconds since the scene's process last sent anything."""
+        return time.monotonic() - self.heard
+
+    @property
+    def state(self) -> str:
+        """``starting``, ``running``, ``unresponsive`` (silent for SILENT_SECONDS: stopped,
+        or stuck in one long step), ``failed`` (its process died) or ``stopped``."""
+        if self.ended:
+            return "failed" if self.failed else "stopped"
+        if not self._open.is_set() and not self._imports:
+            return "starting"
+        return "unresponsive" if self.silent > SILENT_SECONDS else "running"
+
+    async def settled(self) -> None:
+        """Wait until the scene is made and no import is under way: only then may a
+        newcomer's client id be chosen (the owners it holds are reserved by then). The
+        scene is not idle meanwhile (a slow start must not see it stopped)."""
+        self._arriving += 1
+        self.idle_since = None
+        try:
+            await self._open.wait()
+        finally:
+            self._arriving -= 1
+            if not self.members and not self._arriving:
+                self.idle_since = time.monotonic()  # join() says otherwise at once
+        if self.ended:
+            raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
+
+    @contextlib.asynccontextmanager
+    async def importing(self) -> AsyncIterator[None]:
+        """While the scene is replaced: newcomers wait (:meth:`settled`)."""
+        await self.settled()
+        self._imports += 1
+        self._open.clear()
+        try:
+            yield
+        finally:
+            self._imports -= 1
+            if not self._imports:
+                self._open.set()
+
+    def _events(self, events: list[tuple[Any, ...]]) -> None:
+        self.heard = time.monotonic()
+        for event in events:
+            kind = event[0]
+            if kind == "frame":
+                self.broadcast(event[1])
+            elif kind == "answers":
+                self._answered(*event[1:])
+            elif kind == "admit":
+                self._admit(*event[1:])
+            elif kind == "saving":
+                self.saving = event[1]
+            elif kind == "ready":
+                self._owners(event[1])
+                if not self._imports:
+                    self._open.set()
+            elif kind == "ended":
+                self._ended(event[1])
+
+    def broadcast(self, items: list[Outgoing]) -> None:
+        """Queue a tick's messages for every connection."""
+        for connection in list(self.connections):
+            connection.send(items)
+
+    async def join(self, connection: Connection) -> None:
+        """Send a connection its hello and snapshot; it gets every later tick."""
+        if self.ended:
+            raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
+        for other in list(self.members.values()):  # the same client back: the new one wins
+            if other.client_id == connection.client_id:
+                other.close_code, other.close_reason = REPLACED, \
+                    f"replaced: client {other.client_id} connected again (resumed) elsewhere"
+                other.closed.set()
+        self.members[connection.number] = connection
+        self.idle_since = None
+        self.runner.post("join", connection.number, connection.client_id, connection.role,
+                         connection.resume, connection.keep)
+        await connection.admitted.wait()
+
+    def _admit(self, number: int, items: list[Outgoing]) -> None:
+        # in order with the frames: the snapshot is newer than every frame sent before it
+        connection = self.members.get(number)
+        if connection is None:
+            return
+        connection.send(items)
+        if not connection.closed.is_set():
+            self.connections.add(connection)
+        connection.admitted.set()
+
+    def leave(self, connection: Connection) -> None:
+        """Forget a connection; its scene deletes what its client made."""
+        self.connections.discard(connection)
+        if self.members.pop(connection.number, None) is not None:
+            self.runner.post("leave", connection.number)
+        if not self.members:
+            self.idle_since = time.monotonic()
+
+    def receive(self, connection: Connection, text: str | bytes) -> None:
+        """Hand a client's text to the scene; its answers come back to it alone."""
+        connection.inflight += len(text)
+        if connection.inflight > INFLIGHT_BYTES:
+            connection.drained.clear()
+        self.runner.post("text", connection.number, text)
+
+    def _answered(self, number: int, answers: list[Outgoing], size: int) -> None:
+        connection = self.members.get(number)
+        if connection is not None:
+            connection.send(answers)
+            connection.applied(size)
+
+    def _ended(self, failed: bool) -> None:
+        """The scene's process is gone: its clients are disconnected (they may rejoin)."""
+        self.failed = failed
+        self._open.set()  # whoever waits hears that it ended
+        self._on_end(self, failed)
+        for connection in self.members.values():
+            if failed:
+                connection.farewell = Outgoing.of(UnknownScene(
+                    f"scene {self.name} failed and was closed; reconnect to start it "
+                    f"again", scene=self.name).to_wire())
+            connection.closed.set()
+            connection.admitted.set()
+        self.connections.clear()
