@@ -148,13 +148,13 @@ def watch(url: str, scene: str, pipe: Any, stop: Any) -> None:
 class Chaos:
     """A server, its changer and bystander, and the faults."""
 
-    def __init__(self, state: Path, seed: int) -> None:
+    def __init__(self, state: Path, seed: int, quick: bool = False) -> None:
         self.state = state
         self.ledger = Ledger()
         self.windows: list[tuple[str, float, float]] = []
         self.checks: list[dict[str, Any]] = []
-        self.document = big_document()
-        self.mesh = trimesh.creation.icosphere(6, 1.0).export(file_type="glb")
+        self.document = big_document(150 if quick else 1500)
+        self.mesh = trimesh.creation.icosphere(3 if quick else 6, 1.0).export(file_type="glb")
         self.server = self._start()
         self.changer = Changer(lambda: self.server.ws, self.ledger, seed)
 
@@ -232,11 +232,11 @@ class Chaos:
                 time.sleep(0.1)
 
 
-def big_document() -> bytes:
-    """A scene document of about 5 MB (robots with motors and fingers)."""
+def big_document(robots: int) -> bytes:
+    """A scene document of robots with a motor each (1 500: about 5 MB)."""
     scene = Scene(IMPORTS)
     ops = Operations(scene, "c9")
-    for k in range(0, 3000, 2):
+    for k in range(0, 2 * robots, 2):
         ops.create(f"c9.{k}", "Robot", [])
         ops.create(f"c9.{k + 1}", "MotorZ", [])
         ops.call(f"c9.{k}", "attachChain", [{"ref": f"c9.{k + 1}"}])
@@ -246,10 +246,11 @@ def big_document() -> bytes:
         scene.close()
 
 
-def run(faults: int, seed: int = 1) -> dict[str, Any]:
-    """``faults`` faults, the kinds in turn; what was acknowledged, lost and seen."""
+def run(faults: int, seed: int = 1, quick: bool = False) -> dict[str, Any]:
+    """``faults`` faults, the kinds in turn; what was acknowledged, lost and seen (``quick``:
+    a small import and upload)."""
     with tempfile.TemporaryDirectory(prefix="vp-chaos-") as folder:
-        chaos = Chaos(Path(folder) / "state", seed)
+        chaos = Chaos(Path(folder) / "state", seed, quick)
         context = multiprocessing.get_context("spawn")
         mine, theirs = context.Pipe()
         stop = context.Event()

@@ -88,7 +88,8 @@ def measure(sizes: Sizes) -> dict[str, Any]:
         }
         for name, step in outside.items():
             found[name] = _timed(name, step)
-    found["chaos"] = _timed("chaos", lambda: chaos.run(sizes.chaos_faults))
+    found["chaos"] = _timed("chaos", lambda: chaos.run(sizes.chaos_faults,
+                                                      quick=sizes is QUICK))
     return found
 
 

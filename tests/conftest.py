@@ -148,40 +148,10 @@ def scene_name() -> str:
     return f"t{os.getpid()}x{next(_scene_numbers)}"
 
 
-# --- long programs that run beside the suite -----------------------------------------------
-# A fuzzer of 10 000 cases is a minute of one core. Such programs start at nice 19 as soon as
-# the tests that read them are collected, use what the rest of the suite leaves idle, and
-# the test reads what the program printed (waiting for it if it is not done yet).
 
-_BESIDE: dict[tuple[str, ...], subprocess.Popen[bytes]] = {}
-
-
-def pytest_configure(config: Any) -> None:
-    config.addinivalue_line("markers", "beside(*argv): a program (python -m ...) whose JSON "
-                                       "output the test reads; started when collected")
-
-
-def pytest_collection_finish(session: Any) -> None:
-    for item in session.items:
-        marker = item.get_closest_marker("beside")
-        if marker is not None and marker.args not in _BESIDE:
-            _BESIDE[marker.args] = subprocess.Popen(
-                ["nice", "-n", "19", sys.executable, "-m", *marker.args], cwd=ROOT,
-                stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, start_new_session=True)
-
-
-def pytest_sessionfinish(session: Any) -> None:
-    for process in _BESIDE.values():
-        if process.poll() is None:
-            os.killpg(process.pid, signal.SIGKILL)
-
-
-@pytest.fixture
-def beside(request: Any) -> Any:
-    """What the test's ``beside`` program printed (JSON), once it has ended."""
-    marker = request.node.get_closest_marker("beside")
-    process = _BESIDE.get(marker.args) or _BESIDE.setdefault(marker.args, subprocess.Popen(
-        [sys.executable, "-m", *marker.args], cwd=ROOT, stdout=subprocess.PIPE))
-    output, _ = process.communicate(timeout=600)
-    assert process.returncode == 0, f"{' '.join(marker.args)} ended with {process.returncode}"
-    return json.loads(output)
+def run_program(module: str, *args: str) -> Any:
+    """What ``python -m module args`` printed (JSON); it must end well."""
+    run = subprocess.run([sys.executable, "-m", module, *args], cwd=ROOT, capture_output=True,
+                         timeout=600)
+    assert run.returncode == 0, run.stderr[-2000:].decode(errors="replace")
+    return json.loads(run.stdout)

@@ -226,7 +226,7 @@ class SceneWorker:
             self._tell("replaced", f"scene {scene.name} was replaced by an import "
                                    f"({summary['objects']} objects)")
             self.saver.save(replaced=True)
-            return summary
+            return {**summary, "owners": scene_owners(scene)}  # the ids it used too
         self._read(number, replace_scene, ())
 
     def _present(self) -> set[str]:

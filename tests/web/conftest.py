@@ -16,8 +16,11 @@ FLAGS = ["--no-sandbox", "--use-angle=swiftshader",
 VIEWPORT = {"width": 800, "height": 500}
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def browser() -> Iterator[Browser]:
+    """Chromium for one test file: playwright's sync API keeps an event loop running in
+    this thread while it is open, which tests of other files run by the same worker
+    (asyncio.run) must not find."""
     with sync_playwright() as playwright:
         chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
         yield chromium

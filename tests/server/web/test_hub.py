@@ -71,6 +71,7 @@ def test_the_owners_of_a_restored_scene_are_never_handed_out_again(tmp_path):
 def test_a_failed_demo_scene_starts_again_by_itself_and_rest_answers_meanwhile():
     server = start_server("--limit", "leaveGraceSeconds=1")
     try:
+        eventually(lambda: server.get("/api/metrics")["scenes"]["default"]["state"] == "running")
         pid = server.get("/api/metrics")["scenes"]["default"]["pid"]
         os.kill(pid, signal.SIGKILL)  # as a crash inside PyBullet would end it
         seen = set()

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import time
+from concurrent.futures import ThreadPoolExecutor
 import urllib.error
 import urllib.request
 from pathlib import Path
@@ -14,7 +15,7 @@ import trimesh
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
-from tests.conftest import RunningServer, crash_server, start_server, stop_server
+from tests.conftest import RunningServer, crash_server, run_program, start_server, stop_server
 
 
 def glb() -> bytes:
@@ -290,18 +291,27 @@ def test_the_servers_own_objects_follow_its_setup_and_clients_objects_stay(state
         stop_server(server)
 
 
-@pytest.mark.beside("tests.server.web.document_fuzz", "rest", "--cases", "10000")
-def test_ten_thousand_fuzzed_documents_through_import_are_taken_or_refused(beside):
-    """Each a 200 or a structured 4xx, never a 500 or a dropped connection, the server's
-    memory bounded and its health ok after."""
-    assert beside["crashes"] == [] and beside["cases"] == 10_000
-    assert beside["taken"] > 1000 and beside["refused"] > 1000
-    assert beside["serverPeakMegabytes"] < 400 and beside["serverHealth"] == "ok"
+def test_ten_thousand_fuzzed_documents_each_through_import_and_state_files():
+    """Through REST import each is a 200 or a structured 4xx, never a 500 or a dropped
+    connection, the server's memory bounded and its health ok after; as files a scene's
+    process restores each (document and journal) or sets it aside, never fails."""
+    fuzz = "tests.server.web.document_fuzz"
+    with ThreadPoolExecutor(2) as both:  # a core each
+        posted, files = both.map(lambda where: run_program(fuzz, where, "--cases", "10000"),
+                                 ["rest", "files"])
+    assert posted["crashes"] == [] and posted["cases"] == 10_000
+    assert posted["taken"] > 1000 and posted["refused"] > 1000
+    assert posted["serverPeakMegabytes"] < 400 and posted["serverHealth"] == "ok"
+    assert files["crashes"] == [] and files["cases"] == 10_000
+    assert files["restored"] > 1000 and files["setAside"] > 1000
+    assert files["peakMegabytes"] < 400
 
 
-@pytest.mark.beside("tests.server.web.document_fuzz", "files", "--cases", "10000")
-def test_ten_thousand_fuzzed_state_files_are_restored_or_set_aside(beside):
-    """A scene's process restores each (document and journal) or sets it aside; never fails."""
-    assert beside["crashes"] == [] and beside["cases"] == 10_000
-    assert beside["restored"] > 1000 and beside["setAside"] > 1000
-    assert beside["peakMegabytes"] < 400
+def test_owners_an_import_brings_are_never_handed_out_not_even_of_ids_alone(server, scene_name):
+    document = json.loads(export(server, "default"))
+    document["ids"] = {"c3000": {"numbers": [[1, 5]], "names": []}}  # used, nothing left
+    status, summary = post(server, f"/api/scenes/{scene_name}/import",
+                           json.dumps(document).encode())
+    assert status == 200 and "c3000" in summary["owners"]
+    with vp.connect(server.ws, scene=scene_name) as newcomer:
+        assert int(newcomer.client_id[1:]) > 3000
