@@ -174,7 +174,7 @@ class Hubs:
                 found.append(f"scene {hub.name}: {hub.saving['saveError']}" +
                              ("; its changes last only until the server stops"
                               if hub.saving.get("durable") is False else
-                              "; its changes are kept in its journal"))
+                              "; clients' changes are kept in its journal"))
         if self.state is not None:
             found += self.state.problems.values()
         return found

@@ -108,8 +108,9 @@ class SceneSaver:
                 log.exception("saving scene %s failed", self.scene.name)
             if replaced:
                 self.store.forget_journal()  # its lines would apply to the old document
+            # clients' changes are in the journal; an import's (which has none) is not
             self._failed(f"its file cannot be written ({getattr(error, 'strerror', None) or error})",
-                         at_risk=self.at_risk or replaced or not self.store.journaled)
+                         at_risk=replaced)
             self._saved = (self._saved[0], time.monotonic())
             return not self.at_risk
         self._every = max(SAVE_SECONDS, (time.perf_counter() - started) / SAVE_SHARE)
@@ -132,12 +133,15 @@ class SceneSaver:
                 "saveError": self.error}
 
     def _failed(self, reason: str, at_risk: bool) -> None:
-        if self.error == reason and self.at_risk >= at_risk:
-            return  # said already
+        """Note a failure; the log, clients and metrics hear of a new failure once, and of
+        changes coming to be at risk once (not of every retry, whatever it says)."""
+        news = self.error is None or (at_risk and not self.at_risk)
+        self.error = reason
+        if not news:
+            return
         log.error("scene %s: %s%s", self.scene.name, reason,
                   "; its changes last only until the server stops" if at_risk else
-                  "; its changes are kept in its journal")
-        self.error = reason
+                  "; clients' changes are kept in its journal")
         if at_risk and not self.at_risk:
             self.at_risk = True
             self._tell("not_saved", f"changes to scene {self.scene.name} cannot be saved: "

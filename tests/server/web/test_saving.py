@@ -4,6 +4,7 @@ now and then, and a word for the scene's clients when its changes cannot be kept
 from __future__ import annotations
 
 import json
+import logging
 import time
 import warnings
 
@@ -88,6 +89,20 @@ def test_changes_that_cannot_be_written_anywhere_are_told_and_reported(kept, tmp
     assert saver.report() == {"saved": True, "durable": True, "saveError": None}
     assert restored(tmp_path) == ["c3.1", "c3.2"]
 
+
+
+def test_a_failure_that_lasts_is_logged_and_told_once_whatever_each_retry_says(kept, tmp_path,
+                                                                               caplog):
+    scene, saver, session, told = kept
+    caplog.set_level(logging.INFO)
+    with unwritable(tmp_path):
+        for k in range(5):  # changes and saves, each failing its own way, for seconds
+            create(session, str(k))
+            saver.commit()
+            scene.tick(0.01)
+            saver.save()
+    assert caplog.text.count("scene lab:") == 1 and len(told) == 1
+    assert saver.save() and caplog.text.count("saved again") == 1
 
 # --- with a real server ------------------------------------------------------------------
 
