@@ -41,10 +41,12 @@ def main(argv: list[str] | None = None) -> None:
                         help="keep uploaded mesh files here (default: a temporary folder "
                              "removed when the server stops)")
     parser.add_argument("--state-dir", type=Path, default=os.environ.get("VP_STATE_DIR"),
-                        metavar="DIR", help="save every scene here (on change, at most once a "
-                        "second, and on shutdown) and restore them at start; uploads are kept "
-                        "here too unless --assets-dir says otherwise (default: $VP_STATE_DIR; "
-                        "unset: scenes last as long as the server)")
+                        metavar="DIR", help="keep every scene here: each change journaled "
+                        "before it is acknowledged, the scene's document written at most once "
+                        "a second and on shutdown; scenes come back from here when first used; "
+                        "uploads are kept here too unless --assets-dir says otherwise (default: "
+                        "$VP_STATE_DIR; unset: scenes last as long as the server). Exit code 4: "
+                        "some scene's last changes could not be saved")
     parser.add_argument("--token", default=os.environ.get("VP_TOKEN"), metavar="TOKEN",
                         help="controlling (WebSockets with ?token=, REST changes with "
                              "Authorization: Bearer) needs this token (default: $VP_TOKEN)")

@@ -43,11 +43,11 @@ from multiprocessing.connection import Connection as Pipe
 from typing import Any, Callable
 
 from ..core.assets import AssetLibrary
+from ..core.command_log import replay
 from ..core.ids import owner_of
 from ..core.limits import Limits
 from ..core.messages import encode
 from ..core.scene import Scene
-from ..core.command_log import replay
 from ..core.scene_document import check_import, import_scene, parse_document, scene_owners
 from ..core.session import Session
 from ..core.wire import encode_numbers
