@@ -138,10 +138,18 @@ class SceneWorker:
         self._flush()
 
     def _receive(self, wait: float) -> bool:
-        """Wait up to ``wait`` seconds for commands; False once the server is gone."""
+        """Wait up to ``wait`` seconds for commands, then take every one sent so far;
+        False once the server is gone. ``metrics`` is answered at once, ahead of a backlog
+        of requests: a scene working through one is when its figures matter most."""
         try:
-            if self._pipe.poll(wait):
-                self._commands.extend(self._pipe.recv())
+            ready = self._pipe.poll(wait)
+            while ready:
+                for command in self._pipe.recv():
+                    if command[0] == "metrics":
+                        self._command(command)
+                    else:
+                        self._commands.append(command)
+                ready = self._pipe.poll(0)
         except (EOFError, OSError):
             return False
         return True

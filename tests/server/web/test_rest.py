@@ -1,5 +1,6 @@
 """REST inspection against a real server."""
 
+import contextlib
 import http.client
 import json
 import os
@@ -226,3 +227,24 @@ def test_a_stopped_scene_is_marked_as_such_and_holds_up_no_list(server, scene_na
         finally:
             os.kill(pid, signal.SIGCONT)
         eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["state"] == "running")
+
+
+def test_a_scene_working_through_a_backlog_still_gives_its_figures_at_once(scene_name):
+    server = start_server("--no-demo", "--limit", "opsPerSecond=100000000", "--limit",
+                          "bytesPerSecond=1000000000")
+    try:
+        with contextlib.ExitStack() as stack:
+            for _ in range(3):  # each may have 4 MiB of text waiting on the scene
+                ws = stack.enter_context(connect(f"{server.ws}/ws?scene={scene_name}",
+                                                 max_size=None))
+                me = json.loads(ws.recv(timeout=10))["client"]
+                request_all(ws, [{"op": "create", "object": f"{me}.h", "type": "EdgedHand"}])
+                text = json.dumps([{"op": "call", "object": f"{me}.h", "method": "flexFingers",
+                                    "args": [k / 1000]} for k in range(1000)])
+                for _ in range(45):  # seconds of work, none answered yet
+                    ws.send(text)
+            figures = server.get("/api/metrics")["scenes"][scene_name]
+            assert figures["state"] == "running" and "tickMsP95" in figures  # fresh, not none
+            assert figures["requests"] < 3 * 45_000  # asked and answered amid the backlog
+    finally:
+        stop_server(server)
