@@ -57,6 +57,10 @@ class SceneRunner:
         self.ended = False
         self.stopping = False  # asked to stop: however the process ends, it is no failure
         self._started = threading.Event()
+        # Only the reader waits on the process: two threads waiting at once both read the
+        # fork server's one report of its end, and one of them gets 255 for it.
+        self._gone = threading.Event()
+        self.exitcode: int | None = None  # once the process has ended
 
     @property
     def pid(self) -> int | None:
@@ -109,10 +113,9 @@ class SceneRunner:
         self._started.wait(timeout)
         if self._process.pid is None:
             return  # never started
-        self._process.join(timeout)
-        if self._process.is_alive():
+        if not self._gone.wait(timeout):
             self._process.kill()
-            self._process.join(1)
+            self._gone.wait(5)
 
     def _write(self) -> None:
         while True:
@@ -136,8 +139,13 @@ class SceneRunner:
             except (EOFError, OSError):
                 break
             self._hand_over(self._receive, events)
-        self._process.join(5)
-        self._hand_over(self._end, self._process.exitcode)
+        self._process.join(5)  # its pipe is closed: it is ending, or hung on the way
+        if self._process.exitcode is None:
+            self._process.kill()
+            self._process.join()
+        self.exitcode = self._process.exitcode
+        self._gone.set()
+        self._hand_over(self._end, self.exitcode)
 
     def _hand_over(self, function: Callable[[Any], None], argument: Any) -> None:
         try:
@@ -167,7 +175,7 @@ class SceneRunner:
     @property
     def unsaved(self) -> bool:
         """Whether the process ended with changes it could not save."""
-        return self._process.pid is not None and self._process.exitcode == worker.SAVE_FAILED
+        return self.exitcode == worker.SAVE_FAILED
 
     def _end(self, exitcode: int | None) -> None:
         self.ended = True

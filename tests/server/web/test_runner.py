@@ -1,5 +1,6 @@
 """Scenes in their own processes: one scene's flood or crash never stops another scene."""
 
+import asyncio
 import json
 import os
 import signal
@@ -9,7 +10,11 @@ import time
 import pytest
 from websockets.exceptions import ConnectionClosed
 
-from tests.conftest import start_server, stop_server
+from server.core.assets import AssetLibrary
+from server.core.limits import DEFAULT
+from server.web.runner import SceneRunner
+from server.web.scene_store import SceneStore
+from tests.conftest import start_server, stop_server, unwritable
 
 from .test_socket import open_client
 from .ws_requests import next_message
@@ -97,3 +102,35 @@ def test_scene_processes_end_when_the_server_is_killed(scene_name):
     finally:
         if server.process.poll() is None:
             stop_server(server)
+
+
+def test_how_a_scene_process_ended_is_read_once_however_many_wait_for_it(tmp_path):
+    """A scene that stops with changes it could not save says so by its exit code, and
+    every waiter (the server stopping, a successor scene, its own reader) sees that code.
+    Found by CI: the reader and the server's stop both waited on the process, one of them
+    read the fork server's report of its end and the other an empty pipe (code 255), and
+    the server exited 0 with a scene's changes lost."""
+    def ended(runner: SceneRunner) -> None:
+        runner.post("join", 1, "c1", "controller")
+        runner.post("text", 1, json.dumps({"op": "create", "id": 1, "object": "c1.b",
+                                           "type": "Box", "args": [0.1]}))
+        runner.stop()
+        waiters = [threading.Thread(target=runner.join, args=(20,)) for _ in range(4)]
+        for waiter in waiters:
+            waiter.start()
+        for waiter in waiters:
+            waiter.join()
+
+    async def stop_scenes() -> list[bool]:
+        results = []
+        for k in range(6):
+            runner = SceneRunner(f"s{k}", DEFAULT, 60.0, AssetLibrary(), None, lambda events: None,
+                                 SceneStore(tmp_path / "scenes" / f"s{k}.json"))
+            runner.start()
+            await asyncio.to_thread(ended, runner)
+            results.append(runner.unsaved)
+        return results
+
+    (tmp_path / "scenes").mkdir()
+    with unwritable(tmp_path / "scenes"):  # no journal can be made: the box is never kept
+        assert asyncio.run(stop_scenes()) == [True] * 6
