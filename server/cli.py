@@ -25,46 +25,7 @@ log = logging.getLogger("vp-server")
 
 def main(argv: list[str] | None = None) -> None:
     """Parse the command line and serve until interrupted."""
-    parser = argparse.ArgumentParser(prog="vp-server", description=__doc__)
-    parser.add_argument("--host", default="127.0.0.1", help="address to listen on")
-    parser.add_argument("--port", type=int, default=8000, help="port to listen on")
-    parser.add_argument("--no-demo", action="store_true",
-                        help="start with an empty default scene (no Diggers)")
-    parser.add_argument("--tick-rate", type=float, default=60.0,
-                        help="scene ticks (frames) per second")
-    parser.add_argument("--limit", action="append", default=[], metavar="NAME=N",
-                        help=f"change a limit (repeatable); the limits and defaults: "
-                             f"{', '.join(f'{k}={v}' for k, v in DEFAULT.wire().items())}")
-    parser.add_argument("--ping-seconds", type=float, default=PING_SECONDS,
-                        help="ping WebSockets this often; close those that stay silent as long")
-    parser.add_argument("--assets-dir", type=Path, default=None, metavar="DIR",
-                        help="keep uploaded mesh files here (default: a temporary folder "
-                             "removed when the server stops)")
-    parser.add_argument("--state-dir", type=Path, default=os.environ.get("VP_STATE_DIR"),
-                        metavar="DIR", help="keep every scene here: each change journaled "
-                        "before it is acknowledged, the scene's document written at most once "
-                        "a second and on shutdown; scenes come back from here when first used; "
-                        "uploads are kept here too unless --assets-dir says otherwise (default: "
-                        "$VP_STATE_DIR; unset: scenes last as long as the server). Exit code 4: "
-                        "some scene's last changes could not be saved")
-    parser.add_argument("--token", default=os.environ.get("VP_TOKEN"), metavar="TOKEN",
-                        help="controlling (WebSockets with ?token=, REST changes with "
-                             "Authorization: Bearer) needs this token (default: $VP_TOKEN)")
-    parser.add_argument("--view-token", default=os.environ.get("VP_VIEW_TOKEN"), metavar="TOKEN",
-                        help="viewing needs this token or the control token (default: "
-                             "$VP_VIEW_TOKEN; unset: viewing is open)")
-    parser.add_argument("--allow-origin", action="append", metavar="ORIGIN",
-                        default=[o for o in os.environ.get("VP_ALLOWED_ORIGINS", "").split(",") if o],
-                        help="browser pages of this origin (https://host:port; * for any) may "
-                             "connect besides this server's own (repeatable; default: "
-                             "$VP_ALLOWED_ORIGINS, comma-separated)")
-    parser.add_argument("--allow-host", action="append", metavar="NAME",
-                        default=[h for h in os.environ.get("VP_ALLOWED_HOSTS", "").split(",") if h],
-                        help="answer requests that name this server NAME (its Host header) "
-                             "besides its IP addresses, localhost and --host (repeatable; * "
-                             "for any; default: $VP_ALLOWED_HOSTS, comma-separated)")
-    parser.add_argument("--log-level", default="info",
-                        choices=["critical", "error", "warning", "info", "debug"])
+    parser = _parser()
     args = parser.parse_args(argv)
     if not 1 <= args.tick_rate <= 1000:
         parser.error("--tick-rate must be between 1 and 1000")
@@ -108,3 +69,48 @@ def _raise_file_limit(limits: Limits) -> None:
 
 if __name__ == "__main__":
     main()
+
+
+def _parser() -> argparse.ArgumentParser:
+    """The command line: every flag with its default and what it does."""
+    parser = argparse.ArgumentParser(prog="vp-server", description=__doc__)
+    parser.add_argument("--host", default="127.0.0.1", help="address to listen on")
+    parser.add_argument("--port", type=int, default=8000, help="port to listen on")
+    parser.add_argument("--no-demo", action="store_true",
+                        help="start with an empty default scene (no Diggers)")
+    parser.add_argument("--tick-rate", type=float, default=60.0,
+                        help="scene ticks (frames) per second")
+    parser.add_argument("--limit", action="append", default=[], metavar="NAME=N",
+                        help=f"change a limit (repeatable); the limits and defaults: "
+                             f"{', '.join(f'{k}={v}' for k, v in DEFAULT.wire().items())}")
+    parser.add_argument("--ping-seconds", type=float, default=PING_SECONDS,
+                        help="ping WebSockets this often; close those that stay silent as long")
+    parser.add_argument("--assets-dir", type=Path, default=None, metavar="DIR",
+                        help="keep uploaded mesh files here (default: a temporary folder "
+                             "removed when the server stops)")
+    parser.add_argument("--state-dir", type=Path, default=os.environ.get("VP_STATE_DIR"),
+                        metavar="DIR", help="keep every scene here: each change journaled "
+                        "before it is acknowledged, the scene's document written at most once "
+                        "a second and on shutdown; scenes come back from here when first used; "
+                        "uploads are kept here too unless --assets-dir says otherwise (default: "
+                        "$VP_STATE_DIR; unset: scenes last as long as the server). Exit code 4: "
+                        "some scene's last changes could not be saved")
+    parser.add_argument("--token", default=os.environ.get("VP_TOKEN"), metavar="TOKEN",
+                        help="controlling (WebSockets with ?token=, REST changes with "
+                             "Authorization: Bearer) needs this token (default: $VP_TOKEN)")
+    parser.add_argument("--view-token", default=os.environ.get("VP_VIEW_TOKEN"), metavar="TOKEN",
+                        help="viewing needs this token or the control token (default: "
+                             "$VP_VIEW_TOKEN; unset: viewing is open)")
+    parser.add_argument("--allow-origin", action="append", metavar="ORIGIN",
+                        default=[o for o in os.environ.get("VP_ALLOWED_ORIGINS", "").split(",") if o],
+                        help="browser pages of this origin (https://host:port; * for any) may "
+                             "connect besides this server's own (repeatable; default: "
+                             "$VP_ALLOWED_ORIGINS, comma-separated)")
+    parser.add_argument("--allow-host", action="append", metavar="NAME",
+                        default=[h for h in os.environ.get("VP_ALLOWED_HOSTS", "").split(",") if h],
+                        help="answer requests that name this server NAME (its Host header) "
+                             "besides its IP addresses, localhost and --host (repeatable; * "
+                             "for any; default: $VP_ALLOWED_HOSTS, comma-separated)")
+    parser.add_argument("--log-level", default="info",
+                        choices=["critical", "error", "warning", "info", "debug"])
+    return parser

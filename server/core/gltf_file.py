@@ -289,20 +289,7 @@ def _check_indices(indices: _Accessor, vertices: int, where: str,
 def _placements(document: dict[str, Any], meshes: int) -> list[int]:
     """How many times the scenes place each mesh (nodes must form a forest)."""
     nodes = _items(document, "nodes")
-    parents: dict[int, int] = {}
-    for n, node in enumerate(nodes):
-        children = node.get("children", [])
-        if not isinstance(children, list):
-            raise _fail(f"node {n}: 'children' is not a list")
-        for child in children:
-            if isinstance(child, bool) or not isinstance(child, int) or \
-                    not 0 <= child < len(nodes):
-                raise _fail(f"node {n}: child {str(child)[:20]} is not a node")
-            if child in parents or child == n:
-                raise _fail(f"node {child} has two parents; glTF nodes form a tree")
-            parents[child] = n
-        if "mesh" in node:
-            _index(node, "mesh", f"node {n}", meshes)
+    _check_forest(nodes, meshes)
     placed = [0] * meshes
     visits = 0
     for s, scene in enumerate(_items(document, "scenes")):
@@ -322,3 +309,21 @@ def _placements(document: dict[str, Any], meshes: int) -> list[int]:
                 placed[nodes[n]["mesh"]] += 1
             stack.extend((child, depth + 1) for child in nodes[n].get("children", []))
     return placed
+
+
+def _check_forest(nodes: list[Any], meshes: int) -> None:
+    """Every child a node, no node the child of two (or of itself), every mesh one."""
+    parents: dict[int, int] = {}
+    for n, node in enumerate(nodes):
+        children = node.get("children", [])
+        if not isinstance(children, list):
+            raise _fail(f"node {n}: 'children' is not a list")
+        for child in children:
+            if isinstance(child, bool) or not isinstance(child, int) or \
+                    not 0 <= child < len(nodes):
+                raise _fail(f"node {n}: child {str(child)[:20]} is not a node")
+            if child in parents or child == n:
+                raise _fail(f"node {child} has two parents; glTF nodes form a tree")
+            parents[child] = n
+        if "mesh" in node:
+            _index(node, "mesh", f"node {n}", meshes)

@@ -41,14 +41,7 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     ``app.state.unsaved`` names the scenes whose last changes could not be saved."""
     state = StateDir(state_dir) if state_dir is not None else None
     temporary = uploads is None and state is None
-    if uploads is None:
-        uploads = state.assets if state is not None else \
-            Path(tempfile.mkdtemp(prefix="vp-uploads-"))
-    try:
-        uploads.mkdir(parents=True, exist_ok=True)
-    except OSError as error:  # a state folder that cannot be written: reported there
-        logging.getLogger(__name__).error("the upload folder %s cannot be made (%s)", uploads,
-                                          error.strerror)
+    uploads = _upload_folder(uploads, state)
     hubs = Hubs(tick_rate, limits, AssetLibrary(uploads=uploads, limits=limits), state)
     for name, setup in (setups or {}).items():
         hubs.prepare(name, setup)
@@ -74,7 +67,27 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     app.include_router(rest.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(assets.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(socket.router)
+    _answer_errors(app)
+    mount_pages(app)
+    app.add_middleware(HostCheck, policy=access)
+    return app
 
+
+def _upload_folder(uploads: Path | None, state: StateDir | None) -> Path:
+    """Where uploads are kept: the given folder, the state folder's, or a temporary one."""
+    if uploads is None:
+        uploads = state.assets if state is not None else \
+            Path(tempfile.mkdtemp(prefix="vp-uploads-"))
+    try:
+        uploads.mkdir(parents=True, exist_ok=True)
+    except OSError as error:  # a state folder that cannot be written: reported there
+        logging.getLogger(__name__).error("the upload folder %s cannot be made (%s)", uploads,
+                                          error.strerror)
+    return uploads
+
+
+def _answer_errors(app: FastAPI) -> None:
+    """Every error, expected or not, answered in the documented JSON form."""
     @app.exception_handler(VPError)
     async def vp_error(request: Request, error: VPError) -> JSONResponse:
         status = next((s for kind, s in HTTP_STATUS.items() if isinstance(error, kind)), 400)
@@ -91,7 +104,3 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
         code = HTTP_CODES.get(error.status_code, "http_error")
         return JSONResponse({"code": code, "message": str(error.detail)},
                             status_code=error.status_code, headers=error.headers)
-
-    mount_pages(app)
-    app.add_middleware(HostCheck, policy=access)
-    return app
