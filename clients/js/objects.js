@@ -6,6 +6,7 @@
 
 import * as THREE from 'three';
 import { fromWire } from './codec.js';
+import { filled } from './lenient.js';
 import { currentSession } from './session.js';
 
 let adopting = null;   // {session, id, type} while an object is made for an existing node
@@ -54,17 +55,26 @@ export class SceneObject extends THREE.Object3D {
 		this.vp.session.send({ op: 'delete', object: this.vp.id });
 	}
 
+	// setPosition(x, y, z) or setPosition([x, y, z]); a coordinate left out keeps its value.
 	setPosition(position, ...more) {
-		const point = Array.isArray(position) ? position : [position, ...more];
-		this.position.fromArray(point);
-		this.vp.session.remember(this);
+		const given = Array.isArray(position) ? position : [position, ...more];
+		const point = filled(given, this.position.toArray(), `${this.vp.id}.setPosition`);
+		if (point.every(Number.isFinite)) {   // else the server refuses it, naming this call
+			this.position.fromArray(point);
+			this.vp.session.remember(this);
+		}
 		this.call('setPosition', point);
 	}
 
+	// Euler angles; an angle left out keeps its value (read in the order given).
 	setRotation(x, y, z, order = 'XYZ') {
-		this.vp.base.setFromEuler(euler.set(x, y, z, order));
-		this.vp.session.turn(this);
-		this.call('setRotation', x, y, z, order);
+		const now = euler.setFromQuaternion(this.vp.base, order).toArray().slice(0, 3);
+		const angles = filled([x, y, z], now, `${this.vp.id}.setRotation`);
+		if (angles.every(Number.isFinite)) {
+			this.vp.base.setFromEuler(euler.set(...angles, order));
+			this.vp.session.turn(this);
+		}
+		this.call('setRotation', ...angles, order);
 	}
 }
 

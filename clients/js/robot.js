@@ -21,6 +21,25 @@ export class Robot extends SceneObject {
 		return parts.at(-1);
 	}
 
+	// As in 1.0: the robot is returned (pages chain these two), and setPosition() with no
+	// argument takes the robot out of the scene until it is given a position again.
+	setPosition(position, ...more) {
+		if (position === undefined && !more.length) {
+			this.visible = false;
+			this.vp.session.remember(this);
+			this.call('setPosition');
+			return this;
+		}
+		this.visible = true;
+		super.setPosition(position, ...more);
+		return this;
+	}
+
+	setRotation(x, y, z, order = 'XYZ') {
+		super.setRotation(x, y, z, order);
+		return this;
+	}
+
 	// In a browser, robot.gui is the lil-gui panel at once (the viewer fills in the sliders).
 	// Not in 1.0: let other clients set this robot's motor angles and attach their own
 	// parts to it (without it only this client changes the robot).

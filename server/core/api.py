@@ -175,8 +175,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("getMotors", returns="refs", mutates=False),
         Method("getSensors", returns="refs", mutates=False),
         Method("getPosition", returns="point", mutates=False),
-        Method("setPosition", (Param("position", "point", None),)),
-        ROTATION, QUATERNION, SCALE, VISIBLE,
+        # 1.0 returns the robot from these two (pages chain them), not from a part's
+        Method("setPosition", (Param("position", "point", None),), returns="self"),
+        Method("setRotation", ROTATION.params, returns="self"),
+        QUATERNION, SCALE, VISIBLE,
         Method("getAngle", (Param("index", "integer"),), returns="number", mutates=False),
         Method("setAngle", (Param("index", "integer"), Param("angle", "angle")), access="steer"),
         Method("getAngles", returns="numbers", mutates=False),

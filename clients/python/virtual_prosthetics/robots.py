@@ -38,6 +38,18 @@ class Robot(Shown):
         self._call("share", on)
         return self
 
+    def set_position(self, *position: Any) -> Robot:
+        """Manual ``setPosition([x, y, z])`` or ``setPosition(x, y, z)``; with no position
+        the robot leaves the scene until it is given one again. Returns the robot (1.0
+        chains it: ``EdgedHand().set_position(-2, 0.5, 0).set_rotation(-1, -1, 0)``)."""
+        self._call("setPosition", *position)
+        return self
+
+    def set_rotation(self, x: float, y: float, z: float, order: str = "XYZ") -> Robot:
+        """Manual ``setRotation(x, y, z, order='XYZ')``: Euler angles; returns the robot."""
+        self._call("setRotation", x, y, z, order)
+        return self
+
     def add_gui(self, title: str = "Robot") -> None:
         """Manual ``addGUI(title)``: a motor panel in every viewer."""
         self._call("addGUI", title)

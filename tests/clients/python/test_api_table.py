@@ -5,6 +5,7 @@ import json
 from pathlib import Path
 
 import virtual_prosthetics as vp
+from virtual_prosthetics.objects import Node
 from virtual_prosthetics.robots import CLASSES
 
 API = json.loads((Path(__file__).resolve().parents[3] / "protocol" / "api.json").read_text())
@@ -49,3 +50,51 @@ def test_scene_functions_exist():
     scene_methods = {m["python"] for m in API["types"]["Scene"]["methods"].values()}
     for name in scene_methods:
         assert callable(getattr(vp, name)), name
+
+
+ARGUMENTS = {
+    "point": lambda: [0.1, 0.2, 0.3], "number": lambda: 0.1, "integer": lambda: 0,
+    "angle": lambda: 0.1, "order": lambda: "XYZ", "quaternion": lambda: [0, 0, 0, 1],
+    "scale": lambda: [1, 1, 1], "bool": lambda: True, "string": lambda: "named",
+    "slot": lambda: 0, "color": lambda: 0x336699, "rgb": lambda: [1, 0, 0],
+    "node": lambda: vp.MotorZ(), "part": lambda: vp.Box(), "axis": lambda: "z",
+    "asset": lambda: "round-tip.glb", "geometry": lambda: {"kind": "box", "size": [1, 1, 1]},
+}
+RETURNS = {
+    "none": lambda result, obj: result is None,
+    "self": lambda result, obj: result is obj,
+    "ref": lambda result, obj: isinstance(result, Node),
+}
+
+
+def table_method_specs(type_name):
+    found = {}
+    while type_name:
+        for name, spec in API["types"][type_name]["methods"].items():
+            found.setdefault(name, spec)
+        type_name = API["types"][type_name]["extends"]
+    return found
+
+
+def test_every_changing_method_returns_what_the_table_says(scene):
+    """Where 1.0 returned ``this`` the client returns the object, so calls chain."""
+    checked = []
+    for type_name, cls in CLASSES.items():
+        for name, spec in table_method_specs(type_name).items():
+            if not spec["mutates"] or name == "setTransforms":
+                continue
+            args = [ARGUMENTS[p["kind"]]() for p in API["types"][type_name]["params"]
+                    if "default" not in p]
+            obj = cls(*args)
+            result = getattr(obj, spec["python"])(*[ARGUMENTS[p["kind"]]() for p in spec["params"]])
+            assert RETURNS[spec["returns"]](result, obj), f"{type_name}.{name}: {result!r}"
+            checked.append(f"{type_name}.{name}")
+    scene.sync()  # the server took every call
+    assert "EdgedHand.setRotation" in checked and "Motor.flip" in checked
+
+
+def test_a_hand_is_built_by_chained_calls_as_in_1_0(scene):
+    hand = vp.EdgedHand(True).set_position(-2, 0.5, 0).set_rotation(-1, -1, 0)
+    assert isinstance(hand, vp.EdgedHand)
+    scene.sync()
+    assert hand.get_position() == [-2, 0.5, 0]
