@@ -104,8 +104,9 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--allow-origin", action="append", metavar="ORIGIN",
                         default=[o for o in os.environ.get("VP_ALLOWED_ORIGINS", "").split(",") if o],
                         help="browser pages of this origin (https://host:port; * for any) may "
-                             "connect besides this server's own (repeatable; default: "
-                             "$VP_ALLOWED_ORIGINS, comma-separated)")
+                             "connect and read REST (CORS) besides this server's own and, "
+                             "when it listens on loopback, any loopback page's (repeatable; "
+                             "default: $VP_ALLOWED_ORIGINS, comma-separated)")
     parser.add_argument("--allow-host", action="append", metavar="NAME",
                         default=[h for h in os.environ.get("VP_ALLOWED_HOSTS", "").split(",") if h],
                         help="answer requests that name this server NAME (its Host header) "

@@ -46,6 +46,9 @@ class AccessPolicy:
     view_token: str | None = None
     origins: tuple[str, ...] = field(default_factory=tuple)
     hosts: tuple[str, ...] = field(default_factory=tuple)  # names besides the server's own
+    # listening on loopback only: pages of any loopback origin (a user's own folder served
+    # by `python3 -m http.server`, say) are this machine's user's, as the server is
+    loopback: bool = False
 
     @classmethod
     def serving(cls, address: str, control_token: str | None = None,
@@ -57,7 +60,8 @@ class AccessPolicy:
         if address in ANY_ADDRESS:
             own += [socket.gethostname(), socket.getfqdn()]
         return cls(control_token, view_token, origins,
-                   tuple(dict.fromkeys(h.lower() for h in [*own, *hosts] if h)))
+                   tuple(dict.fromkeys(h.lower() for h in [*own, *hosts] if h)),
+                   loopback=_is_loopback(address))
 
     def check_role(self, role: str, token: str | None) -> None:
         """Refuse a connection whose token does not allow ``role``."""
@@ -93,15 +97,26 @@ class AccessPolicy:
                         f"with --allow-host {name[:80]} (or VP_ALLOWED_HOSTS) to allow it",
                         host=name[:80])
 
-    def check_origin(self, origin: str | None, host: str | None) -> None:
-        """Refuse a browser page from another site (no ``Origin``: not a browser)."""
+    def allows_origin(self, origin: str | None, host: str | None = None) -> bool:
+        """Whether a page of ``origin`` may use this server (no ``Origin``: not a browser;
+        ``host``: the request's, whose own pages are allowed)."""
         if origin is None or "*" in self.origins or origin in self.origins:
-            return
+            return True
         if host is not None and urlsplit(origin).netloc.lower() == host.lower():
+            return True
+        return self.loopback and _is_loopback_origin(origin)
+
+    def check_origin(self, origin: str | None, host: str | None) -> None:
+        """Refuse a browser page from another site, saying how to allow it."""
+        if self.allows_origin(origin, host):
             return
-        raise Forbidden(f"pages of {origin[:80]} may not connect; allowed are this server's "
-                        f"own pages{' and ' + ', '.join(self.origins) if self.origins else ''}",
-                        origin=origin[:80])
+        shown = (origin or "")[:80]
+        raise Forbidden(f"pages of {shown} may not connect: start the server with "
+                        f"--allow-origin {shown} (or VP_ALLOWED_ORIGINS={shown}) to allow them; "
+                        f"allowed now are this server's own pages"
+                        f"{', loopback pages' if self.loopback else ''}"
+                        f"{' and ' + ', '.join(self.origins) if self.origins else ''}",
+                        origin=shown)
 
 
 def _host_name(host: str | None) -> str | None:
@@ -122,6 +137,26 @@ def _is_local(name: str) -> bool:
         ipaddress.ip_address(name)
         return True
     except ValueError:
+        return False
+
+
+def _is_loopback(name: str) -> bool:
+    """``localhost`` or a loopback address (127.0.0.0/8, ::1)."""
+    name = name.strip("[]").lower()
+    if name == "localhost" or name.endswith(".localhost"):
+        return True
+    try:
+        return ipaddress.ip_address(name).is_loopback
+    except ValueError:
+        return False
+
+
+def _is_loopback_origin(origin: str) -> bool:
+    """An ``http(s)://`` origin on this machine (``localhost``, ``127.0.0.1``, ``[::1]``)."""
+    try:
+        parts = urlsplit(origin)
+        return parts.scheme in ("http", "https") and _is_loopback(parts.hostname or "")
+    except ValueError:  # a malformed origin (a bad port, say)
         return False
 
 

@@ -20,6 +20,7 @@ from ..core.limits import DEFAULT, Limits
 from ..errors import Forbidden, InternalError, LimitExceeded, LookupFailure, TooLarge, VPError
 from . import assets, heap, rest, socket
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed
+from .cors import PageOrigins
 from .guard import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
@@ -69,7 +70,8 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     app.include_router(socket.router)
     _answer_errors(app)
     mount_pages(app)
-    app.add_middleware(HostCheck, policy=access)
+    app.add_middleware(PageOrigins, policy=access)
+    app.add_middleware(HostCheck, policy=access)  # outermost: a wrong Host gets nothing
     return app
 
 

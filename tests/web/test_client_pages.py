@@ -3,13 +3,22 @@ robots appear on the server and move, and a second browser watching the scene se
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
+import socket
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import pytest
 
+from tests.conftest import free_port
+
 from .conftest import open_page, open_viewer, wait_until
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "web" / "examples"
 
 
 def _angles(server, scene: str) -> list[float]:
@@ -68,6 +77,42 @@ def test_an_example_page_builds_its_robot_on_the_server(browser, pages, server, 
         assert [round(_yaw(n["quaternion"]), 6) for n in hands] == [0.3, -0.3]
         assert {n["type"] for n in hands} == {example.split("-")[0].capitalize() + "Hand"}
         _seen_by_a_viewer(browser, pages, server, scene_name)
+
+
+@pytest.fixture
+def own_folder(tmp_path):
+    """A user's own folder of pages, served by ``python3 -m http.server`` on another
+    loopback port (its pages import the client from the server by its full address)."""
+    port = free_port()
+    process = subprocess.Popen([sys.executable, "-m", "http.server", str(port), "--bind",
+                                "127.0.0.1"], cwd=tmp_path, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            with contextlib.suppress(OSError), socket.create_connection(("127.0.0.1", port)):
+                break
+            time.sleep(0.05)
+        yield tmp_path, f"http://127.0.0.1:{port}"
+    finally:
+        process.kill()
+        process.wait()
+
+
+def test_a_page_from_the_users_own_folder_runs_as_the_servers_own_do(browser, pages, server,
+                                                                      scene_name, own_folder):
+    folder, address = own_folder
+    page_text = (EXAMPLES / "round-hand.html").read_text().replace(
+        '"/client/virtual-prosthetics.js"', f'"{server.http}/client/virtual-prosthetics.js"')
+    assert server.http in page_text  # only the import line changed
+    (folder / "hands.html").write_text(page_text)
+    page = open_page(browser, pages, f"{address}/hands.html?scene={scene_name}")
+    _wait_for_robots(server, scene_name, 2)
+    assert _moves(server, scene_name, True)
+    # its REST reads work too: the server answers its origin with CORS headers
+    scenes = page.evaluate(f"async () => (await (await fetch('{server.http}/api/scenes')).json())")
+    assert scene_name in [s["name"] for s in scenes]
+    _seen_by_a_viewer(browser, pages, server, scene_name)
 
 
 def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scene_name):

@@ -60,11 +60,16 @@ def test_each_role_needs_its_token(locked, query, allowed):
     (None, True),  # a script, not a browser
     ("https://friend.example", True),
     ("https://evil.example", False),
-    ("http://127.0.0.1:1", False),  # another port is another site
+    # a server on loopback takes pages of any loopback origin: a user's own folder
+    ("http://127.0.0.1:8080", True), ("http://localhost:5173", True), ("http://[::1]:9000", True),
+    ("http://127.0.0.1.evil.example", False), ("null", False),  # a file, a sandboxed frame
 ])
 def test_browser_pages_must_come_from_an_allowed_origin(locked, origin, allowed):
     message = first_message(locked, f"scene=a&role=viewer&token={VIEW}", origin)
     assert (message["op"] == "hello") is allowed
+    if not allowed:  # the refusal says how to allow the page
+        assert f"--allow-origin {origin}" in message["message"]
+        assert f"VP_ALLOWED_ORIGINS={origin}" in message["message"]
     own = first_message(locked, f"scene=a&role=viewer&token={VIEW}", locked.http)
     assert own["op"] == "hello"  # the server's own pages
 
@@ -171,3 +176,46 @@ def test_resume_keys_never_reach_the_log(locked):
         assert json.loads(ws.recv(timeout=10))["resume"] == key  # the same client again
     text = locked.log.read_text()
     assert "resume=***" in text and key not in text and key.split(":")[1] not in text
+
+
+@pytest.mark.parametrize("address, allowed", [
+    ("127.0.0.1", True), ("::1", True), ("localhost", True), ("0.0.0.0", False),
+    ("192.168.1.5", False)])
+def test_loopback_pages_are_allowed_only_by_a_server_on_loopback(address, allowed):
+    policy = AccessPolicy.serving(address)
+    assert policy.allows_origin("http://127.0.0.1:8080") is allowed
+    assert policy.allows_origin("http://localhost:3000") is allowed
+    assert not policy.allows_origin("https://evil.example")
+
+
+def answer_headers(server, method: str, path: str, headers: dict) -> tuple[int, dict]:
+    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=10)
+    try:
+        connection.request(method, path, headers=headers)
+        answer = connection.getresponse()
+        answer.read()
+        return answer.status, {k.lower(): v for k, v in answer.getheaders()}
+    finally:
+        connection.close()
+
+
+def test_rest_answers_pages_of_allowed_origins_with_cors_headers(locked):
+    """A page served from elsewhere reads scenes (and, with the token, may send changes);
+    a page of another site gets no CORS headers, so its browser keeps the answer from it."""
+    for origin in ("http://127.0.0.1:8080", "https://friend.example"):
+        status, headers = answer_headers(locked, "GET", f"/api/scenes?token={VIEW}",
+                                         {"Origin": origin})
+        assert status == 200 and headers["access-control-allow-origin"] == origin
+        assert "Origin" in headers["vary"]
+        status, headers = answer_headers(locked, "OPTIONS", "/api/scenes/a/import", {
+            "Origin": origin, "Access-Control-Request-Method": "POST",
+            "Access-Control-Request-Headers": "authorization, content-type"})
+        assert status == 200 and headers["access-control-allow-origin"] == origin
+        assert "authorization" in headers["access-control-allow-headers"].lower()
+    status, headers = answer_headers(locked, "GET", f"/api/scenes?token={VIEW}",
+                                     {"Origin": "https://evil.example"})
+    assert "access-control-allow-origin" not in headers
+    status, headers = answer_headers(locked, "OPTIONS", "/api/scenes/a/import", {
+        "Origin": "https://evil.example", "Access-Control-Request-Method": "POST"})
+    assert status == 400 and "access-control-allow-origin" not in headers
+
