@@ -15,7 +15,7 @@ from websockets.sync.client import connect
 from server.core.operations import Operations
 from server.core.scene import Scene
 from server.core.scene_document import encode_document, export_scene
-from tests.conftest import eventually, start_server, stop_server
+from tests.conftest import crash_server, eventually, start_server, stop_server
 
 from .ws_requests import request_all, wait_ticks
 
@@ -236,7 +236,7 @@ def test_a_scene_working_through_a_backlog_still_gives_its_figures_at_once(scene
         with contextlib.ExitStack() as stack:
             for _ in range(3):  # each may have 4 MiB of text waiting on the scene
                 ws = stack.enter_context(connect(f"{server.ws}/ws?scene={scene_name}",
-                                                 max_size=None))
+                                                 max_size=None, close_timeout=0.5))
                 me = json.loads(ws.recv(timeout=10))["client"]
                 request_all(ws, [{"op": "create", "object": f"{me}.h", "type": "EdgedHand"}])
                 text = json.dumps([{"op": "call", "object": f"{me}.h", "method": "flexFingers",
@@ -246,5 +246,7 @@ def test_a_scene_working_through_a_backlog_still_gives_its_figures_at_once(scene
             figures = server.get("/api/metrics")["scenes"][scene_name]
             assert figures["state"] == "running" and "tickMsP95" in figures  # fresh, not none
             assert figures["requests"] < 3 * 45_000  # asked and answered amid the backlog
+            crash_server(server)  # a graceful stop (or close) would wait for the backlog
     finally:
-        stop_server(server)
+        if server.process.poll() is None:
+            crash_server(server)
