@@ -196,9 +196,11 @@ def test_keep_leaves_a_scripts_robots_after_it_ends(server, scene_name):
 
 
 def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
-    from ...conftest import start_server, stop_server
+    from ...conftest import eventually, start_server, stop_server
     own = start_server("--no-demo", "--limit", "leaveGraceSeconds=1")  # the client tries 1 s
     try:
+        # scenes start from a fork server a fresh server is still warming (slow under load)
+        eventually(lambda: [s["state"] for s in own.get("/api/scenes")] == ["running"], 60)
         vp.connect(own.ws, scene=scene_name)
         vp.set_animation(lambda t: None)
         stop_server(own)
