@@ -1,6 +1,13 @@
 // The client's copy of the scene as the server describes it: node states by id, camera,
 // server time, contacts and the watched sensors' readings, kept current by the server's
 // messages (sans-I/O: it is handed messages, it never reads a socket).
+//
+// It also holds what this client's own requests will do before the server has answered
+// them (prediction.js): a predicted field is held until the answer to the
+// request that predicted it arrives. Meanwhile the server's values for that field (frames
+// and earlier answers, which do not yet include the request) are put aside; once the
+// answer is in they replace the prediction, so the mirror never stays wrong for long, and
+// never flickers back in between.
 
 import { fromWire } from './codec.js';
 
@@ -17,6 +24,7 @@ export class Mirror {
 		this.readings = new Map(); // sensor id -> {distance, touch, position, objects}
 		this.events = [];          // [kind, a, b] contact changes not yet dispatched
 		this.listeners = [];       // (kind, id, fields) for every node change
+		this.held = new Map();     // id -> {until, known, server}: see predict
 	}
 
 	// Fold one server message (snapshot, added, removed, frame) into the mirror.
@@ -25,7 +33,10 @@ export class Mirror {
 			case 'snapshot': {
 				// after a reconnection: what is still there stays (changed), the rest goes
 				const fresh = new Set(message.nodes.map((node) => node.id));
-				for (const id of [...this.nodes.keys()]) if (!fresh.has(id)) this.forget(id);
+				// (a node this client has asked for and the server not yet made stays)
+				for (const id of [...this.nodes.keys()]) {
+					if (!fresh.has(id) && this.held.get(id)?.known !== false) this.forget(id);
+				}
 				this.camera = message.camera;
 				for (const node of message.nodes) {
 					if (this.nodes.has(node.id)) this.change(node.id, node);
@@ -60,21 +71,79 @@ export class Mirror {
 		for (const id of changes.removed ?? []) this.forget(id);
 	}
 
+	// Nodes the server made (or sent again after a reconnection).
 	add(nodes) {
 		for (const node of nodes) {
-			this.nodes.set(node.id, { ...node });
-			this.emit('added', node.id, node);
+			const hold = this.held.get(node.id);
+			if (hold) hold.known = true;
+			const fresh = { ...node, ...this.divert(node.id, node) };
+			this.nodes.set(node.id, fresh);
+			this.emit('added', node.id, fresh);
 		}
 	}
 
+	// Fields of a node the server changed.
 	change(id, fields) {
+		if (!this.nodes.has(id)) return;
+		const kept = this.divert(id, fields);
+		this.set(id, Object.keys(kept).length ? Object.fromEntries(
+			Object.entries(fields).filter(([key]) => !(key in kept))) : fields);
+	}
+
+	set(id, fields) {
 		const node = this.nodes.get(id);
-		if (!node) return;
+		if (!node || !Object.keys(fields).length) return;
 		Object.assign(node, fields);
 		this.emit('changed', id, fields);
 	}
 
+	// The server's values of fields held for a prediction are put aside; returns the
+	// predicted values that stand instead.
+	divert(id, fields) {
+		const hold = this.held.get(id), node = this.nodes.get(id);
+		const kept = {};
+		if (!hold) return kept;
+		for (const key of hold.fields) {
+			if (!(key in fields)) continue;
+			hold.server[key] = fields[key];
+			if (node && key in node) kept[key] = node[key];
+		}
+		return kept;
+	}
+
+	// This client's request `until` (not yet sent or answered) will set these fields of
+	// node `id` (making the node if it is new): they are set now and held until its answer.
+	predict(id, fields, until) {
+		const node = this.nodes.get(id);
+		let hold = this.held.get(id);
+		if (!hold) this.held.set(id, hold = { until, known: Boolean(node), server: {}, fields: new Set() });
+		hold.until = Math.max(hold.until, until);
+		for (const key of Object.keys(fields)) {
+			if (hold.known && !hold.fields.has(key) && node) hold.server[key] = node[key];
+			hold.fields.add(key);
+		}
+		if (node) {
+			this.set(id, fields);
+		} else {
+			this.nodes.set(id, { id, ...fields });
+			this.emit('added', id, this.nodes.get(id));
+		}
+	}
+
+	// The server answered every request up to `id`: predictions made for them give way
+	// to what it said (a node it never made goes).
+	release(id) {
+		for (const [nodeId, hold] of this.held) {
+			if (hold.until > id) continue;
+			this.held.delete(nodeId);
+			if (!hold.known) this.forget(nodeId);
+			else this.set(nodeId, Object.fromEntries(Object.entries(hold.server).filter(
+				([key, value]) => !same(this.nodes.get(nodeId)?.[key], value))));
+		}
+	}
+
 	forget(id) {
+		this.held.delete(id);
 		if (!this.nodes.delete(id)) return;
 		this.readings.delete(id);
 		this.emit('removed', id, null);
@@ -108,13 +177,18 @@ export class Mirror {
 		}
 	}
 
-	// The parts below a robot (motors and sensors included, slots not), in tree order.
+	// The parts below a robot (motors and sensors included, slots and page meshes not),
+	// in tree order.
 	parts(robotId) {
-		return [...this.walk(robotId)].filter((n) => n.id !== robotId && n.type !== 'Slot');
+		return [...this.walk(robotId)].filter((n) => n.id !== robotId && n.type !== 'Slot' && n.type !== 'SceneMesh');
 	}
 
 	// A robot's motors in index order, as the server lists them.
 	motors(robotId) {
 		return (this.nodes.get(robotId)?.motors ?? []).map((id) => this.nodes.get(id)).filter(Boolean);
 	}
+}
+
+function same(a, b) {
+	return a === b || JSON.stringify(a) === JSON.stringify(b);
 }

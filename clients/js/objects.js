@@ -5,7 +5,6 @@
 // form, `await x.<read>Exact(…)`, answered by the server after every earlier request.
 
 import * as THREE from 'three';
-import { fromWire } from './codec.js';
 import { filled } from './lenient.js';
 import { currentSession } from './session.js';
 
@@ -148,17 +147,9 @@ export class Motor extends Part {
 		return this.node?.angle ?? this.vp.angle;
 	}
 
+	// The motor turns here at once (clamped, as the server will: prediction.js).
 	setAngle(angle) {
-		this.turnHere(angle);
 		this.call('setAngle', angle);
-	}
-
-	// Turn here at once as the server will (null and NaN ignored, the rest clamped).
-	turnHere(angle) {
-		const node = this.node;
-		if (!node || angle === null || angle === undefined || Number.isNaN(angle)) return;
-		node.angle = this.vp.angle = Math.min(fromWire(node.max), Math.max(fromWire(node.min), angle));
-		this.vp.session.turn(this);
 	}
 
 	flip(bool = true) {

@@ -12,11 +12,14 @@ export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):
 	// what an answer says its request changed; onWarning(text): remarks in answers and the
 	// scene's warnings;
+	// onAnswered(id): every request up to `id` is answered and its changes told;
 	// onRefused(ids): the objects a refused call or creation named (what was done here
 	// at once for them did not happen on the server).
-	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {}, onRefused = () => {} } = {}) {
+	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {}, onRefused = () => {},
+		onAnswered = () => {} } = {}) {
 		this.onMessage = onMessage;
 		this.onChanges = onChanges;
+		this.onAnswered = onAnswered;
 		this.onWarning = onWarning;
 		this.onRefused = onRefused;
 		this.nextId = 1;
@@ -66,6 +69,7 @@ export class ProtocolCore {
 		this.unanswered.delete(message.id);
 		const waiter = this.waiting.get(message.id);
 		this.waiting.delete(message.id);
+		this.onAnswered(message.id);
 		if (message.op === 'error') {
 			const error = ServerError.fromWire(message);
 			if (targets?.length) this.onRefused(targets);

@@ -59,15 +59,10 @@ export class Robot extends SceneObject {
 		this.call('addGUI', title);
 	}
 
-	// The objects of the nodes select(mirror) gives. The server builds and orders a robot's
-	// parts, so a list taken before it has answered this client's earlier requests (the
-	// robot built in the same task, as 1.0 pages do: `motors = hand.getMotors()`) fills
-	// in when it has; a list taken later is the robot as it is then.
+	// The objects of the nodes select(mirror) gives: the robot as it is now, this client's
+	// requests included (the mirror predicts them; prediction.js).
 	listed(select) {
-		const { core, mirror } = this.vp.session;
-		const list = this.objectsOf(select(mirror));
-		if (core.unanswered.size) core.settle().then(() => list.splice(0, list.length, ...this.objectsOf(select(mirror))));
-		return list;
+		return this.objectsOf(select(this.vp.session.mirror));
 	}
 
 	objectsOf(nodes) {
@@ -99,13 +94,10 @@ export class Robot extends SceneObject {
 	}
 
 	setAngle(index, angle) {
-		this.objectsOf(this.vp.session.mirror.motors(this.vp.id))[index]?.turnHere(angle);
 		this.call('setAngle', index, angle);
 	}
 
 	setAngles(...angles) {
-		const motors = this.objectsOf(this.vp.session.mirror.motors(this.vp.id));
-		angles.forEach((angle, index) => motors[index]?.turnHere(angle));
 		this.call('setAngles', ...angles);
 	}
 }

@@ -10,6 +10,7 @@
 import * as THREE from 'three';
 import { ConnectionLost } from './errors.js';
 import { Mirror } from './mirror.js';
+import { Prediction } from './prediction.js';
 import { ProtocolCore } from './protocol.js';
 
 const AXES = { x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) };
@@ -51,7 +52,9 @@ export class Session {
 			onChanges: (changes) => this.mirror.applyChanges(changes),
 			onWarning,
 			onRefused: (ids) => this.unsay(ids),
+			onAnswered: (id) => this.mirror.release(id),
 		});
+		this.prediction = null;          // from hello on (it knows the slot counts)
 		this.ready = new Promise((resolve, reject) => { this.welcome = { resolve, reject }; });
 		this.ended = new Promise((resolve) => { this.end = resolve; });   // resolves with why
 	}
@@ -65,7 +68,10 @@ export class Session {
 	}
 
 	heard(message) {
-		if (message.op === 'hello') this.hello = message;
+		if (message.op === 'hello') {
+			this.hello = message;
+			this.prediction = new Prediction(this.mirror, { slots: message.slots, classes: this.classes });
+		}
 		else if (message.op === 'error' && !this.hello) this.welcome.reject(this.core.deferred.shift());
 		else this.mirror.apply(message);
 		if (message.op === 'snapshot') this.welcome.resolve(this);
@@ -79,6 +85,7 @@ export class Session {
 	reconnected(sentBefore) {
 		this.core.reconnected(new ConnectionLost('the connection dropped before a request was '
 			+ 'answered (it may or may not have been applied); reconnected'), sentBefore);
+		this.mirror.release(sentBefore - 1);   // lost requests: the snapshot says what holds
 	}
 
 	// The connection closed: waiters hear it, later requests throw.
@@ -97,7 +104,8 @@ export class Session {
 		return `${this.clientId}.${this.nextName++}`;
 	}
 
-	// A new object made by this client: registered, then created on the server.
+	// A new object made by this client: registered, then created on the server (and in
+	// the mirror at once, as the server will make it: send).
 	make(object, type, args) {
 		const id = this.newId();
 		this.register(object, id, type);
@@ -147,7 +155,10 @@ export class Session {
 			this.place(object, fields);
 			return;
 		}
-		if (POSED.some((field) => field in fields)) {
+		if (Object.keys(fields).length === 1 && 'angle' in fields) {   // a motor turned: only that
+			object.vp.angle = fields.angle;
+			this.turn(object);
+		} else if (POSED.some((field) => field in fields)) {
 			this.pose(object, this.mirror.nodes.get(id));
 		}
 		if ('parent' in fields || 'children' in fields) this.place(object, this.mirror.nodes.get(id));
@@ -252,11 +263,13 @@ export class Session {
 		return this.send({ op: 'call', object, method, args: args.map((a) => this.arg(a)) }, { wait });
 	}
 
-	// Queue a request; it leaves with the others of this task. With `wait`, a promise of
-	// its result.
+	// Queue a request; it leaves with the others of this task. What it will do to the
+	// tree and the motors shows in the mirror at once (prediction.js), as 1.0 did it at
+	// once. With `wait`, a promise of its result.
 	send(message, { wait = false } = {}) {
 		if (this.closed) throw new ConnectionLost(this.closed);
 		this.core.raiseDeferred();
+		this.prediction?.request(message, this.core.nextId);
 		const { text, answer } = this.core.request(message, { wait });
 		this.outbox.push(text);
 		if (this.outbox.length === 1 && !this.flushing) queueMicrotask(() => this.flush());

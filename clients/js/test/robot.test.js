@@ -1,4 +1,5 @@
-// A robot's lists as 1.0 pages take them: right after building, in the same task.
+// A robot's reads as 1.0 pages make them: right after building, in the same task, with
+// the answers 1.0 gave at once (the server agrees once it has answered).
 
 import assert from 'node:assert/strict';
 import test from 'node:test';
@@ -6,36 +7,66 @@ import * as Prosthetic from '../virtual-prosthetics.js';
 
 const URL_ = process.env.VP_URL;
 
-test('lists taken right after building fill in once the server has built the robot', { skip: !URL_ && 'needs VP_URL' }, async () => {
+test('lists taken right after building are the robot at once', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	await Prosthetic.connect({ url: URL_, scene: `js-lists-${process.pid}` });
 	try {
 		const hand = new Prosthetic.EdgedHand(true);
 		const motors = hand.getMotors();                 // the server has not answered yet
-		const sensors = hand.getSensors();
+		assert.equal(motors.length, 20);                  // 5 fingers × (spread + 3 flex)
+		assert.ok(motors[0] instanceof Prosthetic.MotorX, 'the thumb spreads first');
+		assert.deepEqual(hand.getSensors(), []);
 		const robot = new Prosthetic.Robot();
 		const base = new Prosthetic.MotorY(-1, 1);
 		const sensor = new Prosthetic.Sensor();
 		robot.attachChain(base, new Prosthetic.EdgedFinger(), new Prosthetic.MotorZ(), sensor);
 		const parts = robot.getParts();
-		const chain = robot.getMotors();
-		await Prosthetic.sync();
-		assert.equal(motors.length, 20);                  // 5 fingers × (spread + 3 flex)
-		assert.ok(motors[0] instanceof Prosthetic.MotorX, 'the thumb spreads first');
-		assert.deepEqual(motors, hand.getMotors());
-		assert.deepEqual(sensors, []);
 		assert.equal(parts.length, 4);
 		assert.equal(parts[0], base);
 		assert.equal(parts[3], sensor);
-		assert.deepEqual(chain.map((m) => m.constructor.name), ['MotorY', 'MotorZ']);
-		chain[1].setAngle(0.5);                          // the filled-in objects are the live ones
-		assert.equal(robot.getAngle(1), 0.5);
-		// a list taken once every request is answered is the robot as it is then
-		await Prosthetic.sync();
-		const now = robot.getMotors();
+		assert.deepEqual(robot.getMotors().map((m) => m.constructor.name), ['MotorY', 'MotorZ']);
+		assert.deepEqual(robot.getSensors(), [sensor]);
 		new Prosthetic.MotorX().attachToSlot(sensor);
-		await Prosthetic.sync();
-		assert.equal(now.length, 2);
 		assert.equal(robot.getMotors().length, 3);
+		await Prosthetic.sync();
+		assert.deepEqual(hand.getMotors(), motors);
+		assert.deepEqual(robot.getParts().slice(0, 4), parts);
+		assert.deepEqual((await robot.getMotorsExact()).map((m) => m.vp.id), robot.getMotors().map((m) => m.vp.id));
+	} finally {
+		Prosthetic.close();
+	}
+});
+
+// The manual's Step 5, as a Node script writes it.
+class Digger extends Prosthetic.Robot {
+	constructor(speed) {
+		super();
+		this.speed = speed;
+		this.attachChain(
+			new Prosthetic.MotorZ(-0.7, 0.7, 0, 0.2, 0.6),
+			new Prosthetic.EdgedFinger(1, 1, 0.1),
+			new Prosthetic.MotorZ(-1.6, 0, 0, 0.4, 0.3),
+			new Prosthetic.EdgedFinger(2),
+			new Prosthetic.MotorZ(-1.6, 0, 0, 0.4, 0.2),
+			new Prosthetic.EdgedFinger(0.7, 0.1),
+		);
+	}
+}
+
+test('angles set right after building read back clamped at once, as the server clamps them', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	await Prosthetic.connect({ url: URL_, scene: `js-angles-${process.pid}` });
+	try {
+		const robot = new Digger(2);
+		assert.equal(robot.getMotors().length, 3);
+		robot.setAngles(5, 5, 5);
+		assert.equal(robot.getAngle(0), 0.7);
+		assert.deepEqual(robot.getAngles(), [0.7, 0, 0]);
+		robot.setAngle(1, -9);
+		robot.getMotors()[2].setAngle(-0.5);
+		robot.setAngles(null, undefined, NaN);            // left as they are
+		assert.deepEqual(robot.getAngles(), [0.7, -1.6, -0.5]);
+		await Prosthetic.sync();
+		assert.deepEqual(robot.getAngles(), [0.7, -1.6, -0.5]);
+		assert.deepEqual(await robot.getAnglesExact(), [0.7, -1.6, -0.5]);
 	} finally {
 		Prosthetic.close();
 	}

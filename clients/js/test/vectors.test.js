@@ -1,10 +1,15 @@
 // The shared protocol vectors replayed from Node against a real server (VP_URL): each
-// step's text is sent as it is, and the answers must match the vector's pattern.
+// step's text is sent as it is, and the answers must match the vector's pattern. What the
+// client predicts of each step (prediction.js: new nodes, attachments, motor order,
+// clamped angles) must be what the server's answers say.
 
 import assert from 'node:assert/strict';
 import { readFileSync, readdirSync } from 'node:fs';
 import test from 'node:test';
 import WebSocket from 'ws';
+import { Mirror } from '../mirror.js';
+import { Prediction } from '../prediction.js';
+import { CLASSES } from '../runtime.js';
 
 const DIR = new URL('../../../protocol/vectors/', import.meta.url);
 const URL_ = process.env.VP_URL;
@@ -59,16 +64,53 @@ async function open(scene) {
 	await new Promise((resolve, reject) => { socket.once('open', resolve); socket.once('error', reject); });
 	const next = () => (answers.length ? Promise.resolve(answers.shift()) : new Promise((resolve) => waiting.push(resolve)));
 	while (!hello) await new Promise((resolve) => setTimeout(resolve, 5));
-	return { socket, client: hello.client, next };
+	return { socket, client: hello.client, slots: hello.slots, next };
+}
+
+// The requests of a step's text (those inside a batch too), each with the id it is
+// answered under.
+function requests(text) {
+	let sent;
+	try {
+		sent = JSON.parse(text);
+	} catch {
+		return [];
+	}
+	const out = [];
+	for (const message of [sent].flat()) {
+		if (message?.op === 'batch') out.push(...(message.ops ?? []).map((op) => ({ ...op, id: message.id })));
+		else if (message?.id != null) out.push(message);
+	}
+	return out;
+}
+
+// A mirror as `truth` is now, with what the client would predict of `messages` held in it.
+function predicted(truth, slots, messages) {
+	const guess = new Mirror();
+	for (const [id, node] of truth.nodes) guess.nodes.set(id, structuredClone(node));
+	const prediction = new Prediction(guess, { slots, classes: CLASSES });
+	for (const message of messages) prediction.request(message, message.id);
+	return guess;
+}
+
+// Every field the guess predicted, against the server's.
+function comparePredictions(guess, truth, number) {
+	for (const [id, hold] of guess.held) {
+		for (const field of hold.fields) {
+			assert.deepEqual(guess.nodes.get(id)?.[field], truth.nodes.get(id)?.[field], `step ${number}: ${id}.${field} predicted`);
+		}
+	}
 }
 
 for (const file of files) {
 	test(`vectors ${file} from Node`, { skip: !URL_ && 'needs VP_URL' }, async () => {
-		const { socket, client, next } = await open(`js-vectors-${file.replace('.json', '')}-${process.pid}`);
+		const { socket, client, slots, next } = await open(`js-vectors-${file.replace('.json', '')}-${process.pid}`);
+		const truth = new Mirror();   // what the server's answers say
 		try {
 			const { steps } = JSON.parse(readFileSync(new URL(file, DIR)));
 			for (const [number, step] of steps.entries()) {
 				const text = (step.sendText ?? JSON.stringify(step.send)).replaceAll('{client}', client);
+				const guess = predicted(truth, slots, requests(text));
 				const pingId = 10000 + number;
 				socket.send(text);
 				socket.send(JSON.stringify({ op: 'ping', id: pingId }));
@@ -76,6 +118,8 @@ for (const file of files) {
 				for (let answer = await next(); !(answer.op === 'ok' && answer.id === pingId); answer = await next()) answers.push(answer);
 				const problem = mismatch(substitute(step.expect, client), answers);
 				assert.equal(problem, null, `step ${number}: ${problem}`);
+				for (const answer of answers) if (answer.changes) truth.applyChanges(answer.changes);
+				if (answers.every((answer) => answer.op === 'ok')) comparePredictions(guess, truth, number);
 			}
 		} finally {
 			socket.close();
