@@ -38,6 +38,8 @@ export class Prediction {
 			case 'addChain': this.chained(args, until); break;
 			case 'setAngle': this.turned(id, args, until); break;
 			case 'setAngles': this.turned(id, args.map((angle, index) => [index, angle]), until); break;
+			case 'flexFinger': case 'flexFingers': case 'spreadFinger': case 'spreadFingers':
+				this.turn(this.fingerTurns(id, message.method, args), until);
 		}
 	}
 
@@ -60,13 +62,37 @@ export class Prediction {
 	turned(id, args, until) {
 		const node = this.mirror.nodes.get(id);
 		if (!node) return;
-		const turns = node.motors === undefined ? [[id, args[0]]]
-			: (Array.isArray(args[0]) ? args : [args]).map(([index, angle]) => [node.motors[index], angle]);
+		this.turn(node.motors === undefined ? [[id, args[0]]]
+			: (Array.isArray(args[0]) ? args : [args]).map(([index, angle]) => [node.motors[index], angle]), until);
+	}
+
+	// [[motor id, angle], …]: each motor to its angle, clamped; null and NaN are left out.
+	turn(turns, until) {
 		for (const [motorId, angle] of turns) {
 			const motor = this.mirror.nodes.get(motorId);
 			if (!motor || motor.axis === undefined || typeof angle !== 'number' || Number.isNaN(angle)) continue;
 			this.mirror.predict(motorId, { angle: Math.min(fromWire(motor.max), Math.max(fromWire(motor.min), angle)) }, until);
 		}
+	}
+
+	// A hand's finger method (thumb 0 … little 4): the motors the hand was built with, those
+	// still in it, each to minus its angle (server/core/hands.py). A finger index the
+	// server refuses turns nothing.
+	fingerTurns(id, method, [first, second]) {
+		const node = this.mirror.nodes.get(id), hand = SKELETONS[node?.type];
+		if (!hand) return [];
+		const { spread, flex, thumb: [offset, scale], shares } = hand.fingers;
+		const finger = Number.isInteger(first) && first >= 0 && first < flex.length;
+		const turns = {
+			flexFinger: () => (finger ? flex[first].map((index) => [index, second]) : []),
+			flexFingers: () => flex.flat().map((index) => [index, first]),
+			spreadFinger: () => (finger ? [[spread[first], second]] : []),
+			spreadFingers: () => [...(second ? [[spread[0], offset + scale * first]] : []),
+				...shares.map((share, k) => [spread[k + 1], share * first])],
+		}[method]();
+		const built = hand.left.filter(([, type]) => this.isMotor(type)).map(([suffix]) => id + suffix);
+		return turns.filter(([index]) => this.root(built[index]) === id)
+			.map(([index, angle]) => [built[index], typeof angle === 'number' ? -angle : null]);
 	}
 
 	// A hand and its parts; isLeft is true unless given as false (the server's default).

@@ -180,9 +180,9 @@ def edged_spread_motor(finger: int) -> tuple[float, float, float, float, float]:
     return (-span, span, 0.0, 0.3, 0.1)
 
 
-# spreadFingers(a): thumb angle (when included) and the other four fingers' angles.
-SPREAD_THUMB = {"EdgedHand": lambda a: -1 + 3 * a, "RoundHand": lambda a: -3 * a,
-                "AnthroHand": lambda a: 0.5 - 2 * a}
+# spreadFingers(a): the thumb's angle (when included) is offset + scale * a, the other
+# four fingers' angles are share * a.
+SPREAD_THUMB = {"EdgedHand": (-1.0, 3.0), "RoundHand": (0.0, -3.0), "AnthroHand": (0.5, -2.0)}
 SPREAD_FINGERS = (1.0, 0.3, -0.3, -1.0)
 
 # Round hand: (motor type, min, max, def, width, height, flip when left) of each spread

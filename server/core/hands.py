@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any
 
 from ..errors import OutOfRange
 from . import figures
@@ -27,7 +27,7 @@ class Hand(Robot):
     hand method never turns a motor of another finger (or of another robot).
     """
 
-    spread_thumb: Callable[[float], float] = staticmethod(lambda a: a)
+    thumb_spread: tuple[float, float] = (0.0, 1.0)  # the thumb's spread: offset + scale * angle
 
     def __init__(self, scene: Scene, node_id: str, is_left: bool = True) -> None:
         super().__init__(scene, node_id)
@@ -82,7 +82,8 @@ class Hand(Robot):
 
     def spread_fingers(self, angle: float, include_thumb: bool = False) -> None:
         """Manual ``spreadFingers(angle, includeThumb=false)``."""
-        turns = [(self.spread_index(0), self.spread_thumb(angle))] if include_thumb else []
+        offset, scale = self.thumb_spread
+        turns = [(self.spread_index(0), offset + scale * angle)] if include_thumb else []
         turns += [(self.spread_index(finger), share * angle)
                   for finger, share in enumerate(figures.SPREAD_FINGERS, start=1)]
         self._turn(turns)
@@ -98,7 +99,7 @@ class EdgedHand(Hand):
     """Manual ``EdgedHand(isLeft)``: an edged palm with five three-segment fingers."""
 
     type_name = "EdgedHand"
-    spread_thumb = staticmethod(figures.SPREAD_THUMB["EdgedHand"])
+    thumb_spread = figures.SPREAD_THUMB["EdgedHand"]
 
     def __init__(self, scene: Scene, node_id: str, is_left: bool = True) -> None:
         super().__init__(scene, node_id, is_left)
@@ -126,7 +127,7 @@ class RoundHand(Hand):
     """Manual ``RoundHand(isLeft)``: a round palm with five three-segment round fingers."""
 
     type_name = "RoundHand"
-    spread_thumb = staticmethod(figures.SPREAD_THUMB["RoundHand"])
+    thumb_spread = figures.SPREAD_THUMB["RoundHand"]
     palm_type: type[RoundPalm] = RoundPalm
     palm_file = "round-palm.glb"
 
@@ -182,7 +183,7 @@ class AnthroHand(RoundHand):
     """Manual ``AnthroHand(isLeft)``: an anthropomorphic palm and thumb, round fingers."""
 
     type_name = "AnthroHand"
-    spread_thumb = staticmethod(figures.SPREAD_THUMB["AnthroHand"])
+    thumb_spread = figures.SPREAD_THUMB["AnthroHand"]
     palm_type = AnthroPalm
     palm_file = "anthro-palm.glb"
 

@@ -15,6 +15,9 @@ test('lists taken right after building are the robot at once', { skip: !URL_ && 
 		assert.equal(motors.length, 20);                  // 5 fingers × (spread + 3 flex)
 		assert.ok(motors[0] instanceof Prosthetic.MotorX, 'the thumb spreads first');
 		assert.deepEqual(hand.getSensors(), []);
+		hand.flexFingers(0.5);                            // the hand's own methods turn it at once too
+		hand.spreadFinger(0, 2);
+		assert.deepEqual(hand.getAngles().slice(0, 4), [-1, -0.5, -0.5, -0.5]);
 		const robot = new Prosthetic.Robot();
 		const base = new Prosthetic.MotorY(-1, 1);
 		const sensor = new Prosthetic.Sensor();
