@@ -99,16 +99,35 @@ def own_folder(tmp_path):
         process.wait()
 
 
+# what robot-reads.html prints: 1.0's answers, read in the same task as the building
+READS = ["crane: 4 motors, 8 parts", "crane angle 0 after setAngles(5, 5, 5, 5): 1",
+         "crane at -0.3, 0, 0", "hand: 20 motors, 36 parts"]
+
+
+def check_reads_page_robots(server, scene: str) -> None:
+    """The crane and the hand of robot-reads.html are where its calls put them, and move."""
+    _wait_for_robots(server, scene, 2)
+    crane, hand = sorted(server.robots(scene), key=lambda n: n["type"] != "Robot")
+    assert crane["position"] == [-0.3, 0, 0]        # y and z left out: kept
+    assert round(abs(_yaw(crane["quaternion"])), 9) == round(math.pi, 9)   # z left out
+    names = {n["id"]: n.get("name") for n in server.nodes(scene)}
+    assert [names[m] for m in crane["motors"]] == [f"joint {i}" for i in range(4)]
+    assert hand["position"] == [2, 0.5, 0] and hand["type"] == "EdgedHand"
+    assert _moves(server, scene, True)
+
+
 def test_a_page_from_the_users_own_folder_runs_as_the_servers_own_do(browser, pages, server,
                                                                       scene_name, own_folder):
     folder, address = own_folder
-    page_text = (EXAMPLES / "round-hand.html").read_text().replace(
+    page_text = (EXAMPLES / "robot-reads.html").read_text().replace(
         '"/client/virtual-prosthetics.js"', f'"{server.http}/client/virtual-prosthetics.js"')
     assert server.http in page_text  # only the import line changed
-    (folder / "hands.html").write_text(page_text)
-    page = open_page(browser, pages, f"{address}/hands.html?scene={scene_name}")
-    _wait_for_robots(server, scene_name, 2)
-    assert _moves(server, scene_name, True)
+    (folder / "reads.html").write_text(page_text)
+    page = open_page(browser, pages, f"{address}/reads.html?scene={scene_name}")
+    wait_until(page, "(n) => document.getElementById('reads').textContent.trim().split('\\n')"
+               ".length === n", len(READS), timeout=30_000)
+    assert page.inner_text("#reads").strip().split("\n") == READS
+    check_reads_page_robots(server, scene_name)
     # its REST reads work too: the server answers its origin with CORS headers
     scenes = page.evaluate(f"async () => (await (await fetch('{server.http}/api/scenes')).json())")
     assert scene_name in [s["name"] for s in scenes]
