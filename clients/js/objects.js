@@ -238,8 +238,12 @@ export class GLTFPart extends Part {
 		if (filename !== ARGS) this.whenMade(callback);
 	}
 
+	// callback(part) once the server has answered the creation, if it made the part (a
+	// refusal is thrown by the page's next call, as every other one).
 	whenMade(callback) {
-		if (typeof callback === 'function') this.vp.session.sync().then(() => callback(this));
+		if (typeof callback !== 'function') return;
+		const { session, id } = this.vp;
+		session.core.settle().then(() => { if (session.mirror.nodes.has(id)) callback(this); });
 	}
 
 	recolor(fromColor, toColor, eps) {

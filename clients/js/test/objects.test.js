@@ -1,5 +1,6 @@
-// Parts' contact callbacks, as the manual's `class MyPart extends Part` example overrides
-// them: each runs once per contact change, in order, with the other part's object.
+// Parts' callbacks: contacts, as the manual's `class MyPart extends Part` example overrides
+// them (each runs once per contact change, in order, with the other part's object), and
+// a mesh part's callback once it is made.
 
 import assert from 'node:assert/strict';
 import test from 'node:test';
@@ -51,6 +52,24 @@ test('beginContact and endContact run once per contact change, in order', { skip
 		assert.equal(box.log.length, 4, 'nothing more changed');
 		assert.equal(finger.hearsContacts, false);
 		assert.equal(quiet.hearsContacts, false);
+	} finally {
+		Prosthetic.close();
+	}
+});
+
+test('a mesh part\'s callback runs once it is made, and not for a file the server refuses', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	await Prosthetic.connect({ url: URL_, scene: `js-mesh-callback-${process.pid}` });
+	try {
+		const made = [];
+		const bad = new Prosthetic.GLTFPart('models/mine.glb', 1, (part) => made.push(part));
+		const good = new Prosthetic.RoundFinger('round-finger-8.glb', 0.8, (part) => made.push(part));
+		assert.ok(await until(() => made.length === 1));
+		assert.deepEqual(made, [good]);
+		await run(0.2);
+		assert.deepEqual(made, [good]);
+		// the refusal is the page's next call's error, not an unhandled rejection
+		await assert.rejects(Prosthetic.sync(), (error) => error.code === 'forbidden' && /models\/mine.glb/.test(error.message));
+		assert.equal(bad.parent, null);
 	} finally {
 		Prosthetic.close();
 	}
