@@ -87,8 +87,8 @@ export class Prediction {
 			flexFinger: () => (finger ? flex[first].map((index) => [index, second]) : []),
 			flexFingers: () => flex.flat().map((index) => [index, first]),
 			spreadFinger: () => (finger ? [[spread[first], second]] : []),
-			spreadFingers: () => [...(second ? [[spread[0], offset + scale * first]] : []),
-				...shares.map((share, k) => [spread[k + 1], share * first])],
+			spreadFingers: () => (typeof first !== 'number' ? [] : [...(second ? [[spread[0], offset + scale * first]] : []),
+				...shares.map((share, k) => [spread[k + 1], share * first])]),
 		}[method]();
 		const built = hand.left.filter(([, type]) => this.isMotor(type)).map(([suffix]) => id + suffix);
 		return turns.filter(([index]) => this.root(built[index]) === id)
@@ -116,6 +116,8 @@ export class Prediction {
 			if (nodes.get(slot).parent !== parentId && !this.below(parentId, slot)) this.link(slot, parentId, until);
 		} else if (Number.isInteger(slot)) {
 			target = this.numberedSlots(parentId)[slot] ?? parentId;
+		} else {
+			return;   // the server refuses it
 		}
 		if (target === partId || this.below(target, partId)) return;   // the server refuses a cycle
 		this.link(partId, target, until);

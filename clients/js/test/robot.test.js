@@ -39,26 +39,20 @@ test('lists taken right after building are the robot at once', { skip: !URL_ && 
 	}
 });
 
-// The manual's Step 5, as a Node script writes it.
+// A robot of the manual's Step 5: three motors of these ranges, a finger after each.
 class Digger extends Prosthetic.Robot {
-	constructor(speed) {
+	constructor() {
 		super();
-		this.speed = speed;
-		this.attachChain(
-			new Prosthetic.MotorZ(-0.7, 0.7, 0, 0.2, 0.6),
-			new Prosthetic.EdgedFinger(1, 1, 0.1),
-			new Prosthetic.MotorZ(-1.6, 0, 0, 0.4, 0.3),
-			new Prosthetic.EdgedFinger(2),
-			new Prosthetic.MotorZ(-1.6, 0, 0, 0.4, 0.2),
-			new Prosthetic.EdgedFinger(0.7, 0.1),
-		);
+		for (const [min, max] of [[-0.7, 0.7], [-1.6, 0], [-1.6, 0]]) {
+			this.addChain(this.getParts().at(-1) ?? this, new Prosthetic.MotorZ(min, max), new Prosthetic.EdgedFinger());
+		}
 	}
 }
 
 test('angles set right after building read back clamped at once, as the server clamps them', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	await Prosthetic.connect({ url: URL_, scene: `js-angles-${process.pid}` });
 	try {
-		const robot = new Digger(2);
+		const robot = new Digger();
 		assert.equal(robot.getMotors().length, 3);
 		robot.setAngles(5, 5, 5);
 		assert.equal(robot.getAngle(0), 0.7);
