@@ -232,6 +232,7 @@ export class EdgedPalm extends Part {
 // 1.0 ran it once the file had loaded).
 export class GLTFPart extends Part {
 	static vpType = 'GLTFPart';
+	static vpFileArgument = 0;   // which creation argument names the mesh file (session.js)
 
 	constructor(filename, length, callback) {
 		super(...forward(filename, length, [filename, length]));
@@ -259,6 +260,7 @@ export class RoundFinger extends GLTFPart {
 function handedPart(type) {
 	return named(type, class extends GLTFPart {
 		static vpType = type;
+		static vpFileArgument = 1;
 
 		constructor(left, filename, length, callback) {
 			super(...forward(left, filename, [left, filename, length]));

@@ -8,6 +8,7 @@ import * as objects from './objects.js';
 import * as robots from './robot.js';
 import { Sensor } from './sensor.js';
 import { currentSession, setCurrentSession } from './session.js';
+import { meshFilesFor } from './mesh_files.js';
 import { PageMeshes } from './meshes.js';
 import { openSession } from './transport.js';
 
@@ -48,6 +49,7 @@ export async function connect({ url, scene: name = 'default', role = 'controller
 	const key = token ?? globalThis.process?.env?.VP_TOKEN ?? null;
 	const session = await openSession(sceneUrl(server, { scene: name, role, token: key, keep }), CLASSES, onMessage);
 	session.meshes = new PageMeshes(session, () => [scene, session.root]);
+	session.meshFiles = meshFilesFor(server.replace(/^ws/, 'http'), key);
 	setCurrentSession(session);
 	keepSyncing(session);
 	if (!IN_BROWSER) closeOnSignals();

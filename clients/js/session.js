@@ -8,6 +8,7 @@
 // (`part.position.x = …`) have been compared with what the server last knew.
 
 import * as THREE from 'three';
+import { encode } from './codec.js';
 import { ConnectionLost } from './errors.js';
 import { Mirror } from './mirror.js';
 import { Prediction } from './prediction.js';
@@ -42,7 +43,8 @@ export class Session {
 		this.objects = new Map();        // id -> Object3D
 		this.root = new THREE.Group();   // objects without a parent on the server
 		this.nextName = 1;
-		this.outbox = [];
+		this.outbox = [];                // texts, or {text} entries (null until known: sendLater)
+		this.meshFiles = null;           // a page's own mesh files (mesh_files.js), once connected
 		this.flushing = false;
 		this.listeners = [];             // (message) for every server message not an answer
 		this.mirror = new Mirror({ wants: (id) => this.hearsContacts(id) });
@@ -105,12 +107,19 @@ export class Session {
 	}
 
 	// A new object made by this client: registered, then created on the server (and in
-	// the mirror at once, as the server will make it: send).
+	// the mirror at once, as the server will make it: send). A mesh part made from a file
+	// of the page's own is created once the file is uploaded (mesh_files.js).
 	make(object, type, args) {
 		const id = this.newId();
 		this.register(object, id, type);
 		object.vp.slots = this.hello.slots[type] ?? 0;
-		this.send({ op: 'create', object: id, type, args: trimmed(args.map((a) => this.arg(a))) });
+		const message = { op: 'create', object: id, type, args: trimmed(args.map((a) => this.arg(a))) };
+		const at = object.constructor.vpFileArgument, file = message.args[at];
+		if (typeof file !== 'string' || !this.meshFiles) return void this.send(message);
+		this.sendLater(message, this.meshFiles.nameFor(file).then((name) => {
+			message.args[at] = name;
+			return message;
+		}));
 	}
 
 	register(object, id, type) {
@@ -271,9 +280,28 @@ export class Session {
 		this.core.raiseDeferred();
 		this.prediction?.request(message, this.core.nextId);
 		const { text, answer } = this.core.request(message, { wait });
-		this.outbox.push(text);
-		if (this.outbox.length === 1 && !this.flushing) queueMicrotask(() => this.flush());
+		this.queue(text);
 		return answer;
+	}
+
+	// Queue a request whose final form `ready` gives later: it and every request after
+	// it wait here until then, so the server still takes them in order.
+	sendLater(message, ready) {
+		if (this.closed) throw new ConnectionLost(this.closed);
+		this.core.raiseDeferred();
+		this.prediction?.request(message, this.core.nextId);
+		const { id } = this.core.request(message);
+		const entry = { text: null };
+		this.queue(entry);
+		ready.then((final) => {
+			entry.text = encode({ ...final, id });
+			this.flush();
+		});
+	}
+
+	queue(entry) {
+		this.outbox.push(entry);
+		if (this.outbox.length === 1 && !this.flushing) queueMicrotask(() => this.flush());
 	}
 
 	// Send the transforms written directly and every queued request, as few texts as fit.
@@ -285,7 +313,8 @@ export class Session {
 		} finally {
 			this.flushing = false;
 		}
-		const texts = this.outbox.splice(0);
+		const waiting = this.outbox.findIndex((entry) => entry.text === null);
+		const texts = (waiting < 0 ? this.outbox.splice(0) : this.outbox.splice(0, waiting)).map((entry) => entry.text ?? entry);
 		let group = [], bytes = 2;
 		for (const text of texts) {
 			if (group.length && (bytes + text.length > TEXT_BYTES || group.length >= this.maxPerText)) {

@@ -19,6 +19,7 @@ from tests.conftest import free_port
 from .conftest import open_page, open_viewer, wait_until
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "web" / "examples"
+ASSETS = EXAMPLES.parents[1] / "assets" / "gltf"
 
 
 def _angles(server, scene: str) -> list[float]:
@@ -132,6 +133,41 @@ def test_a_page_from_the_users_own_folder_runs_as_the_servers_own_do(browser, pa
     scenes = page.evaluate(f"async () => (await (await fetch('{server.http}/api/scenes')).json())")
     assert scene_name in [s["name"] for s in scenes]
     _seen_by_a_viewer(browser, pages, server, scene_name)
+
+
+# a 1.0 page of a user's own, with a mesh file of its own beside it
+OWN_MESH_PAGE = """<!DOCTYPE html><body><script type="module">
+import * as Prosthetic from "SERVER/client/virtual-prosthetics.js";
+var robot = new Prosthetic.Robot;
+robot.attachChain( new Prosthetic.MotorZ( -1, 1 ),
+	new Prosthetic.RoundFinger( "meshes/gripper.glb", 0.8, function( part ) { window.loaded = part; } ) );
+Prosthetic.setAnimation( function( t ) { robot.setAngles( Math.sin( 3*t ) ); } );
+</script></body>"""
+
+
+MESH_DRAWN = """(id) => { let drawn = false;
+    window.VP?.objects.get(id)?.userData.shape?.traverse((o) => { drawn ||= o.isMesh; });
+    return drawn; }"""
+
+
+def test_a_pages_own_mesh_file_is_uploaded_and_drawn(browser, pages, server, scene_name,
+                                                     own_folder):
+    folder, address = own_folder
+    (folder / "meshes").mkdir()
+    (folder / "meshes" / "gripper.glb").write_bytes((ASSETS / "round-finger-8.glb").read_bytes())
+    (folder / "mesh.html").write_text(OWN_MESH_PAGE.replace("SERVER", server.http))
+    page = open_page(browser, pages, f"{address}/mesh.html?scene={scene_name}")
+    deadline = time.monotonic() + 20
+    while not (fingers := [n for n in server.nodes(scene_name) if n["type"] == "RoundFinger"]):
+        assert time.monotonic() < deadline, "the page's finger was never made"
+        time.sleep(0.2)
+    finger = fingers[0]
+    assert finger["geometry"]["url"].startswith("/api/assets/")   # the page's file, uploaded
+    wait_until(page, "() => window.loaded !== undefined")         # its callback ran
+    assert _moves(server, scene_name, True)
+    # drawn from the server's copy in the page itself (not the page's site) and in a viewer
+    for drawing in (page, open_viewer(browser, pages, server, f"scene={scene_name}")):
+        wait_until(drawing, MESH_DRAWN, finger["id"], timeout=20_000)
 
 
 def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scene_name):

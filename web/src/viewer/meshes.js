@@ -22,9 +22,10 @@ export function meshesLoading() {
 }
 
 // Each mesh of a file as [full, reduced] geometries (the same one twice when small).
+// The server's paths are read from the server, whoever served the page.
 function load(url) {
 	if (!files.has(url)) {
-		files.set(url, loader.loadAsync(url).then((gltf) => {
+		files.set(url, loader.loadAsync(new URL(url, import.meta.url).href).then((gltf) => {
 			const geometries = [];
 			gltf.scene.updateMatrixWorld(true);
 			gltf.scene.traverse((child) => {
