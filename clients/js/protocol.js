@@ -12,12 +12,16 @@ export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):
 	// what an answer says its request changed; onWarning(text): remarks in answers and the
 	// scene's warnings;
+	// onRefusal(error): the server refused the connection (an error before its hello: a
+	// bad scene name, role or token; connecting again would not help);
 	// onAnswered(id): every request up to `id` is answered and its changes told;
 	// onRefused(ids): the objects a refused call or creation named (what was done here
 	// at once for them did not happen on the server).
 	constructor({ onMessage = () => {}, onChanges = () => {}, onWarning = () => {}, onRefused = () => {},
-		onAnswered = () => {} } = {}) {
+		onAnswered = () => {}, onRefusal = () => {} } = {}) {
 		this.onMessage = onMessage;
+		this.onRefusal = onRefusal;
+		this.welcomed = false;     // a hello arrived
 		this.onChanges = onChanges;
 		this.onAnswered = onAnswered;
 		this.onWarning = onWarning;
@@ -54,7 +58,9 @@ export class ProtocolCore {
 		const isAnswer = (message.op === 'ok' || message.op === 'error') && message.id != null;
 		if (message.op === 'warning') this.onWarning(`scene ${message.code}: ${message.message}`);
 		if (!isAnswer) {
-			if (message.op === 'error') this.deferred.push(ServerError.fromWire(message));
+			if (message.op === 'hello') this.welcomed = true;
+			if (message.op === 'error' && !this.welcomed) this.onRefusal(ServerError.fromWire(message));
+			else if (message.op === 'error') this.deferred.push(ServerError.fromWire(message));
 			this.onMessage(message);
 			return message;
 		}

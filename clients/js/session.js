@@ -11,11 +11,10 @@ import * as THREE from 'three';
 import { encode } from './codec.js';
 import { ConnectionLost } from './errors.js';
 import { Mirror } from './mirror.js';
+import { baseRotation, shownRotation } from './pose.js';
 import { Prediction } from './prediction.js';
 import { ProtocolCore } from './protocol.js';
 
-const AXES = { x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) };
-const turn = new THREE.Quaternion();
 const ONE = [1, 1, 1];
 const base = new THREE.Quaternion();
 const POSED = ['position', 'quaternion', 'angle', 'flipped', 'scale', 'visible'];
@@ -55,6 +54,7 @@ export class Session {
 			onWarning,
 			onRefused: (ids) => this.unsay(ids),
 			onAnswered: (id) => this.mirror.release(id),
+			onRefusal: (error) => this.welcome.reject(error),
 		});
 		this.prediction = null;          // from hello on (it knows the slot counts)
 		this.ready = new Promise((resolve, reject) => { this.welcome = { resolve, reject }; });
@@ -73,9 +73,9 @@ export class Session {
 		if (message.op === 'hello') {
 			this.hello = message;
 			this.prediction = new Prediction(this.mirror, { slots: message.slots, classes: this.classes });
+		} else if (message.op !== 'error') {
+			this.mirror.apply(message);
 		}
-		else if (message.op === 'error' && !this.hello) this.welcome.reject(this.core.deferred.shift());
-		else this.mirror.apply(message);
 		if (message.op === 'snapshot') this.welcome.resolve(this);
 		if (message.op === 'frame') this.dispatchContacts();
 		for (const listener of this.listeners) listener(message);
@@ -203,9 +203,7 @@ export class Session {
 
 	// The quaternion an object shows: its base rotation, a motor turned about its axis.
 	turn(object) {
-		const { base: rotation, axis, angle, flipped } = object.vp;
-		object.quaternion.copy(rotation);
-		if (axis) object.quaternion.multiply(turn.setFromAxisAngle(AXES[axis], flipped ? -angle : angle));
+		shownRotation(object.quaternion, object.vp.base, object.vp);
 		this.remember(object);
 	}
 
@@ -239,7 +237,7 @@ export class Session {
 		}
 		this.meshes?.sync(transforms);
 		const ids = Object.keys(transforms);
-		const most = this.hello?.limits?.transformsPerCall ?? 1000;
+		const most = this.hello.limits.transformsPerCall;
 		for (let start = 0; start < ids.length; start += most) {
 			const part = Object.fromEntries(ids.slice(start, start + most).map((id) => [id, transforms[id]]));
 			this.call('scene', 'setTransforms', [part]);
@@ -249,9 +247,7 @@ export class Session {
 	// A page moved or turned an object: its entry. The base rotation is what it shows
 	// less a motor's turn.
 	transform(object) {
-		const { axis, angle, flipped } = object.vp;
-		base.copy(object.quaternion);
-		if (axis) base.multiply(turn.setFromAxisAngle(AXES[axis], flipped ? -angle : angle).invert());
+		baseRotation(base, object.quaternion, object.vp);
 		object.vp.base.copy(base);
 		const entry = [...object.position.toArray(), ...base.toArray()];
 		const s = object.scale, known = object.vp.known;
@@ -329,7 +325,7 @@ export class Session {
 	}
 
 	get maxPerText() {
-		return this.hello?.limits?.messagesPerText ?? 1000;
+		return this.hello.limits.messagesPerText;
 	}
 
 	// Resolves once the server has answered everything sent so far; throws a kept error.

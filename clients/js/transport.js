@@ -3,11 +3,11 @@
 // `resume` key) while the server still keeps what the client made; what the page sends
 // meanwhile waits and goes on the new connection.
 
+import { Backoff } from './backoff.js';
 import { ProtocolError } from './errors.js';
 import { Session } from './session.js';
 
 const OPEN = 1;
-const RETRY_FIRST = 100, RETRY_MAX = 1000;   // ms between attempts to connect again
 const REPLACED = 4001;   // close code: this client connected again elsewhere (no coming back here)
 
 async function socketClass() {
@@ -64,14 +64,14 @@ export async function openSession(url, classes, onMessage = null) {
 		const key = session.hello?.resume;
 		if (session.closing || !key) return session.lost(reason);
 		const sentBefore = session.core.nextId;   // later requests wait in `waiting`
-		const deadline = Date.now() + 1000 * (session.hello.limits?.leaveGraceSeconds ?? 0);
-		for (let pause = RETRY_FIRST; Date.now() < deadline && !session.closing; pause = Math.min(RETRY_MAX, pause * 2)) {
+		const deadline = Date.now() + 1000 * session.hello.limits.leaveGraceSeconds;
+		for (const backoff = new Backoff(); Date.now() < deadline && !session.closing;) {
 			if (await open(withResume(url, key))) {
 				session.reconnected(sentBefore);
 				for (const text of waiting.splice(0)) session.socket.send(text);
 				return;
 			}
-			await new Promise((resolve) => setTimeout(resolve, pause));
+			await new Promise((resolve) => setTimeout(resolve, backoff.next()));
 		}
 		session.lost(reason);
 	}

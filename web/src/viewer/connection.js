@@ -4,9 +4,8 @@
 // engine) is not retried: trying again would not help. Request ids and answers are the
 // JavaScript client's protocol core, one per connection.
 
+import { Backoff } from '/client/backoff.js';
 import { ProtocolCore } from '/client/protocol.js';
-
-const RETRY_FIRST = 250, RETRY_MAX = 4000;
 
 export class Connection {
 	constructor(url, { onMessage, onState }) {
@@ -15,7 +14,7 @@ export class Connection {
 		this.onState = onState;
 		this.socket = null;
 		this.core = null;
-		this.retry = RETRY_FIRST;
+		this.backoff = new Backoff();
 		this.open();
 	}
 
@@ -23,14 +22,10 @@ export class Connection {
 		this.onState('connecting');
 		const socket = this.socket = new WebSocket(this.url);
 		const core = this.core = new ProtocolCore({
-			onMessage: (message) => {
-				if (message.op === 'hello') socket.welcomed = true;
-				if (message.op === 'error' && !socket.welcomed) socket.refused = message.message;
-				this.onMessage(message);
-			},
+			onMessage: (message) => this.onMessage(message),
+			onRefusal: (error) => { socket.refused = error.serverMessage ?? error.message; },
 		});
-		socket.welcomed = false;
-		socket.onopen = () => { this.retry = RETRY_FIRST; this.onState('connected'); };
+		socket.onopen = () => { this.backoff.reset(); this.onState('connected'); };
 		socket.onmessage = (event) => core.receive(event.data);
 		socket.onclose = () => this.lost(socket, core);
 	}
@@ -40,8 +35,7 @@ export class Connection {
 		core.lost(new Error('connection lost'));
 		if (socket.refused) return this.onState(`refused: ${socket.refused}`);
 		this.onState('reconnecting');
-		setTimeout(() => this.open(), this.retry);
-		this.retry = Math.min(RETRY_MAX, this.retry * 2);
+		setTimeout(() => this.open(), this.backoff.next());
 	}
 
 	// Send a request; the promise settles with its result (or the server's error).

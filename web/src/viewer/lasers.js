@@ -3,6 +3,7 @@
 // sensor as drawn (so it moves as smoothly as the robot).
 
 import * as THREE from 'three';
+import { fromWire } from '/client/codec.js';
 
 const STUB = 0.055;   // a laser that hits nothing is drawn this long (as in 1.0)
 const origin = new THREE.Vector3(), direction = new THREE.Vector3(), tip = new THREE.Vector3();
@@ -46,7 +47,7 @@ export class Lasers {
 		let changed = false;
 		for (const [id, reading] of Object.entries(sensors)) {
 			const beam = this.beams.get(id);
-			const distance = reading.distance === 'Infinity' ? Infinity : reading.distance;
+			const distance = fromWire(reading.distance);
 			if (beam && beam.distance !== distance) {
 				beam.distance = distance;
 				changed = true;

@@ -4,10 +4,9 @@
 // server; nothing here recomputes physics.
 
 import * as THREE from 'three';
+import { shownRotation } from '/client/pose.js';
 import { buildShape, dispose, paint } from './shapes.js';
 
-const AXES = { x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) };
-const turn = new THREE.Quaternion();
 const ONE = [1, 1, 1];
 
 export class SceneTree {
@@ -99,12 +98,8 @@ export class SceneTree {
 
 	// The pose a motor shows: its base pose, turned about its axis (the other way if flipped).
 	setAngle(object, angle) {
-		const node = object.userData.node;
-		object.quaternion.copy(object.userData.base);
-		if (node.axis) {
-			turn.setFromAxisAngle(AXES[node.axis], node.flipped ? -angle : angle);
-			object.quaternion.multiply(turn);
-		}
+		const { axis, flipped } = object.userData.node;
+		shownRotation(object.quaternion, object.userData.base, { axis, angle, flipped });
 		object.userData.shownAngle = angle;
 	}
 

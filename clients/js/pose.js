@@ -1,0 +1,24 @@
+// How a motor shows its angle: its base rotation turned about its axis, the other way when
+// flipped (server/core/motor.py). The client's objects and the viewer's both pose by it.
+
+import * as THREE from 'three';
+
+export const AXES = Object.freeze({ x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) });
+const turn = new THREE.Quaternion();
+
+// The turn of a motor about `axis` by `angle` (a flipped motor turns the other way).
+export function motorTurn(axis, angle, flipped) {
+	return turn.setFromAxisAngle(AXES[axis], flipped ? -angle : angle);
+}
+
+// `out` set to what a node shows: `base` turned by its motor (a node without an axis: base).
+export function shownRotation(out, base, { axis, angle, flipped }) {
+	out.copy(base);
+	return axis ? out.multiply(motorTurn(axis, angle, flipped)) : out;
+}
+
+// `out` set to the base rotation under what a node shows (its motor's turn taken back out).
+export function baseRotation(out, shown, { axis, angle, flipped }) {
+	out.copy(shown);
+	return axis ? out.multiply(motorTurn(axis, angle, flipped).invert()) : out;
+}
