@@ -10,14 +10,14 @@
 
 from typing import Any
 
-from .animation import get_time, run, set_animation
 from .errors import (ConnectionLost, ProtocolError, ServerError, ServerWarning, Timeout,
                      VPError)
 from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip,
                       GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
                       RoundPalm, SceneMesh, Slot)
 from .robots import AnthroHand, EdgedHand, RoundHand, Robot
-from .scene import Scene, connect, current_scene
+from .runtime import connect, get_time, run, set_animation
+from .scene import Scene, current_scene
 from .sensor import Sensor
 from .uploads import upload_asset
 

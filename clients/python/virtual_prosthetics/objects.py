@@ -19,6 +19,14 @@ class Node:
     id: str
     _scene: Scene
 
+    @classmethod
+    def stand_in(cls, scene: Scene, node_id: str) -> Node:
+        """An object of this class for an id this client did not make (a hand's parts,
+        another client's objects): no creation is sent."""
+        obj = cls.__new__(cls)
+        obj._scene, obj.id = scene, node_id
+        return obj
+
     def _create(self, scene: Scene | None, *args: Any) -> None:
         self._scene = scene if scene is not None else current_scene()
         self.id = self._scene.new_id()

@@ -7,7 +7,6 @@ from typing import Any
 from . import objects
 from .objects import Node, Part, Shown
 from .scene import Scene
-from .sensor import Sensor
 
 
 class Robot(Shown):
@@ -136,17 +135,3 @@ class AnthroHand(Hand):
     """Manual ``AnthroHand(isLeft=true)``: 22 motors, the thumb's six first."""
 
     _type = "AnthroHand"
-
-
-CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
-    objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
-    objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
-    objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
-    objects.AnthroThumb, objects.SceneMesh, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
-
-
-def stand_in(scene: Scene, node_id: str, type_name: str) -> Node:
-    """An object for an id this client did not make (a hand's parts, another client's)."""
-    obj = CLASSES.get(type_name, Node).__new__(CLASSES.get(type_name, Node))
-    obj._scene, obj.id = scene, node_id
-    return obj

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import threading
 from itertools import count
-from typing import TYPE_CHECKING, Any, Callable, TypeVar
+from typing import Any, Callable, Protocol, TypeVar
 from urllib.parse import urlencode
 
 from .codec import encode_arg
@@ -13,12 +13,26 @@ from .connection import Connection
 from .errors import ConnectionLost, Timeout, VPError
 from .mirror import Mirror
 
-if TYPE_CHECKING:
-    from .objects import Node
-
 T = TypeVar("T")
 SCENE_ID = "scene"
 _current: Scene | None = None
+
+
+class SceneObject(Protocol):
+    """What the scene needs of an object of this client (objects.py defines them)."""
+
+    id: str
+
+
+class ObjectClass(Protocol):
+    """A class of objects (objects.py): it makes one for an id this client did not make."""
+
+    def stand_in(self, scene: Scene, node_id: str) -> SceneObject: ...
+
+
+# The class of every type, by type name: filled by runtime.py, which holds the table, so
+# that this module needs none of the classes.
+CLASSES: dict[str, ObjectClass] = {}
 
 
 def current_scene() -> Scene:
@@ -26,6 +40,12 @@ def current_scene() -> Scene:
     if _current is None:
         raise VPError("not connected: call virtual_prosthetics.connect() first")
     return _current
+
+
+def set_current_scene(scene: Scene) -> None:
+    """Make ``scene`` the one new objects go to."""
+    global _current
+    _current = scene
 
 
 def trim(args: tuple[Any, ...]) -> list[Any]:
@@ -49,7 +69,7 @@ class Scene:
         self.url = url.rstrip("/")
         self.mirror = Mirror(self._listens)
         self.lock = threading.RLock()
-        self.objects: dict[str, Node] = {}
+        self.objects: dict[str, SceneObject] = {}
         self.hello: dict[str, Any] = {}
         self.animation: tuple[Callable[..., None], float] | None = None
         self._ids = count(1)
@@ -97,7 +117,7 @@ class Scene:
         """A fresh object id of this client."""
         return f"{self.client_id}.{next(self._ids)}"
 
-    def create(self, obj: Node, type_name: str, args: tuple[Any, ...]) -> None:
+    def create(self, obj: SceneObject, type_name: str, args: tuple[Any, ...]) -> None:
         """Ask the server to make ``obj`` (returns at once)."""
         self.objects[obj.id] = obj
         self.connection.send({"op": "create", "object": obj.id, "type": type_name,
@@ -128,17 +148,17 @@ class Scene:
         self.connection.settle()
         self.dispatch_contacts()
 
-    def proxy(self, node_id: str) -> Node:
+    def proxy(self, node_id: str) -> SceneObject:
         """The object for an id: the one this client made, or a new stand-in of its type."""
         obj = self.objects.get(node_id)
         if obj is None:
-            from .robots import stand_in
             with self.lock:
                 type_name = self.mirror.nodes[node_id]["type"]
-            obj = self.objects[node_id] = stand_in(self, node_id, type_name)
+            made = CLASSES.get(type_name) or CLASSES["Node"]
+            obj = self.objects[node_id] = made.stand_in(self, node_id)
         return obj
 
-    def resolve(self, node_id: str) -> Node | str:
+    def resolve(self, node_id: str) -> SceneObject | str:
         """What an id in a reading or contact stands for in this client.
 
         The object this client made (or a part of it, such as a hand's finger); for
@@ -208,13 +228,3 @@ class Scene:
 
     def __exit__(self, *exc: Any) -> None:
         self.close()
-
-
-def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
-            role: str = "controller", token: str | None = None, keep: bool = False) -> Scene:
-    """Connect to a scene of a server and make it the current scene; ``token`` (default:
-    the ``VP_TOKEN`` environment variable) when the server asks for one; ``keep``: what
-    this script makes stays in the scene after it ends."""
-    global _current
-    _current = Scene(url, scene, role, token=token, keep=keep)
-    return _current

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import virtual_prosthetics as vp
 from virtual_prosthetics.objects import Node
-from virtual_prosthetics.robots import CLASSES
+from virtual_prosthetics.runtime import CLASSES
 
 API = json.loads((Path(__file__).resolve().parents[3] / "protocol" / "api.json").read_text())
 CLIENT_ONLY = {"delete"}

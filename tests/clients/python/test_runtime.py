@@ -1,4 +1,4 @@
-"""The Python client's animation loop (``set_animation``, ``run``) against real servers."""
+"""The Python client's runtime: the animation loop (``set_animation``, ``run``) against real servers."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""The manual's animation loop: ``set_animation(func, fps)`` then ``run()``."""
+"""The client's runtime, as the JS client's runtime.js: ``connect``, the class of every
+type (for objects this client did not make) and the manual's animation loop."""
 
 from __future__ import annotations
 
@@ -6,8 +7,32 @@ import inspect
 import time
 from typing import Callable
 
+from . import objects
 from .errors import ConnectionLost
-from .scene import current_scene
+from .objects import Node
+from .robots import AnthroHand, EdgedHand, Robot, RoundHand
+from . import scene as scenes
+from .scene import Scene, current_scene, set_current_scene
+from .sensor import Sensor
+
+# The class of every type (a scene makes objects of them for ids this client did not make).
+CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
+    objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
+    objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
+    objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
+    objects.AnthroThumb, objects.SceneMesh, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
+scenes.CLASSES.update(CLASSES, Node=Node)
+
+
+def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
+            role: str = "controller", token: str | None = None, keep: bool = False) -> Scene:
+    """Connect to a scene of a server and make it the current scene; ``token`` (default:
+    the ``VP_TOKEN`` environment variable) when the server asks for one; ``keep``: what
+    this script makes stays in the scene after it ends."""
+    opened = Scene(url, scene, role, token=token, keep=keep)
+    set_current_scene(opened)
+    return opened
+
 
 
 def set_animation(func: Callable[..., None], fps: float = 30) -> None:
