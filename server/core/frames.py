@@ -1,10 +1,33 @@
-"""Folding two frames into one, for a connection that cannot keep up."""
+"""A tick's messages, and two frames folded into one for a connection that cannot keep up:
+the one module that knows a frame's whole shape.
+
+A frame has ``op``, ``seq`` and ``time``, and what changed in its tick: ``angles`` and
+``poses`` (node id -> value), ``updates`` (node id -> fields), ``sensors`` (watched sensor id
+-> reading), ``contacts`` (``begin``/``end`` lists of pairs, events), ``camera`` and
+``limited`` (limit name -> how much work it held back in the tick). New nodes travel before
+it in ``added``, removed ones after it in ``removed``.
+"""
 
 from __future__ import annotations
 
 from typing import Any
 
 _LATEST_WINS = ("angles", "poses", "sensors")
+
+
+def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[dict[str, Any]]:
+    """The messages of tick ``seq``: its ``added`` nodes, its frame, its ``removed`` ids."""
+    frame = dict(changes)
+    added, removed = frame.pop("added", None), frame.pop("removed", None)
+    return [*([{"op": "added", "seq": seq, "nodes": added}] if added else []),
+            {"op": "frame", "seq": seq, "time": time, **frame},
+            *([{"op": "removed", "seq": seq, "ids": removed}] if removed else [])]
+
+
+def held_back(**counts: int) -> dict[str, Any]:
+    """A frame's ``limited`` field for the limits that held work back (none: no field)."""
+    limited = {limit: count for limit, count in counts.items() if count}
+    return {"limited": limited} if limited else {}
 
 
 def merge_frames(older: dict[str, Any], newer: dict[str, Any]) -> dict[str, Any]:
@@ -23,6 +46,9 @@ def merge_frames(older: dict[str, Any], newer: dict[str, Any]) -> dict[str, Any]
         merged["contacts"] = _merge_contacts(older["contacts"], later)
     if "camera" in older and "camera" not in newer:
         merged["camera"] = older["camera"]
+    if "limited" in older:  # what the limits held back in the worse of the two ticks
+        both = (older["limited"], newer.get("limited", {}))
+        merged["limited"] = {k: max(side.get(k, 0) for side in both) for k in {**both[0], **both[1]}}
     return merged
 
 

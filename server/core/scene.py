@@ -12,7 +12,7 @@ from contextlib import contextmanager
 from typing import Any, Iterator
 
 from ..errors import DuplicateId, LimitExceeded, UnknownObject
-from . import figures
+from . import figures, frames
 from .assets import AssetLibrary
 from .changes import ChangeSet
 from .ids import IdBook, owner_of
@@ -115,6 +115,21 @@ class Scene:
             not in self.nodes else "is not in"
             raise UnknownObject(f"object {node_id} {fate} scene {self.name}",
                                 object=node_id) from None
+
+    def remove_client(self, client_id: str) -> list[str]:
+        """A client left: its watches end, what it created and did not keep is deleted
+        (newest first) and its id is never handed out again; the ids deleted at the top."""
+        self.watches.drop_watcher(client_id)
+        mine = [node_id for node_id, node in self.nodes.items()
+                if "/" not in node_id and owner_of(node_id) == client_id and not node.is_kept()]
+        deleted = []
+        for object_id in reversed(mine):
+            node = self.nodes.get(object_id)
+            if node is not None:
+                self.delete(node)
+                deleted.append(object_id)
+        self.ids.forget(client_id)
+        return deleted
 
     def delete(self, node: Node) -> None:
         """Remove a node and everything below it; their ids are never used again."""
@@ -242,14 +257,7 @@ class Scene:
         except Exception:  # a bug: the scene keeps running, the log tells
             self.failures += 1
             log.exception("contacts or sensing of scene %s failed", self.name)
-        messages = []
-        if "added" in delta:
-            messages.append({"op": "added", "seq": self.seq, "nodes": delta.pop("added")})
-        removed = delta.pop("removed", None)
-        messages.append({"op": "frame", "seq": self.seq, "time": self.time, **delta})
-        if removed:
-            messages.append({"op": "removed", "seq": self.seq, "ids": removed})
-        return messages
+        return frames.tick_messages(self.seq, self.time, delta)
 
     def _sense(self) -> dict[str, Any]:
         """This tick's contact changes, watched readings and the limits that held work back."""
@@ -262,9 +270,7 @@ class Scene:
         if readings:
             out["sensors"] = {i: reading.wire() for i, reading in readings.items()}
         tracker = bodies.tracker
-        limited = {"contactTests": tracker.deferred, "contactPairs": tracker.unrecorded}
-        if any(limited.values()):
-            out["limited"] = {k: v for k, v in limited.items() if v}
+        out.update(frames.held_back(contactTests=tracker.deferred, contactPairs=tracker.unrecorded))
         return out
 
     def watched_readings(self) -> dict[str, Reading]:

@@ -18,7 +18,6 @@ from .messages import (PROTOCOL_VERSION, byte_size, check_client_message, decode
 from .operations import Operations
 from .physics import ENGINE
 from .rates import TokenBucket
-from .ids import owner_of
 from .scene import Scene
 
 log = logging.getLogger(__name__)
@@ -137,20 +136,9 @@ class Session:
                                 f"got {op['object']}", object=op["object"])
 
     def close(self) -> list[str]:
-        """The client left: delete what it created (newest first); the ids deleted at the top."""
-        scene = self.scene
-        scene.watches.drop_watcher(self.client_id)
-        mine = [node_id for node_id, node in scene.nodes.items()
-                if "/" not in node_id and owner_of(node_id) == self.client_id
-                and not node.is_kept()]
-        deleted = []
-        for object_id in reversed(mine):
-            node = scene.nodes.get(object_id)
-            if node is not None:
-                scene.delete(node)
-                deleted.append(object_id)
-        scene.ids.forget(self.client_id)  # client ids are never handed out again
-        return deleted
+        """The client left: what it created goes (:meth:`Scene.remove_client`); the ids
+        deleted at the top."""
+        return self.scene.remove_client(self.client_id)
 
 
 def _encoded(answer: dict[str, Any]) -> tuple[dict[str, Any], str]:

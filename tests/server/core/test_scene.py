@@ -185,3 +185,13 @@ def test_parts_without_volume_are_still_met_by_rays_and_contacts(scene, make):
     assert scene.failures == 0
     assert distance <= 0.5 + 1e-6  # the part (or, for a point, the floor at its origin)
     assert "floor" in scene.bodies.touching(part)
+
+
+def test_a_client_that_leaves_takes_what_it_made_and_did_not_keep(scene):
+    robot = Robot(scene, "c1.1")
+    robot.attach_chain(MotorZ(scene, "c1.2", -1, 1), EdgedFinger(scene, "c1.3"))
+    Box(scene, "c1.4").keep()
+    Ball(scene, "c2.1")
+    assert scene.remove_client("c1") == ["c1.3", "c1.2", "c1.1"]   # newest first
+    assert sorted(scene.nodes) == ["c1.4", "c2.1"]
+    assert "c1" not in scene.ids.wire()   # its ids are never handed out again
