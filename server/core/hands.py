@@ -2,18 +2,15 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from ..errors import OutOfRange
 from . import figures
 from .meshparts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from .motor import Motor, MotorX, MotorY, MotorZ
-from .node import Node
+from .node import Node, World
 from .parts import EdgedFinger, EdgedPalm, EdgedTip
 from .robot import Robot
-
-if TYPE_CHECKING:
-    from .scene import Scene
 
 FINGERS = 5
 
@@ -29,7 +26,7 @@ class Hand(Robot):
 
     thumb_spread: tuple[float, float] = (0.0, 1.0)  # the thumb's spread: offset + scale * angle
 
-    def __init__(self, scene: Scene, node_id: str, is_left: bool = True) -> None:
+    def __init__(self, scene: World, node_id: str, is_left: bool = True) -> None:
         super().__init__(scene, node_id)
         self.is_left = is_left
         self._parts_made = 0
@@ -101,7 +98,7 @@ class EdgedHand(Hand):
     type_name = "EdgedHand"
     thumb_spread = figures.SPREAD_THUMB["EdgedHand"]
 
-    def __init__(self, scene: Scene, node_id: str, is_left: bool = True) -> None:
+    def __init__(self, scene: World, node_id: str, is_left: bool = True) -> None:
         super().__init__(scene, node_id, is_left)
         self.palm = self.make(EdgedPalm, is_left)
         self.palm.attach_to_slot(self)
@@ -131,7 +128,7 @@ class RoundHand(Hand):
     palm_type: type[RoundPalm] = RoundPalm
     palm_file = "round-palm.glb"
 
-    def __init__(self, scene: Scene, node_id: str, is_left: bool = True) -> None:
+    def __init__(self, scene: World, node_id: str, is_left: bool = True) -> None:
         super().__init__(scene, node_id, is_left)
         self.palm = self.round(self.make(self.palm_type, is_left, self.palm_file))
         self.palm.attach_to_slot(self)

@@ -6,18 +6,16 @@ from its URL and draw it. A right palm or thumb is the left mesh mirrored in X.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from ..errors import LimitExceeded
 from . import figures
 from .assets import Mesh
 from .envelopes import Plane, envelope, half_space, pyramid
 from .math3d import Vec3, euler_to_quat, rotate
-from .wire import Finite
+from .node import World
 from .parts import Part
-
-if TYPE_CHECKING:
-    from .scene import Scene
+from .wire import Finite
 
 MAX_RECOLORS = 64  # recolor calls a part keeps (each is sent to every viewer that joins)
 
@@ -33,7 +31,7 @@ class GLTFPart(Part):
     type_name = "GLTFPart"
     left = True
 
-    def __init__(self, scene: Scene, node_id: str, filename: str, length: float = 0.0) -> None:
+    def __init__(self, scene: World, node_id: str, filename: str, length: float = 0.0) -> None:
         self.mesh: Mesh = scene.assets.mesh(filename)  # refused before the node exists
         super().__init__(scene, node_id)
         self.filename, self.length = filename, length
@@ -97,7 +95,7 @@ class RoundFinger(GLTFPart):
     type_name = "RoundFinger"
     physical = True
 
-    def __init__(self, scene: Scene, node_id: str, filename: str,
+    def __init__(self, scene: World, node_id: str, filename: str,
                  length: float = figures.ROUND_FINGER_LENGTH) -> None:
         super().__init__(scene, node_id, filename, length)
 
@@ -114,7 +112,7 @@ class HandedPart(GLTFPart):
 
     physical = True
 
-    def __init__(self, scene: Scene, node_id: str, left: bool, filename: str,
+    def __init__(self, scene: World, node_id: str, left: bool, filename: str,
                  length: float = figures.ROUND_PALM_LENGTH) -> None:
         self.left = left  # before the slots and the envelope, which depend on it
         super().__init__(scene, node_id, filename, length)

@@ -3,15 +3,13 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from ..errors import OutOfRange
 from . import figures, math3d
 from .math3d import Pose
+from .node import World
 from .parts import Part
-
-if TYPE_CHECKING:
-    from .scene import Scene
 
 
 def clamp(value: float, low: float, high: float) -> float:
@@ -29,7 +27,7 @@ class Motor(Part):
 
     type_name = "Motor"
 
-    def __init__(self, scene: Scene, node_id: str, axis: str, min: float = -math.inf,
+    def __init__(self, scene: World, node_id: str, axis: str, min: float = -math.inf,
                  max: float = math.inf, default: float = 0.0) -> None:
         super().__init__(scene, node_id)
         self.axis = axis
@@ -87,7 +85,7 @@ class Motor(Part):
 class AxisMotor(Motor):
     """A motor class with a fixed axis, drawn as a cylinder, with slot 0 per the figures."""
 
-    def __init__(self, scene: Scene, node_id: str, min: float = -math.inf,
+    def __init__(self, scene: World, node_id: str, min: float = -math.inf,
                  max: float = math.inf, default: float = 0.0, width: float | None = None,
                  height: float | None = None) -> None:
         figure = figures.MOTORS[self.type_name]

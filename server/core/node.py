@@ -2,17 +2,49 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, ClassVar, Iterator
+from typing import Any, ClassVar, Iterator, Mapping, Protocol, Sequence
 
 from ..errors import Cycle, LimitExceeded
 from . import math3d
+from .assets import AssetLibrary
 from .ids import owner_of
+from .journal import Journal
+from .limits import Limits
 from .math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
+from .watches import Watches
 
 UNIT_SCALE: Vec3 = (1.0, 1.0, 1.0)
 
-if TYPE_CHECKING:
-    from .scene import Scene
+
+class Bodies(Protocol):
+    """What nodes ask of the scene's physical bodies (server/core/scene_bodies.py)."""
+
+    def read(self, sensors: list[Node], exact: bool = True) -> dict[str, Any]: ...
+
+    def touching(self, part: Node | None, exact: bool = True) -> list[str]: ...
+
+
+class World(Protocol):
+    """What a node needs of the scene it lives in. :class:`~server.core.scene.Scene` is the
+    one; the model names only this, so its imports never lead back to the scene."""
+
+    journal: Journal
+    limits: Limits
+    watches: Watches
+    assets: AssetLibrary
+    bodies: Bodies
+    nodes: Mapping[str, Node]
+    tree_version: int  # counts the tree's changes (robots list their parts again)
+
+    def register(self, node: Node) -> None: ...
+
+    def node_changed(self, node: Node, field: str) -> None: ...
+
+    def reparented(self, node: Node, old_parent: Node | None) -> None: ...
+
+    def turn(self, turns: Sequence[tuple[Any, float | None]]) -> None: ...
+
+    def warn(self, text: str) -> None: ...
 
 
 class Node:
@@ -25,7 +57,7 @@ class Node:
     type_name: ClassVar[str] = "Node"
     physical: ClassVar[bool] = False
 
-    def __init__(self, scene: Scene, node_id: str) -> None:
+    def __init__(self, scene: World, node_id: str) -> None:
         self.scene = scene
         self.id = node_id
         self.parent: Node | None = None
@@ -264,7 +296,7 @@ class Slot(Node):
 
     type_name = "Slot"
 
-    def __init__(self, scene: Scene, node_id: str, position: Vec3 = ORIGIN) -> None:
+    def __init__(self, scene: World, node_id: str, position: Vec3 = ORIGIN) -> None:
         super().__init__(scene, node_id)
         self.position = tuple(position)
 

@@ -2,15 +2,12 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Sequence
+from typing import Any, Sequence
 
 from . import figures
 from .math3d import ORIGIN, Vec3, euler_to_quat
-from .node import Node, Slot
+from .node import Node, Slot, World
 from .wire import Finite
-
-if TYPE_CHECKING:
-    from .scene import Scene
 
 
 class Part(Node):
@@ -19,7 +16,7 @@ class Part(Node):
     type_name = "Part"
     listed = True  # one of its robot's getParts()
 
-    def __init__(self, scene: Scene, node_id: str) -> None:
+    def __init__(self, scene: World, node_id: str) -> None:
         super().__init__(scene, node_id)
         self._slot_count = 0
 
@@ -69,7 +66,7 @@ class Ball(Part):
     type_name = "Ball"
     physical = True
 
-    def __init__(self, scene: Scene, node_id: str, radius: float = 1.0,
+    def __init__(self, scene: World, node_id: str, radius: float = 1.0,
                  color: str | int = figures.DEFAULT_COLOR) -> None:
         super().__init__(scene, node_id)
         self.radius, self.color = radius, color
@@ -87,7 +84,7 @@ class Box(Part):
     type_name = "Box"
     physical = True
 
-    def __init__(self, scene: Scene, node_id: str, sizex: float = 1.0, sizey: float = 1.0,
+    def __init__(self, scene: World, node_id: str, sizex: float = 1.0, sizey: float = 1.0,
                  sizez: float = 1.0, color: str | int = figures.DEFAULT_COLOR) -> None:
         super().__init__(scene, node_id)
         self.size, self.color = (sizex, sizey, sizez), color
@@ -116,7 +113,7 @@ class EdgedFinger(ConvexPart):
     type_name = "EdgedFinger"
     tip = False
 
-    def __init__(self, scene: Scene, node_id: str, length: float = 1.0, width: float = 0.3,
+    def __init__(self, scene: World, node_id: str, length: float = 1.0, width: float = 0.3,
                  thickness: float = 0.3) -> None:
         super().__init__(scene, node_id)
         self.length, self.width, self.thickness = length, width, thickness
@@ -140,7 +137,7 @@ class EdgedPalm(ConvexPart):
 
     type_name = "EdgedPalm"
 
-    def __init__(self, scene: Scene, node_id: str, left: bool = False, length: float = 1.4,
+    def __init__(self, scene: World, node_id: str, left: bool = False, length: float = 1.4,
                  width: float = 1.4, thickness: float = 0.3) -> None:
         super().__init__(scene, node_id)
         self.left, self.length, self.width, self.thickness = left, length, width, thickness

@@ -2,17 +2,14 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from ..errors import WrongType
 from .ids import owner_of
 from .math3d import Vec3
 from .motor import Motor
-from .node import Node
+from .node import Node, World
 from .parts import Part
-
-if TYPE_CHECKING:
-    from .scene import Scene
 
 
 class Robot(Node):
@@ -24,7 +21,7 @@ class Robot(Node):
 
     type_name = "Robot"
 
-    def __init__(self, scene: Scene, node_id: str) -> None:
+    def __init__(self, scene: World, node_id: str) -> None:
         super().__init__(scene, node_id)
         self.gui: str | None = None
         self.shared = False  # others may steer it and attach their parts (ownership.py)

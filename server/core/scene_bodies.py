@@ -24,7 +24,6 @@ from .sensing import Reading, read_sensors
 
 if TYPE_CHECKING:
     from .math3d import Pose, Vec3
-    from .sensor import Sensor
 
 log = logging.getLogger(__name__)
 
@@ -147,7 +146,7 @@ class SceneBodies:
             self.tracker.settle(part.id)
         return list(self.tracker.overlaps().of(part.id))
 
-    def read(self, sensors: list[Sensor], exact: bool = True) -> dict[str, Reading]:
+    def read(self, sensors: list[Node], exact: bool = True) -> dict[str, Reading]:
         """Readings of ``sensors`` for the scene as it is now."""
         self.sync()
         return read_sensors(self.rays, sensors,

@@ -7,13 +7,11 @@ Not in the manual: 1.0 pages add plain three.js meshes (obstacles, markers) to
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from . import figures, geometry
+from .node import World
 from .parts import Part
-
-if TYPE_CHECKING:
-    from .scene import Scene
 
 
 class SceneMesh(Part):
@@ -23,7 +21,7 @@ class SceneMesh(Part):
     physical = True
     listed = False  # not one of a robot's getParts(): 1.0 pages' meshes were not parts
 
-    def __init__(self, scene: Scene, node_id: str, shape: dict[str, Any],
+    def __init__(self, scene: World, node_id: str, shape: dict[str, Any],
                  color: str | int = figures.DEFAULT_COLOR) -> None:
         limits = scene.limits  # checked before the node exists: a refusal leaves no trace
         self.shape = geometry.check(shape, "new SceneMesh, argument 0 (geometry)",

@@ -19,8 +19,8 @@ from .math3d import Vec3
 from .wire import wire_number
 
 if TYPE_CHECKING:
+    from .node import Node
     from .raycast import RayTargets
-    from .sensor import Sensor
 
 
 @dataclass(frozen=True)
@@ -38,8 +38,8 @@ class Reading:
                 "position": list(self.position), "objects": list(self.objects)}
 
 
-def read_sensors(targets: RayTargets, sensors: Sequence[Sensor],
-                 contacts_of: Callable[[Sensor], list[str]]) -> dict[str, Reading]:
+def read_sensors(targets: RayTargets, sensors: Sequence[Node],
+                 contacts_of: Callable[[Node], list[str]]) -> dict[str, Reading]:
     """Readings of ``sensors`` (shapes already placed); ``contacts_of(sensor)`` lists ids."""
     if not sensors:
         return {}

@@ -2,16 +2,14 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from . import figures
 from .math3d import Vec3
+from .node import World
 from .parts import Part
 from .sensing import Reading
 from .watches import LASER
-
-if TYPE_CHECKING:
-    from .scene import Scene
 
 
 class Sensor(Part):
@@ -23,7 +21,7 @@ class Sensor(Part):
 
     type_name = "Sensor"
 
-    def __init__(self, scene: Scene, node_id: str, visible: bool = True,
+    def __init__(self, scene: World, node_id: str, visible: bool = True,
                  laser_color: str | int | bool | None = None) -> None:
         super().__init__(scene, node_id)
         self.visible = visible

@@ -1,0 +1,90 @@
+"""The server and the Python client import one way: no circle, counting every import
+(inside functions and under ``TYPE_CHECKING`` too)."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+from tests.conftest import ROOT
+
+
+def modules(top: Path) -> dict[str, Path]:
+    """Every module under the package folder ``top``, by dotted name (``a.b``; ``a`` for
+    ``a/__init__.py``)."""
+    found = {}
+    for path in sorted(top.rglob("*.py")):
+        parts = path.relative_to(top.parent).with_suffix("").parts
+        found[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
+    return found
+
+
+def imported(name: str, path: Path, known: dict[str, Path]) -> set[str]:
+    """The modules of ``known`` that module ``name`` (at ``path``) imports."""
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            base = package.split(".")[:len(package.split(".")) - node.level + 1] if node.level else []
+            target = ".".join(base + ([node.module] if node.module else []))
+            # `from x import y`: module x.y when there is one, else a name of module x
+            found.update(f"{target}.{a.name}" if f"{target}.{a.name}" in known else target
+                         for a in node.names)
+        elif isinstance(node, ast.Import):
+            found.update(a.name for a in node.names if a.name in known)
+    return (found & known.keys()) - {name}
+
+
+def import_graph(top: Path) -> dict[str, set[str]]:
+    known = modules(top)
+    return {name: imported(name, path, known) for name, path in known.items()}
+
+
+def circle(graph: dict[str, set[str]]) -> list[str] | None:
+    """One circle of imports in ``graph``, or None."""
+    state: dict[str, str] = {}
+
+    def visit(module: str, path: list[str]) -> list[str] | None:
+        state[module] = "open"
+        for other in sorted(graph[module]):
+            if state.get(other) == "open":
+                return path[path.index(other):] + [other]
+            if other not in state and (found := visit(other, path + [other])):
+                return found
+        state[module] = "done"
+        return None
+
+    for module in sorted(graph):
+        if module not in state and (found := visit(module, [module])):
+            return found
+    return None
+
+
+def test_the_server_has_no_import_circle():
+    graph = import_graph(ROOT / "server")
+    assert "server.core.scene" in graph["server.core.session"]   # the graph is read
+    assert circle(graph) is None, " -> ".join(circle(graph) or [])
+
+
+def test_the_python_client_has_no_import_circle():
+    graph = import_graph(ROOT / "clients" / "python" / "virtual_prosthetics")
+    assert "virtual_prosthetics.scene" in graph["virtual_prosthetics.objects"]
+    assert circle(graph) is None, " -> ".join(circle(graph) or [])
+
+
+def test_a_circle_is_found_when_there_is_one():
+    assert circle({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == ["a", "b", "c", "a"]
+    assert circle({"a": {"b"}, "b": set(), "c": {"a", "b"}}) is None
+
+
+def test_relative_imports_and_type_checking_ones_count(tmp_path):
+    package = tmp_path / "pkg"
+    (package / "sub").mkdir(parents=True)
+    (package / "__init__.py").write_text("")
+    (package / "sub" / "__init__.py").write_text("from .. import b\n")
+    (package / "a.py").write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from .sub import c\n")
+    (package / "b.py").write_text("def f():\n    from . import a\n")
+    (package / "sub" / "c.py").write_text("from ..b import f\n")
+    graph = import_graph(package)
+    assert graph["pkg.a"] == {"pkg.sub.c"} and graph["pkg.b"] == {"pkg.a"}
+    assert graph["pkg.sub.c"] == {"pkg.b"} and circle(graph) is not None
