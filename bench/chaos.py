@@ -30,9 +30,9 @@ import trimesh
 from websockets.exceptions import ConnectionClosed, InvalidHandshake
 from websockets.sync.client import connect
 
-from server.core.operations import Operations
-from server.core.scene import Scene
-from server.core.scene_document import encode_document, export_scene
+from server.core.protocol.operations import Operations
+from server.core.scene.scene import Scene
+from server.core.protocol.scene_document import encode_document, export_scene
 from tests.conftest import RunningServer, crash_server, start_server, stop_server, unwritable
 
 from .stats import figure

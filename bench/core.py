@@ -13,15 +13,15 @@ import math
 import time
 from typing import Any, Callable
 
-from server.core import figures
-from server.core.geometry import scaled
-from server.core.limits import DEFAULT
-from server.core.messages import encode
-from server.core.node import UNIT_SCALE
-from server.core.scene import Scene
-from server.core.scene_document import encode_document, export_scene, import_scene
-from server.core.sensor import Sensor
-from server.core.session import Session
+from server.core.model import figures
+from server.core.physics.geometry import scaled
+from server.core.kit.limits import DEFAULT
+from server.core.protocol.messages import encode
+from server.core.model.node import UNIT_SCALE
+from server.core.scene.scene import Scene
+from server.core.protocol.scene_document import encode_document, export_scene, import_scene
+from server.core.model.sensor import Sensor
+from server.core.protocol.session import Session
 
 from . import scenes
 from .floor import BareWorld

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from typing import Any, Sequence
 
-from server.core.math3d import Pose
-from server.core.physics import pybullet, shape_arguments
+from server.core.kit.math3d import Pose
+from server.core.physics.engine import pybullet, shape_arguments
 
 
 class BareWorld:

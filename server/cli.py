@@ -11,7 +11,7 @@ from pathlib import Path
 
 import uvicorn
 
-from .core.limits import DEFAULT, Limits
+from .core.kit.limits import DEFAULT, Limits
 from .demo import DEMOS
 from .web.access import AccessPolicy
 from .web.app import create_app

@@ -7,11 +7,11 @@ import math
 from itertools import count
 from typing import Callable
 
-from .core.hands import AnthroHand, EdgedHand, Hand, RoundHand
-from .core.motor import MotorZ
-from .core.parts import EdgedFinger
-from .core.robot import Robot
-from .core.scene import Scene
+from .core.model.hands import AnthroHand, EdgedHand, Hand, RoundHand
+from .core.model.motor import MotorZ
+from .core.model.parts import EdgedFinger
+from .core.model.robot import Robot
+from .core.scene.scene import Scene
 from .web.worker import SERVER_OWNER, SceneSetup
 
 # (speed, z position) of robots A, B and C in the manual.

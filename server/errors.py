@@ -183,7 +183,7 @@ class Forbidden(VPError):
 
 
 class LimitExceeded(VPError):
-    """A limit of :mod:`server.core.limits` was reached: ``details.limit`` names it."""
+    """A limit of :mod:`server.core.kit.limits` was reached: ``details.limit`` names it."""
 
     code = "limit_exceeded"
 

@@ -1,5 +1,6 @@
 """The server and the Python client import one way: no circle, counting every import
-(inside functions and under ``TYPE_CHECKING`` too)."""
+(inside functions and under ``TYPE_CHECKING`` too); the core's layers import only the
+layers below them, and the core does no I/O."""
 
 from __future__ import annotations
 
@@ -62,8 +63,33 @@ def circle(graph: dict[str, set[str]]) -> list[str] | None:
 
 def test_the_server_has_no_import_circle():
     graph = import_graph(ROOT / "server")
-    assert "server.core.scene" in graph["server.core.session"]   # the graph is read
+    assert "server.core.scene.scene" in graph["server.core.protocol.session"]   # the graph is read
     assert circle(graph) is None, " -> ".join(circle(graph) or [])
+
+
+# server/core's layers, lowest first: each may import those before it, never one after
+LAYERS = ["kit", "physics", "model", "scene", "protocol"]
+NO_IO = {"fastapi", "starlette", "asyncio", "websockets", "uvicorn", "socket", "server.web"}
+
+
+def test_the_cores_layers_import_only_the_layers_below_them():
+    graph = import_graph(ROOT / "server")
+    layers = {name.split(".")[2] for name in graph if name.startswith("server.core.")}
+    assert layers == set(LAYERS)
+    wrong = [f"{module} imports {other}" for module, imports in graph.items()
+             if module.startswith("server.core.") for other in imports
+             if other.startswith("server.core.")
+             and LAYERS.index(other.split(".")[2]) > LAYERS.index(module.split(".")[2])]
+    assert wrong == []
+
+
+def test_the_core_does_no_io():
+    for path in (ROOT / "server" / "core").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+                [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else []
+            bad = [n for n in names if any(n == io or n.startswith(f"{io}.") for io in NO_IO)]
+            assert bad == [], f"{path.relative_to(ROOT)} imports {bad}"
 
 
 def test_the_python_client_has_no_import_circle():

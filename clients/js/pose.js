@@ -1,5 +1,5 @@
 // How a motor shows its angle: its base rotation turned about its axis, the other way when
-// flipped (server/core/motor.py). The client's objects and the viewer's both pose by it.
+// flipped (server/core/model/motor.py). The client's objects and the viewer's both pose by it.
 
 import * as THREE from 'three';
 

@@ -4,9 +4,9 @@
 // predictions into the mirror, held until the request's answer (mirror.js).
 //
 // Each rule is the server's: the nodes a creation makes (slot counts from hello, motor
-// limits as server/core/motor.py sets them, hands from skeletons.js, which the server
-// generates), where attachToSlot puts a part (server/core/parts.py) and the motor order
-// (depth first, server/core/robot.py). Tests compare every prediction with the server's
+// limits as server/core/model/motor.py sets them, hands from skeletons.js, which the server
+// generates), where attachToSlot puts a part (server/core/model/parts.py) and the motor order
+// (depth first, server/core/model/robot.py). Tests compare every prediction with the server's
 // answer, for the protocol vectors and every hand.
 
 import { fromWire, wireNumber } from './codec.js';
@@ -76,7 +76,7 @@ export class Prediction {
 	}
 
 	// A hand's finger method (thumb 0 … little 4): the motors the hand was built with, those
-	// still in it, each to minus its angle (server/core/hands.py). A finger index the
+	// still in it, each to minus its angle (server/core/model/hands.py). A finger index the
 	// server refuses turns nothing.
 	fingerTurns(id, method, [first, second]) {
 		const node = this.mirror.nodes.get(id), hand = SKELETONS[node?.type];
@@ -174,7 +174,7 @@ export class Prediction {
 	}
 }
 
-// A new motor's axis, limits and angle, as server/core/motor.py sets them: limits given
+// A new motor's axis, limits and angle, as server/core/model/motor.py sets them: limits given
 // in reverse are swapped, the default angle is clamped into them.
 export function motorFields(type, args) {
 	const [axis, ...rest] = type === 'Motor' ? args : [type.at(-1).toLowerCase(), ...args];

@@ -3,7 +3,7 @@
 Uploads are checked (size, layout, what they expand to, indices, then read) in the checking
 process (:mod:`server.web.offload`), so no file holds the event loop or its memory, and
 kept under the hash of their bytes
-(:meth:`server.core.assets.AssetLibrary.store`). Scenes read them by that name:
+(:meth:`server.core.physics.assets.AssetLibrary.store`). Scenes read them by that name:
 ``GLTFPart('<hash>.glb')``. When the folder holds as many files as the ``assets`` limit
 allows, an upload first removes those that no scene (running or saved) is made of and
 that were not uploaded in the last hour; the folder is the server's own.
@@ -19,7 +19,7 @@ from typing import Any
 from fastapi import APIRouter, Request
 from fastapi.responses import FileResponse, JSONResponse
 
-from ..core.assets import AssetLibrary, plain_name
+from ..core.physics.assets import AssetLibrary, plain_name
 from ..errors import LimitExceeded, UnknownAsset
 from .access import changing_allowed
 from .rest import NOT_FOUND, ErrorBody, read_body

@@ -20,7 +20,7 @@ from typing import Any
 import h11
 from uvicorn.protocols.http.h11_impl import H11Protocol
 
-from ..core.limits import Limits
+from ..core.kit.limits import Limits
 
 log = logging.getLogger(__name__)
 MAX_HANDSHAKE_LINE = 8000  # the WebSocket handshake reads lines of up to 8192 bytes

@@ -13,7 +13,7 @@ from fastapi import FastAPI
 from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
-from ..core.assets import BUNDLED_DIR, BUNDLED_URL
+from ..core.physics.assets import BUNDLED_DIR, BUNDLED_URL
 from .modules import ModuleFiles
 
 log = logging.getLogger(__name__)

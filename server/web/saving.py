@@ -15,10 +15,10 @@ import logging
 import time
 from typing import Any, Callable
 
-from ..core.command_log import applied_line, left_line
-from ..core.scene import Scene
-from ..core.scene_document import encode_document, export_scene
-from ..core.session import Session
+from ..core.protocol.command_log import applied_line, left_line
+from ..core.scene.scene import Scene
+from ..core.protocol.scene_document import encode_document, export_scene
+from ..core.protocol.session import Session
 from .scene_store import SceneStore
 
 log = logging.getLogger(__name__)

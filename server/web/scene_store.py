@@ -1,8 +1,8 @@
 """One scene's files in the state folder: its document and the journal of changes since.
 
-``NAME.json`` is the scene as a document (:mod:`server.core.scene_document`), written whole
+``NAME.json`` is the scene as a document (:mod:`server.core.protocol.scene_document`), written whole
 now and then. ``NAME.journal`` holds every change clients made since that document was
-written, one line each (:mod:`server.core.command_log`), appended before the change is
+written, one line each (:mod:`server.core.protocol.command_log`), appended before the change is
 acknowledged: a change answered ``ok`` is in the kernel's hands before the answer leaves,
 so killing any of the server's processes (``kill -9`` included) loses none. Power cuts are
 another matter: the journal is flushed to the disk at most a second after a change

@@ -14,8 +14,8 @@ import logging
 from fastapi import APIRouter, WebSocket
 from starlette.websockets import WebSocketDisconnect
 
-from ..core.physics import ENGINE
-from ..core.session import ROLES
+from ..core.physics.engine import ENGINE
+from ..core.protocol.session import ROLES
 from ..errors import LimitExceeded, OutOfRange, VPError
 from .access import AccessPolicy
 from .hub import Hubs

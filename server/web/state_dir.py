@@ -1,6 +1,6 @@
 """What ``vp-server --state-dir DIR`` keeps, so that a restart loses nothing::
 
-    DIR/scenes/<scene>.json      each scene as a document (server.core.scene_document),
+    DIR/scenes/<scene>.json      each scene as a document (server.core.protocol.scene_document),
                                  its uploaded files named by content hash, not carried
     DIR/scenes/<scene>.journal   the changes made since that document was written
                                  (server.web.scene_store)

@@ -42,15 +42,15 @@ from collections import deque
 from multiprocessing.connection import Connection as Pipe
 from typing import Any, Callable
 
-from ..core.assets import AssetLibrary
-from ..core.command_log import replay
-from ..core.ids import owner_of
-from ..core.limits import Limits
-from ..core.messages import encode
-from ..core.scene import Scene
-from ..core.scene_document import check_import, import_scene, parse_document, scene_owners
-from ..core.session import Session
-from ..core.wire import encode_numbers
+from ..core.physics.assets import AssetLibrary
+from ..core.protocol.command_log import replay
+from ..core.kit.ids import owner_of
+from ..core.kit.limits import Limits
+from ..core.protocol.messages import encode
+from ..core.scene.scene import Scene
+from ..core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
+from ..core.protocol.session import Session
+from ..core.kit.numbers import encode_numbers
 from ..errors import InternalError, VPError
 from . import heap
 from .outbox import Outgoing

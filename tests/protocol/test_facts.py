@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import re
 
-from server.core.messages import CLIENT_OPS
+from server.core.protocol.messages import CLIENT_OPS
 from server.web.scene_hub import REPLACED
 from tests.conftest import ROOT
 from virtual_prosthetics import connection, protocol

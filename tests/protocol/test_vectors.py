@@ -10,9 +10,9 @@ import json
 import pytest
 from websockets.sync.client import connect
 
-from server.core.messages import check_server_message
-from server.core.scene import Scene
-from server.core.session import Session
+from server.core.protocol.messages import check_server_message
+from server.core.scene.scene import Scene
+from server.core.protocol.session import Session
 
 from .vectors import mismatch, steps, vector_files
 

@@ -2,7 +2,7 @@
 
 import pytest
 
-from server.core.scene import Scene
+from server.core.scene.scene import Scene
 
 
 @pytest.fixture

@@ -28,13 +28,13 @@ from pathlib import Path
 from typing import Any, Iterator
 from urllib.parse import urlsplit
 
-from server.core.command_log import applied_line, left_line
-from server.core.operations import Operations
-from server.core.scene import Scene
-from server.core.scene_document import encode_document, export_scene, import_scene
+from server.core.protocol.command_log import applied_line, left_line
+from server.core.protocol.operations import Operations
+from server.core.scene.scene import Scene
+from server.core.protocol.scene_document import encode_document, export_scene, import_scene
 from server.web.scene_store import SceneStore
 from server.web.worker import SceneWorker
-from tests.server.core.gltf_fuzz import peak_megabytes
+from tests.server.core.physics.gltf_fuzz import peak_megabytes
 
 ODD = [None, True, -1, 0, 1e308, -1e308, 2 ** 64, 1.5, "", "x" * 300, "c1.1", "c2.1",
        "demo.1", "ground", "../../etc/passwd", [], [1], [0, 0, 0], [[1, 2], [3]], {},

@@ -1,6 +1,6 @@
 """Hypothesis strategies for protocol messages: valid, almost valid and garbage.
 
-Valid messages are drawn from the API table (:mod:`server.core.api`), so every type and
+Valid messages are drawn from the API table (:mod:`server.core.protocol.api`), so every type and
 method the server offers is exercised with arguments of the right kinds; almost valid
 ones are valid ones with one thing broken; garbage is anything at all. Each drawn
 message carries the class it was drawn from, so a run can say how many of each it tried.
@@ -14,7 +14,7 @@ from typing import Any, Callable
 
 from hypothesis import strategies as st
 
-from server.core import api
+from server.core.protocol import api
 
 BIG = 10 ** 4000  # a 4 001-digit integer: JSON carries it, no float does
 

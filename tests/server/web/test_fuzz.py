@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 from websockets.sync.client import connect
 
 from virtual_prosthetics.mirror import Mirror
-from server.core.messages import check_server_message
+from server.core.protocol.messages import check_server_message
 from tests.conftest import RunningServer, start_server, stop_server
 
 from .fuzz_messages import (GARBAGE, HOSTILE_CASES, Drawn, almost_valid, is_answerable,

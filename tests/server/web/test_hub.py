@@ -11,9 +11,9 @@ from pathlib import Path
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
-from server.core.operations import Operations
-from server.core.scene import Scene
-from server.core.scene_document import encode_document, export_scene
+from server.core.protocol.operations import Operations
+from server.core.scene.scene import Scene
+from server.core.protocol.scene_document import encode_document, export_scene
 
 from server.web.hub import Hubs, clients_objects
 from server.web.state_dir import StateDir

@@ -12,9 +12,9 @@ import urllib.request
 import pytest
 from websockets.sync.client import connect
 
-from server.core.operations import Operations
-from server.core.scene import Scene
-from server.core.scene_document import encode_document, export_scene
+from server.core.protocol.operations import Operations
+from server.core.scene.scene import Scene
+from server.core.protocol.scene_document import encode_document, export_scene
 from tests.conftest import crash_server, eventually, start_server, stop_server
 
 from .ws_requests import request_all, wait_ticks

@@ -10,8 +10,8 @@ import time
 import pytest
 from websockets.exceptions import ConnectionClosed
 
-from server.core.assets import AssetLibrary
-from server.core.limits import DEFAULT
+from server.core.physics.assets import AssetLibrary
+from server.core.kit.limits import DEFAULT
 from server.web.runner import SceneRunner
 from server.web.scene_store import SceneStore
 from tests.conftest import start_server, stop_server, unwritable

@@ -13,8 +13,8 @@ from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
 
-from server.core.scene import Scene
-from server.core.session import Session
+from server.core.scene.scene import Scene
+from server.core.protocol.session import Session
 from server.web.saving import SceneSaver
 from server.web.scene_store import SceneStore
 from tests.conftest import crash_server, eventually, start_server, stop_server, unwritable

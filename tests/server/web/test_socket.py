@@ -8,7 +8,7 @@ from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
-from server.core.messages import check_server_message
+from server.core.protocol.messages import check_server_message
 from tests.conftest import eventually, start_server, stop_server
 
 from .ws_requests import next_message, request_all, wait_ticks

@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 
 import virtual_prosthetics as vp
-from server.core.operations import Operations
-from server.core.scene import Scene
-from server.core.scene_document import encode_document, export_scene
+from server.core.protocol.operations import Operations
+from server.core.scene.scene import Scene
+from server.core.protocol.scene_document import encode_document, export_scene
 from server.web.hub import Hubs
 from server.web.state_dir import CLIENT_BLOCK, StateDir
 from tests.conftest import start_server, stop_server, unwritable

@@ -7,8 +7,8 @@ import time
 
 import pytest
 
-from server.core.limits import DEFAULT
-from server.core.scene import Scene
+from server.core.kit.limits import DEFAULT
+from server.core.scene.scene import Scene
 from server.errors import UnknownObject
 from server.web.rest import _robot
 from server.web.worker import SceneWorker

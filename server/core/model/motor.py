@@ -1,0 +1,114 @@
+"""Motors: parts that turn about one axis within limits."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ...errors import OutOfRange
+from . import figures
+from ..kit import math3d
+from ..kit.math3d import Pose
+from .node import World
+from .parts import Part
+
+
+def clamp(value: float, low: float, high: float) -> float:
+    """``value`` limited to [low, high]."""
+    return max(low, min(high, value))
+
+
+class Motor(Part):
+    """A part with one rotational degree of freedom; the base motor has no image.
+
+    Limits are swapped when given in reverse, the default angle is clamped into them,
+    and ``flip`` turns the motor the other way while ``get_angle`` keeps reporting the
+    commanded angle.
+    """
+
+    type_name = "Motor"
+
+    def __init__(self, scene: World, node_id: str, axis: str, min: float = -math.inf,
+                 max: float = math.inf, default: float = 0.0) -> None:
+        super().__init__(scene, node_id)
+        self.axis = axis
+        self.min, self.max = (min, max) if min <= max else (max, min)
+        if self.min == math.inf or self.max == -math.inf:
+            raise OutOfRange(f"the limits of motor {node_id} leave no finite angle: "
+                             f"[{self.min}, {self.max}]", object=node_id)
+        self.default = clamp(default, self.min, self.max)
+        self.angle = self.default
+        self.flipped = False
+        self.name: str | None = None
+
+    def local_pose(self) -> Pose:
+        turn = math3d.axis_angle(self.axis, -self.angle if self.flipped else self.angle)
+        return self.position, math3d.multiply(self.quaternion, turn)
+
+    def get_angle(self) -> float:
+        """Manual ``getAngle()``."""
+        return self.angle
+
+    def set_angle(self, angle: float | None) -> None:
+        """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""
+        self.scene.turn([(self, angle)])
+
+    def within_limits(self, angle: float | None) -> float | None:
+        """The angle ``setAngle(angle)`` gives this motor (None: it is ignored)."""
+        if angle is not None and self.min <= angle <= self.max and math.isfinite(angle):
+            return angle  # the common case, in one test (NaN fails it too)
+        if angle is None or math.isnan(angle):
+            return None
+        value = clamp(angle, self.min, self.max)
+        if not math.isfinite(value):
+            raise OutOfRange(f"angle {angle} of motor {self.id} is not finite within its "
+                             f"limits [{self.min}, {self.max}]", object=self.id)
+        return value
+
+    def set_name(self, name: str) -> Motor:
+        """Manual ``setName(name)``; returns the motor for chaining."""
+        self._assign("name", name)
+        return self
+
+    def flip(self, flipped: bool = True) -> Motor:
+        """Manual ``flip(bool)``: turn the other way when true; returns the motor."""
+        self._assign("flipped", flipped)
+        return self
+
+    def constructor_args(self) -> list[Any]:
+        return [self.axis, self.min, self.max, self.default]
+
+    def properties(self) -> dict[str, Any]:
+        return {**super().properties(), "axis": self.axis, "min": self.min, "max": self.max,
+                "angle": self.angle, "flipped": self.flipped, "name": self.name}
+
+
+class AxisMotor(Motor):
+    """A motor class with a fixed axis, drawn as a cylinder, with slot 0 per the figures."""
+
+    def __init__(self, scene: World, node_id: str, min: float = -math.inf,
+                 max: float = math.inf, default: float = 0.0, width: float | None = None,
+                 height: float | None = None) -> None:
+        figure = figures.MOTORS[self.type_name]
+        super().__init__(scene, node_id, figure.axis, min, max, default)
+        self.width = figure.width if width is None else width
+        self.height = figure.height if height is None else height
+        self.new_slot(figures.motor_slot(figure.axis, self.height))
+
+    def constructor_args(self) -> list[Any]:
+        return [self.min, self.max, self.default, self.width, self.height]
+
+    def geometry(self) -> dict[str, Any]:
+        return figures.motor_cylinder(self.type_name, self.width, self.height)
+
+
+class MotorX(AxisMotor):
+    type_name = "MotorX"
+
+
+class MotorY(AxisMotor):
+    type_name = "MotorY"
+
+
+class MotorZ(AxisMotor):
+    type_name = "MotorZ"

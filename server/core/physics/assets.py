@@ -1,0 +1,176 @@
+"""Mesh files that parts are made from: the bundled ones and uploaded ones, by safe names.
+
+A filename is taken as 1.0 pages wrote it (``'../assets/gltf/round-palm.glb'``,
+``'round-palm.glb'``, ``'/assets/gltf/round-palm.glb'``): after one of the known
+prefixes, what is left must be a plain file name (letters, digits, ``_-.``, ending in
+``.glb`` or ``.gltf``) of a bundled or uploaded file. Anything else (other folders, ``..``,
+absolute paths, URLs, percent-encoding, backslashes) is refused before any file is opened.
+
+The mesh of a file is read once per process (trimesh). :meth:`AssetLibrary.store` takes
+an upload: it must be a self-contained glTF (GLB, or JSON with its buffers as ``data:``
+URIs) whose mesh trimesh reads, within the size limits; it is kept under the hash of its
+bytes (``<sha256>.glb``), so the same file uploaded twice is one file with one name.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import io
+import os
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Any, Collection
+
+import numpy as np
+
+from ...errors import (BadAsset, Forbidden, InternalError, LimitExceeded, TooLarge,
+                      UnknownAsset)
+from . import gltf_file
+from ..kit.limits import DEFAULT, MAX_SIZE, Limits
+
+BUNDLED_DIR = Path(__file__).resolve().parents[3] / "assets" / "gltf"
+BUNDLED_URL = "/assets/gltf/"
+UPLOADED_URL = "/api/assets/"
+PREFIXES = ("../assets/gltf/", "./assets/gltf/", "assets/gltf/", BUNDLED_URL, UPLOADED_URL)
+_NAME = re.compile(r"[A-Za-z0-9_-]+(?:\.[A-Za-z0-9_-]+)*\.(?:glb|gltf)")
+
+
+@dataclass(frozen=True, eq=False)  # compared and hashed by identity: one per file read
+class Mesh:
+    """A file's triangles in the file's own frame, ready for rays and envelopes."""
+
+    url: str
+    vertices: np.ndarray   # (n, 3) float
+    triangles: np.ndarray  # (m, 3) vertex indices, counter-clockwise seen from outside
+
+
+class AssetLibrary:
+    """Finds mesh files by name: bundled ones, then those uploaded to ``uploads``."""
+
+    def __init__(self, bundled: Path = BUNDLED_DIR, uploads: Path | None = None,
+                 limits: Limits = DEFAULT) -> None:
+        self.bundled = bundled
+        self.uploads = uploads
+        self.limits = limits  # what a file read for a part may expand to
+
+    def locate(self, filename: str) -> tuple[Path, str]:
+        """The file a part's filename means and the URL viewers load it from."""
+        name = plain_name(filename)
+        path = self.bundled / name
+        if path.is_file():
+            return path, BUNDLED_URL + name
+        if self.uploads is not None and (self.uploads / name).is_file():
+            return self.uploads / name, UPLOADED_URL + name
+        raise UnknownAsset(f"no mesh file {name!r}: bundled files are "
+                           f"{', '.join(self.bundled_names())}; others must be uploaded "
+                           f"first (POST /api/assets)", filename=filename)
+
+    def store(self, data: bytes, limits: Limits) -> dict[str, Any]:
+        """Keep an uploaded glTF file; its name, URL, size and triangle count."""
+        if self.uploads is None:
+            raise Forbidden("this server takes no uploads")
+        if len(data) > limits.asset_bytes:
+            raise TooLarge(f"the file has {len(data)} bytes; at most {limits.asset_bytes} "
+                           f"are taken", limit="assetBytes", value=limits.asset_bytes)
+        kind, triangles = _check_mesh(data, limits)
+        name = f"{hashlib.sha256(data).hexdigest()[:32]}.{kind}"
+        path = self.uploads / name
+        if path.is_file():
+            os.utime(path)  # uploaded again: as new (see collect)
+        else:
+            if len(self.uploaded_names()) >= limits.assets:
+                raise LimitExceeded(f"the server keeps at most {limits.assets} uploaded files",
+                                    limit="assets", value=limits.assets)
+            partial = path.with_name(f".{name}.{os.getpid()}.part")
+            try:
+                partial.write_bytes(data)
+                os.replace(partial, path)  # never a half-written file under the name
+            except OSError as error:
+                partial.unlink(missing_ok=True)
+                raise InternalError(f"the upload folder cannot be written ({error.strerror}); "
+                                    f"nothing was kept") from None
+        return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data),
+                "triangles": triangles}
+
+    def collect(self, in_use: Collection[str], before: float) -> list[str]:
+        """Remove the uploaded files not ``in_use`` last uploaded before ``before`` (a
+        ``time.time()``), to make room for new ones; their names. Recent ones stay: a
+        script may have uploaded a file it has not used yet."""
+        removed = []
+        for name in self.uploaded_names():
+            path = self.uploads / name  # type: ignore[operator]
+            try:
+                if name not in in_use and path.stat().st_mtime < before:
+                    path.unlink()
+                    removed.append(name)
+            except FileNotFoundError:
+                pass
+        return removed
+
+    def uploaded_names(self) -> list[str]:
+        """Names of the files uploaded so far."""
+        if self.uploads is None:
+            return []
+        try:
+            return sorted(p.name for p in self.uploads.iterdir() if _NAME.fullmatch(p.name))
+        except FileNotFoundError:  # a folder that could not be made: nothing was uploaded
+            return []
+
+    def bundled_names(self) -> list[str]:
+        """Names of the files that come with the server."""
+        return sorted(p.name for p in self.bundled.glob("*.gl*"))
+
+    def mesh(self, filename: str) -> Mesh:
+        """The mesh of a file (read once per process)."""
+        path, url = self.locate(filename)
+        return _read_mesh(str(path), url, path.stat().st_mtime_ns, self.limits)
+
+
+def plain_name(filename: str) -> str:
+    """The bare file name in ``filename``, or :class:`Forbidden` when it points elsewhere."""
+    name = filename
+    for prefix in PREFIXES:
+        if name.startswith(prefix):
+            name = name[len(prefix):]
+            break
+    if not _NAME.fullmatch(name):
+        raise Forbidden(f"mesh filename {filename!r} is not allowed: give a bundled or "
+                        f"uploaded file's name, e.g. 'round-palm.glb' or "
+                        f"'../assets/gltf/round-palm.glb'", filename=filename)
+    return name
+
+
+def _check_mesh(data: bytes, limits: Limits) -> tuple[str, int]:
+    """The kind (``glb``/``gltf``) and triangle count of a self-contained glTF file's mesh,
+    judged from its layout before anything is loaded (:mod:`server.core.physics.gltf_file`), then
+    read; or :class:`BadAsset` / :class:`LimitExceeded`."""
+    summary = gltf_file.inspect(data, limits)
+    faces, vertices = _load(io.BytesIO(data), summary.kind)
+    if len(faces) != summary.triangles or (len(faces) and faces.max() >= len(vertices)):
+        raise BadAsset("the file's mesh does not read as its layout says")  # a loader quirk
+    if not np.isfinite(vertices).all() or np.abs(vertices).max() > MAX_SIZE:
+        raise BadAsset(f"the mesh's coordinates must be finite and within ±{MAX_SIZE:g}")
+    return summary.kind, summary.triangles
+
+
+def _load(source: Any, kind: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Triangles and vertices of a checked file, its placements applied (materials and
+    textures are not read: geometry is all the server needs)."""
+    import trimesh  # only scenes that use meshes pay for it
+
+    try:
+        mesh = trimesh.load(source, file_type=kind, force="mesh", process=False,
+                            skip_materials=True)
+        return np.asarray(mesh.faces, dtype=np.int64), np.asarray(mesh.vertices, dtype=float)
+    except Exception as error:  # trimesh raises many kinds for broken files
+        raise BadAsset(f"the file does not read as a glTF mesh: {str(error)[:200]}") from None
+
+
+@lru_cache(maxsize=64)
+def _read_mesh(path: str, url: str, version: int, limits: Limits) -> Mesh:
+    data = Path(path).read_bytes()  # checked again: a file may have been put there by hand
+    kind, _ = _check_mesh(data, limits)
+    faces, vertices = _load(io.BytesIO(data), kind)
+    return Mesh(url, vertices, faces)

@@ -1,0 +1,224 @@
+"""Contacts: which pairs of physical parts (and the ground) touch, and how that changes.
+
+A pair is two ids in sorted order; the ground's id is ``"ground"``. The
+:class:`ContactTracker` keeps the touching pairs up to date as bodies move: only pairs
+with a moved body are measured, only when their boxes overlap, and at most
+``contact_tests`` of them per tick; moved bodies beyond that wait for the next tick
+(frames say how many under ``limited``). However crowded a scene is, a tick's work is
+bounded. The :class:`ContactBook` holds the pairs announced at the last tick, so clients
+see every change exactly once, in order.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, Protocol
+
+import numpy as np
+
+from .engine import GROUND, TOUCH_TOLERANCE, Vec3
+
+Pair = tuple[str, str]
+_BLOCK = 1024  # bodies whose candidates are found in one array operation (bounds memory)
+
+
+class Bodies(Protocol):
+    """What the tracker needs of the physics world."""
+
+    def aabbs(self, keys: list[str]) -> list[tuple[Vec3, Vec3]]: ...
+
+    def touching_many(self, key: str, others: list[str]) -> list[bool]: ...
+
+
+def pair(a: str, b: str) -> Pair:
+    """Two ids as a pair (sorted)."""
+    return (a, b) if a < b else (b, a)
+
+
+class Overlaps:
+    """Pairs touching at one moment, indexed by id."""
+
+    def __init__(self, pairs: Iterable[Pair]) -> None:
+        self.pairs = frozenset(pairs)
+        partners: dict[str, list[str]] = {}
+        for a, b in sorted(self.pairs):
+            partners.setdefault(a, []).append(b)
+            partners.setdefault(b, []).append(a)
+        self._partners = {node_id: sorted(others) for node_id, others in partners.items()}
+
+    def of(self, node_id: str) -> list[str]:
+        """What ``node_id`` touches, sorted."""
+        return self._partners.get(node_id, [])
+
+
+class ContactTracker:
+    """The touching pairs, kept current within a budget of pair tests per update."""
+
+    def __init__(self, bodies: Bodies, tests_per_update: int, max_pairs: int) -> None:
+        self._bodies = bodies
+        self._budget = tests_per_update
+        self._max_pairs = max_pairs
+        self._rows: dict[str, int] = {}
+        self._keys: list[str] = []
+        self._low = np.empty((0, 3))
+        self._high = np.empty((0, 3))
+        self._partners: dict[str, set[str]] = {}
+        self._count = 0
+        self._dirty: dict[str, None] = {}  # moved bodies, in the order they moved
+        self.unrecorded = 0  # touching pairs left out at the last update (max_pairs)
+        self.tests = 0       # pair tests of the last update
+        self._snapshot: Overlaps | None = Overlaps(())
+
+    # --- bodies --------------------------------------------------------------------------
+
+    def placed(self, keys: list[str]) -> None:
+        """Bodies were added or moved: their contacts must be measured again."""
+        boxes = np.array(self._bodies.aabbs(keys), dtype=float).reshape(len(keys), 2, 3)
+        new = [key for key in keys if key not in self._rows]
+        for key in new:
+            self._rows[key] = len(self._keys)
+            self._keys.append(key)
+        if new:
+            grown = np.empty((len(new), 3))
+            self._low, self._high = np.vstack([self._low, grown]), np.vstack([self._high, grown])
+        rows = [self._rows[key] for key in keys]
+        self._low[rows], self._high[rows] = boxes[:, 0], boxes[:, 1]
+        self._dirty.update(dict.fromkeys(keys))
+
+    def removed(self, key: str) -> None:
+        """A body left the world: its pairs end now (nothing for a body never placed)."""
+        row = self._rows.pop(key, None)
+        if row is None:
+            return
+        last = len(self._keys) - 1
+        if row != last:  # the last row takes the freed place
+            moved = self._keys[last]
+            self._keys[row], self._rows[moved] = moved, row
+            self._low[row], self._high[row] = self._low[last], self._high[last]
+        self._keys.pop()
+        self._low, self._high = self._low[:last], self._high[:last]
+        for other in list(self._partners.get(key, ())):
+            self._set(key, other, False)
+        self._dirty.pop(key, None)
+
+    # --- measuring -----------------------------------------------------------------------
+
+    @property
+    def deferred(self) -> int:
+        """Moved bodies whose contacts are not measured yet."""
+        return len(self._dirty)
+
+    def update(self) -> None:
+        """Measure the pairs of moved bodies, in the order they moved, within the budget."""
+        self.tests = self.unrecorded = 0
+        while self._dirty and (self.tests == 0 or self.tests < self._budget):
+            keys = list(self._dirty)[:_BLOCK]
+            for key, candidates in zip(keys, self._candidates(keys)):
+                waiting = [c for c in candidates if c in self._dirty and c != key]
+                tests = len(candidates) - len(waiting)
+                if self.tests and self.tests + tests > self._budget:
+                    return
+                del self._dirty[key]
+                self._measure(key, candidates, skip=set(waiting))
+
+    def settle(self, key: str) -> None:
+        """Measure every pair of one body now (an exact read of its contacts)."""
+        if key in self._rows:
+            [candidates] = self._candidates([key])
+            self._dirty.pop(key, None)
+            self._measure(key, candidates, skip=set())
+
+    def _measure(self, key: str, candidates: list[str], skip: set[str]) -> None:
+        near = set(candidates)
+        for other in list(self._partners.get(key, ())):
+            if other not in near and other not in skip:
+                self._set(key, other, False)
+        tested = [other for other in candidates if other not in skip] if skip else candidates
+        self.tests += len(tested)
+        for other, touching in zip(tested, self._bodies.touching_many(key, tested)):
+            self._set(key, other, touching)
+
+    def _candidates(self, keys: list[str]) -> list[list[str]]:
+        """For each body, the bodies whose boxes overlap its box, and the ground if near."""
+        rows = np.array([self._rows[k] for k in keys])
+        mine, others = self._sweep(rows)
+        cut = np.searchsorted(mine, np.arange(len(rows) + 1))
+        names = [self._keys[j] for j in others.tolist()]
+        found = [names[cut[i]:cut[i + 1]] for i in range(len(rows))]
+        for i, bottom in enumerate(self._low[rows, 1].tolist()):
+            if bottom <= TOUCH_TOLERANCE:
+                found[i].append(GROUND)
+        return found
+
+    def _sweep(self, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Pairs (index into ``rows``, row) of overlapping boxes, sorted by both.
+
+        Sweep and prune: along the axis where it leaves the fewest, only the bodies whose
+        lower edge lies within reach are compared on all three axes.
+        """
+        low, high, tolerance = self._low, self._high, TOUCH_TOLERANCE
+        ranges = [self._ranges(rows, axis) for axis in range(3)]
+        order, first, counts = min(ranges, key=lambda r: int(r[2].sum()))
+        mine = np.repeat(np.arange(len(rows)), counts)
+        offsets = np.arange(len(mine)) - np.repeat(np.cumsum(counts) - counts - first, counts)
+        others = order[offsets]
+        a, b = rows[mine], others
+        apart = (low[b] > high[a] + tolerance) | (high[b] < low[a] - tolerance)
+        keep = (a != b) & ~(apart[:, 0] | apart[:, 1] | apart[:, 2])
+        mine, others = mine[keep], others[keep]
+        order = np.lexsort((others, mine))
+        return mine[order], others[order]
+
+    def _ranges(self, rows: np.ndarray, axis: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Along one axis: the rows by lower edge, and per row of ``rows`` the first and the
+        number of those whose box may overlap its box (lower edge within the widest box)."""
+        low, high = self._low[:, axis], self._high[:, axis]
+        order = np.argsort(low, kind="stable")
+        starts = low[order]
+        reach = float((high - low).max()) + TOUCH_TOLERANCE
+        first = np.searchsorted(starts, low[rows] - reach, "left")
+        last = np.searchsorted(starts, high[rows] + TOUCH_TOLERANCE, "right")
+        return order, first, last - first
+
+    def _set(self, a: str, b: str, touching: bool) -> None:
+        partners = self._partners
+        if touching == (b in partners.get(a, ())):
+            return
+        if touching:
+            if self._count >= self._max_pairs:
+                self.unrecorded += 1
+                return
+            partners.setdefault(a, set()).add(b)
+            partners.setdefault(b, set()).add(a)
+            self._count += 1
+        else:
+            for x, y in ((a, b), (b, a)):
+                partners[x].discard(y)
+                if not partners[x]:
+                    del partners[x]
+            self._count -= 1
+        self._snapshot = None
+
+    def overlaps(self) -> Overlaps:
+        """The pairs touching as far as measured."""
+        if self._snapshot is None:
+            self._snapshot = Overlaps(pair(a, b) for a, others in self._partners.items()
+                                      for b in others if a < b)
+        return self._snapshot
+
+
+class ContactBook:
+    """The contacts announced by the last tick."""
+
+    def __init__(self) -> None:
+        self.current = Overlaps(())
+
+    def update(self, now: Overlaps) -> tuple[list[Pair], list[Pair]]:
+        """Take ``now`` as the current contacts; the pairs that began and ended, sorted."""
+        began = sorted(now.pairs - self.current.pairs)
+        ended = sorted(self.current.pairs - now.pairs)
+        self.current = now
+        return began, ended
+
+    def wire(self) -> list[list[str]]:
+        """The pairs as they travel: sorted lists of two ids."""
+        return [list(pair) for pair in sorted(self.current.pairs)]

@@ -1,0 +1,236 @@
+"""Rays against the exact shapes of the scene's parts, as 1.0's raycaster met them.
+
+:class:`RayTargets` holds the shape of every physical part (:mod:`server.core.physics.rayshapes`)
+at its world pose, with the ground plane y = 0 (met from above only), and answers for
+many rays at once: per ray and per lower limit, the first thing met at or beyond that
+limit, and how far (a sensor asks for two limits: 0 for touch, 0.05 for distance). No
+engine, no collision margin: distances are exact to rounding.
+
+Rays are tested against bounding spheres first; the pairs that pass are met exactly, all
+pairs of one shape in one numpy call.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import numpy as np
+
+from .assets import AssetLibrary
+from ..kit.math3d import Pose
+from .rayshapes import GROUND_SHAPE, Convex, Shape, convex_entries, shape_of
+
+GROUND = "ground"
+_NOTHING, _GROUND = -2, -1  # key indices besides the rows of parts
+_BROAD_CHUNK = 250_000  # ray × part pairs tested at once (bounded memory)
+_SLACK = 1e-9  # relative and absolute: bounding spheres are met a hair generously
+
+Hits = tuple[list[list[str]], np.ndarray]  # keys (rays × limits), distances (rays, limits)
+
+
+class RayTargets:
+    """The shapes of physical parts at their world poses, keyed by node id."""
+
+    def __init__(self, assets: AssetLibrary) -> None:
+        self._assets = assets
+        self._shapes: list[Shape] = []        # one per distinct geometry
+        self._shape_index: dict[tuple, int] = {}
+        self._keys: list[str] = []
+        self._rows: dict[str, int] = {}
+        self._shape_of = np.empty(0, dtype=np.int64)  # per row: index into _shapes
+        self._rotations = np.empty((0, 3, 3))
+        self._positions = np.empty((0, 3))
+        self._centres = np.empty((0, 3))  # of the bounding spheres, in the world
+        self._radii = np.empty(0)
+        self._moved: dict[str, Pose] = {}  # poses not yet taken into the arrays
+        self._planes = ConvexPlanes()  # the convex shapes' planes, met in one go
+
+    def __len__(self) -> int:
+        return len(self._keys)
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._rows
+
+    def add(self, key: str, geometry: dict[str, Any], pose: Pose) -> None:
+        """A part's shape, placed at ``pose``."""
+        shape_key = _shape_key(geometry)
+        index = self._shape_index.get(shape_key)
+        if index is None:
+            index = self._shape_index[shape_key] = len(self._shapes)
+            self._shapes.append(shape_of(geometry, self._assets))
+            self._planes.add(index, self._shapes[index])
+        self._rows[key] = len(self._keys)
+        self._keys.append(key)
+        self._shape_of = np.append(self._shape_of, index)
+        self._rotations = np.concatenate([self._rotations, np.eye(3)[None]])
+        self._positions = np.concatenate([self._positions, np.zeros((1, 3))])
+        self._centres = np.concatenate([self._centres, np.zeros((1, 3))])
+        self._radii = np.append(self._radii, self._shapes[index].radius)
+        self.move(key, pose)
+
+    def move(self, key: str, pose: Pose) -> None:
+        """Place ``key``'s shape at a world pose (taken in when rays are next cast)."""
+        self._moved[key] = pose
+
+    def move_many(self, keys: list[str], poses: list[Pose]) -> None:
+        """Place the shapes of ``keys`` at their world poses (as :meth:`move`)."""
+        self._moved.update(zip(keys, poses))
+
+    def _place_moved(self) -> None:
+        """Rotations, positions and sphere centres of the moved rows, in one go."""
+        if not self._moved:
+            return
+        rows = np.array([self._rows[key] for key in self._moved])
+        positions = np.array([position for position, _ in self._moved.values()], dtype=float)
+        rotations = _matrices(np.array([q for _, q in self._moved.values()], dtype=float))
+        centres = np.stack([self._shapes[i].centre for i in self._shape_of[rows]])
+        self._rotations[rows] = rotations
+        self._positions[rows] = positions
+        self._centres[rows] = np.einsum("kij,kj->ki", rotations, centres) + positions
+        self._moved.clear()
+
+    def remove(self, key: str) -> None:
+        """Forget ``key``'s shape (the last row takes its place)."""
+        self._moved.pop(key, None)
+        self._place_moved()
+        row, last = self._rows.pop(key), len(self._keys) - 1
+        arrays = (self._shape_of, self._rotations, self._positions, self._centres, self._radii)
+        if row != last:
+            moved = self._keys[last]
+            self._keys[row] = moved
+            self._rows[moved] = row
+            for array in arrays:
+                array[row] = array[last]
+        self._keys.pop()
+        (self._shape_of, self._rotations, self._positions, self._centres,
+         self._radii) = (array[:last] for array in arrays)
+
+    def first_hits(self, origin: Sequence[float], direction: Sequence[float],
+                   limits: Sequence[float], far: float) -> list[tuple[str, float]]:
+        """For one ray: per limit, ``(key, distance)`` of the first hit, or ``("", inf)``."""
+        keys, distances = self.cast(np.array([origin], float), np.array([direction], float),
+                                    limits, far)
+        return [(key, float(t)) for key, t in zip(keys[0], distances[0])]
+
+    def cast(self, origins: np.ndarray, directions: np.ndarray, limits: Sequence[float],
+             far: float) -> Hits:
+        """For many rays (unit directions): per ray and limit, what is met first at or
+        beyond the limit and no farther than ``far``, and its distance (``inf``: nothing)."""
+        self._place_moved()
+        best = GROUND_SHAPE.entries(origins, directions, limits)
+        who = np.where(np.isfinite(best), _GROUND, _NOTHING)
+        for rays, rows, entries in self._exact(origins, directions, limits):
+            for k in range(len(limits)):
+                _improve(best[:, k], who[:, k], rays, rows, entries[:, k])
+        best[best > far] = np.inf
+        who[best == np.inf] = _NOTHING
+        names = [*self._keys, "", GROUND]  # so that _NOTHING and _GROUND index the last two
+        return [[names[i] for i in row] for row in who.tolist()], best
+
+    def _exact(self, origins: np.ndarray, directions: np.ndarray, limits: Sequence[float]):
+        """(rays, rows, entries) for the pairs whose bounding sphere meets: every convex
+        shape's pairs at once, then the other shapes one by one."""
+        rays, rows = self._broad(origins, directions, limits[0])
+        turn = self._rotations[rows]  # local = Rᵀ (world - position)
+        local_o = np.einsum("kji,kj->ki", turn, origins[rays] - self._positions[rows])
+        local_d = np.einsum("kji,kj->ki", turn, directions[rays])
+        shapes = self._shape_of[rows]
+        convex = self._planes.holds(shapes)
+        if convex.any():
+            normals, offsets = self._planes.of(shapes[convex])
+            yield rays[convex], rows[convex], convex_entries(
+                normals, offsets, local_o[convex], local_d[convex], limits)
+        others = ~convex
+        for index in np.unique(shapes[others]):
+            mine = others & (shapes == index)
+            yield rays[mine], rows[mine], self._shapes[index].entries(local_o[mine],
+                                                                      local_d[mine], limits)
+
+    def _broad(self, origins: np.ndarray, directions: np.ndarray,
+               low: float) -> tuple[np.ndarray, np.ndarray]:
+        """Ray and row indices of the pairs whose bounding sphere lies on the ray past ``low``."""
+        if not self._keys:
+            return np.empty(0, np.int64), np.empty(0, np.int64)
+        step = max(1, _BROAD_CHUNK // len(self._keys))
+        rays, rows = [], []
+        for start in range(0, len(origins), step):
+            o, d = origins[start:start + step], directions[start:start + step]
+            # with t = c - o: along = t·d, miss² = t·t - along², in products of matrices
+            # (no rays × parts × 3 arrays); a hair of slack keeps rounding on the safe side
+            along = d @ self._centres.T - np.einsum("rj,rj->r", o, d)[:, None]
+            apart = (self._centres ** 2).sum(axis=1) - 2 * (o @ self._centres.T) + \
+                (o ** 2).sum(axis=1)[:, None]
+            reach = self._radii * (1 + _SLACK) + _SLACK
+            near = (apart - along ** 2 <= reach ** 2) & (along + reach >= low)
+            r, n = np.nonzero(near)
+            rays.append(r + start)
+            rows.append(n)
+        return np.concatenate(rays), np.concatenate(rows)
+
+
+class ConvexPlanes:
+    """The face planes of every convex shape, padded to one count: slot k of shape index
+    i holds its normals and offsets (rows of zeros with offset 1 pad: no plane)."""
+
+    def __init__(self) -> None:
+        self._slot = np.empty(0, dtype=np.int64)  # per shape index; -1: not convex
+        self._normals = np.zeros((0, 0, 3))
+        self._offsets = np.ones((0, 0))
+
+    def add(self, index: int, shape: Shape) -> None:
+        """Note shape ``index`` (the next one); its planes if it is convex."""
+        if not isinstance(shape, Convex):
+            self._slot = np.append(self._slot, -1)
+            return
+        self._slot = np.append(self._slot, len(self._normals))
+        width = max(self._normals.shape[1], len(shape.offsets))
+        normals = np.zeros((len(self._normals) + 1, width, 3))
+        offsets = np.ones((len(self._normals) + 1, width))
+        normals[:-1, :self._normals.shape[1]] = self._normals
+        offsets[:-1, :self._offsets.shape[1]] = self._offsets
+        normals[-1, :len(shape.offsets)], offsets[-1, :len(shape.offsets)] = \
+            shape.normals, shape.offsets
+        self._normals, self._offsets = normals, offsets
+
+    def holds(self, shapes: np.ndarray) -> np.ndarray:
+        """Which of these shape indices are convex."""
+        return self._slot[shapes] >= 0
+
+    def of(self, shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Normals (k, planes, 3) and offsets (k, planes) of these convex shape indices."""
+        slots = self._slot[shapes]
+        return self._normals[slots], self._offsets[slots]
+
+
+def _improve(best: np.ndarray, who: np.ndarray, rays: np.ndarray, rows: np.ndarray,
+             entries: np.ndarray) -> None:
+    """Lower ``best`` (and ``who``) per ray where one of the pairs' entries is nearer."""
+    found = np.isfinite(entries)
+    rays, rows, entries = rays[found], rows[found], entries[found]
+    order = np.lexsort((rows, entries, rays))  # per ray: nearest first (ties: older row)
+    rays, rows, entries = rays[order], rows[order], entries[order]
+    first = np.ones(len(rays), bool)
+    first[1:] = rays[1:] != rays[:-1]
+    rays, rows, entries = rays[first], rows[first], entries[first]
+    nearer = entries < best[rays]
+    best[rays[nearer]] = entries[nearer]
+    who[rays[nearer]] = rows[nearer]
+
+
+def _matrices(q: np.ndarray) -> np.ndarray:
+    """Rotation matrices of unit quaternions (x, y, z, w), as math3d.to_matrix, many at once."""
+    x, y, z, w = q.T
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], axis=1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], axis=1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=1),
+    ], axis=1)
+
+
+def _shape_key(geometry: dict[str, Any]) -> tuple:
+    """What makes two geometries one shape (colours do not, nor a mesh's envelope)."""
+    ignored = {"color", "edges"} | ({"points"} if geometry["kind"] == "mesh" else set())
+
+    def frozen(value: Any) -> Any:
+        return tuple(frozen(v) for v in value) if isinstance(value, list) else value
+    return tuple((k, frozen(v)) for k, v in sorted(geometry.items()) if k not in ignored)

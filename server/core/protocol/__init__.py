@@ -1,0 +1,1 @@
+"""The wire: messages, the API table and its arguments, operations, ownership, sessions, reports, scene documents, the command log, generated client artefacts. Imports every layer below; none imports it."""

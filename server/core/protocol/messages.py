@@ -1,0 +1,145 @@
+"""Reading and writing protocol messages, checked against ``protocol/schema/protocol.json``.
+
+The schema is compiled once into Python code (fastjsonschema), one validator per message
+definition, so a client message is checked in microseconds per operation.
+"""
+
+from __future__ import annotations
+
+import json
+from functools import cache
+from pathlib import Path
+from typing import Any, Callable
+
+import fastjsonschema
+
+from ...errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp, show
+from ..kit.limits import DEFAULT, Limits
+
+PROTOCOL_VERSION = 1
+SCHEMA_PATH = Path(__file__).resolve().parents[3] / "protocol" / "schema" / "protocol.json"
+CLIENT_OPS = ("create", "call", "delete", "batch", "ping")
+MAX_REQUEST_ID = 2 ** 53 - 1  # the schema's requestId maximum: exact in every language
+
+
+@cache
+def schema() -> dict[str, Any]:
+    """The protocol's JSON Schema."""
+    return json.loads(SCHEMA_PATH.read_text())
+
+
+@cache
+def validator(definition: str) -> Callable[[Any], Any]:
+    """A compiled check of one definition of the schema (raises JsonSchemaException)."""
+    return fastjsonschema.compile({"$ref": f"#/$defs/{definition}", "$defs": schema()["$defs"]})
+
+
+def _reject_constant(name: str) -> None:
+    raise BadJSON(f"{name} is not JSON; send non-finite numbers as the string \"{name}\"")
+
+
+def utf8_size(text: str, limit: int) -> int:
+    """The UTF-8 size of ``text``, exact when it could be near ``limit`` (else a bound)."""
+    if len(text) * 4 <= limit or len(text) > limit:
+        return len(text)
+    return len(text.encode("utf-8", "surrogatepass"))
+
+
+def byte_size(data: str | bytes) -> int:
+    """The size of a WebSocket message in bytes, as it travelled (UTF-8)."""
+    if isinstance(data, bytes) or data.isascii():
+        return len(data)
+    return len(data.encode("utf-8", "surrogatepass"))
+
+
+def decode(data: str | bytes, limits: Limits = DEFAULT) -> list[Any]:
+    """The messages in one WebSocket text message (an object, or an array of them)."""
+    if not isinstance(data, str):
+        raise BadMessage("binary WebSocket messages are not part of the protocol; "
+                         "send JSON as text messages")
+    size = utf8_size(data, limits.message_bytes)
+    if size > limits.message_bytes:
+        raise TooLarge(f"message of {size} bytes is over the limit of {limits.message_bytes} "
+                       f"bytes", limit="messageBytes", value=limits.message_bytes)
+    try:
+        value = json.loads(data, parse_constant=_reject_constant)
+    except RecursionError:
+        raise BadJSON("not valid JSON: nested too deeply") from None
+    except ValueError as error:
+        raise BadJSON(f"not valid JSON: {error}") from None
+    if not isinstance(value, list):
+        return [value]
+    if len(value) > limits.messages_per_text:
+        raise LimitExceeded(f"{len(value)} messages in one text; at most "
+                            f"{limits.messages_per_text}", limit="messagesPerText",
+                            value=limits.messages_per_text)
+    return value
+
+
+def request_id(message: Any) -> int | None:
+    """The id a message asks its answer to carry, if it is a valid one."""
+    if isinstance(message, dict):
+        value = message.get("id")
+        if isinstance(value, int) and not isinstance(value, bool) and 0 <= value <= MAX_REQUEST_ID:
+            return value
+    return None
+
+
+def check_client_message(message: Any) -> dict[str, Any]:
+    """``message`` if it is a well-formed client message; else the error that says why."""
+    if not isinstance(message, dict):
+        raise BadMessage(f"a message must be a JSON object, got {show(message)}")
+    op = message.get("op")
+    if op not in CLIENT_OPS:
+        raise UnknownOp(f"unknown op {show(op)}; the ops are {', '.join(CLIENT_OPS)}")
+    try:
+        if op == "call" and _numbers_only(message.get("args")):
+            validator(op)({**message, "args": []})  # the rest as the schema says
+        else:
+            validator(op)(message)
+    except fastjsonschema.JsonSchemaValueException as error:
+        raise _schema_refusal(error, op, "message") from None
+    return message
+
+
+def check_document(document: Any) -> None:
+    """Nothing when ``document`` has the form of a scene document (``sceneDocument``),
+    else :class:`BadMessage` saying where it differs."""
+    if not isinstance(document, dict) or document.get("format") != "virtual-prosthetics-scene":
+        raise BadMessage("not a scene document: it needs \"format\": "
+                         "\"virtual-prosthetics-scene\" (what GET /api/scenes/{scene}/export gives)")
+    try:
+        validator("sceneDocument")(document)
+    except fastjsonschema.JsonSchemaValueException as error:
+        raise _schema_refusal(error, "scene document", "document") from None
+
+
+def _schema_refusal(error: fastjsonschema.JsonSchemaValueException, what: str,
+                    whole: str) -> BadMessage:
+    """What the schema found wrong, where (``whole`` when it is the value itself)."""
+    where = "/".join(str(p) for p in error.path[1:]) or whole
+    complaint = error.message.split(" ", 1)[1] if " " in error.message else error.message
+    return BadMessage(f"{what}: {where}: {complaint}", path=where)
+
+
+def _numbers_only(args: Any) -> bool:
+    """True for a list of plain numbers (setAngles' angles) no longer than the schema's
+    ``args`` allows: each is an ``arg`` as it stands, so the compiled check (which builds
+    an error path per item) can leave them out; the schema stays the one source."""
+    return type(args) is list and len(args) <= _max_args() and \
+        all(type(a) is float or type(a) is int for a in args)
+
+
+@cache
+def _max_args() -> int:
+    return schema()["$defs"]["args"]["maxItems"]
+
+
+def check_server_message(message: dict[str, Any]) -> None:
+    """Raise ``JsonSchemaException`` if a server message breaks the schema (tests use it)."""
+    validator("serverMessage")(message)
+
+
+def encode(message: dict[str, Any]) -> str:
+    """One message as compact JSON text; a bare non-finite number is a server bug."""
+    return json.dumps(message, separators=(",", ":"), allow_nan=False)

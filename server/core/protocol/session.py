@@ -1,0 +1,151 @@
+"""One client's conversation with a scene: checks, permissions, answers, ownership.
+
+Sans-I/O: :meth:`Session.receive` takes the text of one WebSocket message and returns
+the answers to send back; the web layer only moves text.
+"""
+
+from __future__ import annotations
+
+import logging
+import re
+import time
+from typing import Any, Callable
+
+from ...errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
+from . import api
+from .messages import (PROTOCOL_VERSION, byte_size, check_client_message, decode, encode,
+                       request_id)
+from .operations import Operations
+from ..physics.engine import ENGINE
+from ..kit.rates import TokenBucket
+from ..scene.scene import Scene
+
+log = logging.getLogger(__name__)
+ROLES = ("controller", "viewer")
+
+
+class Session:
+    """A connected client: its id (``c7``), its role, and the objects it created."""
+
+    def __init__(self, scene: Scene, client_id: str, role: str = "controller",
+                 resume: str | None = None) -> None:
+        if role not in ROLES:
+            raise ValueError(f"role must be one of {ROLES}, got {role!r}")
+        self.scene = scene
+        self.client_id = client_id
+        self.role = role
+        self.operations = Operations(scene, client_id)
+        self.resume = resume  # what a reconnecting client sends to be this client again
+        # told of every request that changed the scene, once it is applied (the journal)
+        self.on_change: Callable[[Session, dict[str, Any]], None] | None = None
+        now = time.monotonic()
+        self._ops = TokenBucket(scene.limits.ops_per_second, now)
+        self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
+        self._own_id = re.compile(rf"{re.escape(client_id)}\.[A-Za-z0-9_.:-]+")
+
+    def hello(self, tick_rate: float) -> dict[str, Any]:
+        """The first message a client receives."""
+        return {"op": "hello", "protocol": PROTOCOL_VERSION, "client": self.client_id,
+                "role": self.role, "scene": self.scene.name, "time": self.scene.time,
+                "tickRate": tick_rate, "limits": self.scene.limits.wire(), "engine": ENGINE,
+                "slots": api.slot_counts(), **({"resume": self.resume} if self.resume else {})}
+
+    def receive(self, text: str | bytes, now: float | None = None) -> list[dict[str, Any]]:
+        """Apply every message in one WebSocket text message; the answers, in order.
+
+        ``now`` (monotonic seconds) keeps the connection's rates; a text over a rate is
+        answered with ``limit_exceeded`` for each request in it, and nothing is applied.
+        """
+        return [answer for answer, _ in self.receive_encoded(text, now)]
+
+    def receive_encoded(self, text: str | bytes,
+                        now: float | None = None) -> list[tuple[dict[str, Any], str]]:
+        """:meth:`receive`, each answer with its JSON text (encoded once, here)."""
+        now = time.monotonic() if now is None else now
+        try:
+            messages = decode(text, self.scene.limits)
+        except VPError as error:
+            return [_encoded(error.to_wire())]
+        refusal = self._over_rate(text, messages, now)
+        if refusal is not None:
+            return [_encoded(refusal.to_wire(request_id(m), _op_name(m))) for m in messages]
+        answers = (self._handle(message) for message in messages)
+        return [answer for answer in answers if answer is not None]
+
+    def _over_rate(self, text: str | bytes, messages: list[Any], now: float) -> VPError | None:
+        limits = self.scene.limits
+        if not self._bytes.take(byte_size(text), now):
+            return LimitExceeded(f"more than {limits.bytes_per_second} bytes a second from "
+                                 f"this connection; slow down", limit="bytesPerSecond",
+                                 value=limits.bytes_per_second)
+        ops = sum(len(m["ops"]) if isinstance(m, dict) and isinstance(m.get("ops"), list) else 1
+                  for m in messages)
+        if not self._ops.take(ops, now):
+            return LimitExceeded(f"more than {limits.ops_per_second} operations a second from "
+                                 f"this connection; slow down", limit="opsPerSecond",
+                                 value=limits.ops_per_second)
+        return None
+
+    def handle(self, message: Any) -> dict[str, Any] | None:
+        """Apply one message; its answer (None for a fire-and-forget success)."""
+        answer = self._handle(message)
+        return None if answer is None else answer[0]
+
+    def _handle(self, message: Any) -> tuple[dict[str, Any], str] | None:
+        answer_id, op = request_id(message), _op_name(message)
+        try:
+            check_client_message(message)
+            self._authorize(message)
+            with self.scene.recording() as changes, self.scene.journal.transaction():
+                result = self.operations.apply(message)
+                answer = self._answer(answer_id, result, changes)
+            if changes and self.on_change is not None:
+                self.on_change(self, message)
+            return answer
+        except VPError as error:
+            return _encoded(error.to_wire(answer_id, op))
+        except Exception:  # a bug: the transaction was undone, the client is told
+            log.exception("internal error applying a %s request of %s", op, self.client_id)
+            return _encoded(InternalError("internal server error; nothing was changed")
+                            .to_wire(answer_id, op))
+
+    def _answer(self, answer_id: int | None, result: Any,
+                changes: Any) -> tuple[dict[str, Any], str] | None:
+        """The ok answer and its text; encoding inside the transaction means a value JSON
+        cannot carry undoes the request."""
+        if answer_id is None:
+            return None
+        answer: dict[str, Any] = {"op": "ok", "id": answer_id}
+        if result is not None:
+            answer["result"] = result
+        delta = self.scene.delta(changes)
+        if delta:
+            answer["changes"] = delta
+        if changes.warnings:
+            answer["warnings"] = changes.warnings
+        return _encoded(answer)
+
+    def _authorize(self, message: dict[str, Any]) -> None:
+        inner = message["ops"] if message["op"] == "batch" else [message]
+        for op in inner:
+            if self.role == "viewer" and self.operations.mutates(op):
+                raise Forbidden(f"a viewer cannot {op['op']}; connect with role=controller",
+                                role=self.role)
+            if op["op"] == "create" and not self._own_id.fullmatch(op["object"]):
+                raise ForeignId(f"new ids of this client look like {self.client_id}.<name>, "
+                                f"got {op['object']}", object=op["object"])
+
+    def close(self) -> list[str]:
+        """The client left: what it created goes (:meth:`Scene.remove_client`); the ids
+        deleted at the top."""
+        return self.scene.remove_client(self.client_id)
+
+
+def _encoded(answer: dict[str, Any]) -> tuple[dict[str, Any], str]:
+    return answer, encode(answer)
+
+
+def _op_name(message: Any) -> str | None:
+    """The op a message names, when it is one of the protocol's (echoed in errors)."""
+    op = message.get("op") if isinstance(message, dict) else None
+    return op if isinstance(op, str) and len(op) <= 16 and op.isidentifier() else None

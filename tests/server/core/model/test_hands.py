@@ -1,0 +1,86 @@
+"""The edged hand: its chains, motor order and finger control."""
+
+import math
+
+import pytest
+
+from server.core.model.hands import EdgedHand
+from server.errors import OutOfRange
+
+
+def test_edged_hand_has_twenty_motors_in_finger_order(scene):
+    hand = EdgedHand(scene, "h", True)
+    motors = hand.get_motors()
+    assert [m.type_name for m in motors] == ["MotorX", "MotorZ", "MotorZ", "MotorZ"] * 5
+    assert [m.min for m in motors[0::4]] == [-1, -0.4, -0.4, -0.4, -0.4]
+    assert all(m.angle == pytest.approx(-math.pi / 4) for i, m in enumerate(motors) if i % 4)
+    # every finger hangs on its own palm slot, thumb first
+    assert [motors[4 * i].parent for i in range(5)] == hand.palm.slots
+
+
+def test_edged_hand_parts_and_sizes(scene):
+    hand = EdgedHand(scene, "h")
+    types = [p.type_name for p in hand.get_parts()]
+    assert types.count("EdgedFinger") == 10 and types.count("EdgedTip") == 5
+    first_segments = [p for p in hand.get_parts() if p.type_name == "EdgedFinger"][0::2]
+    assert [f.length for f in first_segments] == [1, 1, 1.1, 1, 0.8]
+
+
+def test_left_hand_flips_spread_motors_right_hand_does_not(scene):
+    left, right = EdgedHand(scene, "l", True), EdgedHand(scene, "r", False)
+    assert all(m.flipped for m in left.get_motors()[0::4])
+    assert not any(m.flipped for m in right.get_motors()[0::4])
+
+
+def test_flex_and_spread_set_the_right_motors(scene):
+    hand = EdgedHand(scene, "h")
+    hand.flex_finger(1, 0.5)
+    hand.spread_finger(3, 0.1)
+    angles = hand.get_angles()
+    assert angles[5:8] == [-0.5] * 3
+    assert angles[12] == pytest.approx(-0.1)
+    assert angles[1] == pytest.approx(-math.pi / 4)  # thumb untouched
+    hand.flex_fingers(0.3)
+    assert all(a == pytest.approx(-0.3) for i, a in enumerate(hand.get_angles()) if i % 4)
+
+
+def test_spread_fingers_with_and_without_thumb(scene):
+    hand = EdgedHand(scene, "h")
+    hand.spread_fingers(0.2)
+    assert hand.get_angles()[0::4] == pytest.approx([0, -0.2, -0.06, 0.06, 0.2])
+    hand.spread_fingers(0.2, True)
+    assert hand.get_angles()[0] == pytest.approx(-(-1 + 3 * 0.2))
+
+
+def test_finger_index_out_of_range(scene):
+    hand = EdgedHand(scene, "h")
+    with pytest.raises(OutOfRange):
+        hand.flex_finger(5, 0.1)
+
+
+def test_open_hand_fingertips_are_above_the_palm(scene):
+    hand = EdgedHand(scene, "h")
+    hand.flex_fingers(0)
+    tips = [p for p in hand.get_parts() if p.type_name == "EdgedTip"]
+    heights = [tip.slots[0].world_pose()[0][1] for tip in tips[1:]]
+    # palm 1.4 + spread motor + size + 0.5 + 0.5 (the thumb points sideways)
+    assert heights == pytest.approx([1.4 + s + 1.0 for s in (1, 1.1, 1, 0.8)])
+
+
+def test_a_hand_at_rest_touches_nothing(scene):
+    hand = EdgedHand(scene, "h", True)
+    hand.set_position((0, 1, 0))
+    assert scene.bodies.overlaps().pairs == frozenset()
+
+
+def test_a_finger_flexed_into_its_palm_touches_it_and_stops_on_unflexing(scene):
+    hand = EdgedHand(scene, "h", True)
+    hand.set_position((0, 1, 0))
+    palm, index_base = hand.get_parts()[0], hand.get_parts()[10]
+    assert (palm.type_name, index_base.type_name) == ("EdgedPalm", "EdgedFinger")
+    hand.flex_finger(1, 1.2)
+    assert scene.bodies.overlaps().pairs == {(palm.id, index_base.id)}
+    hand.flex_finger(1, 0)  # straight again: Bullet's cached contact points must not linger
+    assert scene.bodies.overlaps().pairs == frozenset()
+    hand.flex_finger(0, 1.5)
+    assert scene.bodies.touching(palm) == [hand.get_parts()[3].id]  # the thumb's base

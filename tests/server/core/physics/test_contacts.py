@@ -1,0 +1,107 @@
+"""Contacts: the tracker's bounded measuring, and the book's begin and end diffs."""
+
+import random
+
+import pytest
+
+from server.core.physics.contacts import ContactBook, ContactTracker, Overlaps, pair
+from server.core.physics.engine import GROUND, PhysicsWorld
+
+
+def test_update_reports_each_change_once():
+    book = ContactBook()
+    assert book.update(Overlaps([("a", "b"), ("b", "c")])) == ([("a", "b"), ("b", "c")], [])
+    assert book.update(Overlaps([("a", "b"), ("b", "c")])) == ([], [])
+    assert book.update(Overlaps([("b", "c"), ("a", "ground")])) == ([("a", "ground")],
+                                                                    [("a", "b")])
+    assert book.current.of("b") == ["c"] and book.current.of("a") == ["ground"]
+    assert book.current.of("x") == []
+    assert book.wire() == [["a", "ground"], ["b", "c"]]
+
+
+def test_overlaps_index_both_sides_sorted():
+    overlaps = Overlaps([("m", "z"), ("a", "m"), ("ground", "m")])
+    assert overlaps.of("m") == ["a", "ground", "z"] and overlaps.of("a") == ["m"]
+
+
+IDENTITY = (0.0, 0.0, 0.0, 1.0)
+CUBE = {"kind": "box", "size": [1, 1, 1]}
+
+
+@pytest.fixture
+def world():
+    w = PhysicsWorld()
+    yield w
+    w.close()
+
+
+def place(world, tracker, key, position, geometry=CUBE):
+    if key in world:
+        world.move(key, (position, IDENTITY))
+    else:
+        world.add(key, geometry, (position, IDENTITY))
+    tracker.placed([key])
+
+
+def test_tracker_measures_moved_bodies_and_the_ground(world):
+    tracker = ContactTracker(world, tests_per_update=100, max_pairs=100)
+    place(world, tracker, "a", (0, 0.4, 0))
+    place(world, tracker, "b", (0.9, 0.4, 0))
+    place(world, tracker, "c", (5, 3, 0))
+    tracker.update()
+    assert tracker.overlaps().pairs == {("a", "b"), ("a", GROUND), ("b", GROUND)}
+    place(world, tracker, "b", (0.9, 3, 0))  # away from a and the ground
+    tracker.update()
+    assert tracker.overlaps().pairs == {("a", GROUND)} and tracker.deferred == 0
+    tracker.removed("a")
+    tracker.update()
+    assert tracker.overlaps().pairs == frozenset()
+
+
+def test_crowds_are_measured_a_budget_at_a_time(world):
+    """160 boxes in one spot crashed PyBullet's contact query; now it is 12 720 pair tests."""
+    tracker = ContactTracker(world, tests_per_update=2000, max_pairs=100_000)
+    for k in range(160):
+        place(world, tracker, f"b{k:03}", (0, 5, 0))
+    updates = 0
+    while tracker.deferred:
+        tracker.update()
+        updates += 1
+        assert tracker.tests <= 2000
+    assert len(tracker.overlaps().pairs) == 160 * 159 // 2
+    assert 6 <= updates <= 10
+
+
+def test_settle_measures_one_body_at_once(world):
+    tracker = ContactTracker(world, tests_per_update=1, max_pairs=100)
+    for k in range(5):
+        place(world, tracker, f"b{k}", (0, 5, 0))
+    tracker.settle("b3")
+    assert tracker.overlaps().of("b3") == ["b0", "b1", "b2", "b4"]
+
+
+def test_pairs_beyond_the_cap_are_counted_not_kept(world):
+    tracker = ContactTracker(world, tests_per_update=1000, max_pairs=10)
+    for k in range(6):
+        place(world, tracker, f"b{k}", (0, 5, 0))
+    tracker.update()
+    assert len(tracker.overlaps().pairs) == 10 and tracker.unrecorded == 5
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_every_touching_pair_is_found_whatever_the_boxes_sizes(world, seed):
+    """The tracker only measures pairs whose boxes overlap (sweep and prune): it must
+    still find exactly the pairs that a test of every pair finds, a long slab included."""
+    rng = random.Random(seed)
+    tracker = ContactTracker(world, tests_per_update=100_000, max_pairs=100_000)
+    keys = [f"b{i}" for i in range(60)]
+    for key in keys:
+        size = [rng.uniform(0.1, 2) for _ in range(3)]
+        place(world, tracker, key, [rng.uniform(-3, 3) for _ in range(3)],
+              {"kind": "box", "size": size})
+    place(world, tracker, "slab", (0, 1, 0), {"kind": "box", "size": [20, 0.1, 0.3]})
+    tracker.update()
+    everything = [*keys, "slab", GROUND]
+    expected = {pair(a, b) for i, a in enumerate(everything) for b in everything[i + 1:]
+                if a != GROUND and world.touching(a, b)}
+    assert tracker.overlaps().pairs == expected and len(expected) > 30

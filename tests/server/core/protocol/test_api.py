@@ -1,0 +1,69 @@
+"""The API table: one source for names, exported without drift, backed by real methods."""
+
+import inspect
+import json
+
+from server.core.protocol import api, api_export
+from server.core.protocol.arguments import KINDS
+from server.core.protocol.messages import schema
+from server.core.protocol.operations import NODE_CLASSES, Operations
+from server.core.scene.scene import Scene
+from server.errors import ERROR_CODES
+
+
+def test_protocol_api_json_is_the_exported_table():
+    on_disk = api_export.API_PATH.read_text()
+    assert on_disk == api_export.render(), "run: python -m server.core.protocol.api_export"
+
+
+def test_every_creatable_type_has_a_class_and_every_class_a_type():
+    creatable = {name for name, spec in api.TYPES.items() if spec.creatable}
+    assert creatable == set(NODE_CLASSES)
+
+
+def test_every_method_in_the_table_exists_with_room_for_its_arguments():
+    for type_name, cls in {**NODE_CLASSES, "Scene": Scene}.items():
+        for method in api.methods_of(type_name).values():
+            function = getattr(cls, method.python, None)
+            assert callable(function), f"{type_name}.{method.python} is missing"
+            parameters = list(inspect.signature(function).parameters.values())[1:]
+            if any(p.kind is p.VAR_POSITIONAL for p in parameters):
+                continue
+            assert len(parameters) >= len(method.params), f"{type_name}.{method.name}"
+
+
+def test_every_parameter_kind_is_known():
+    for spec in api.TYPES.values():
+        params = [*spec.params, *(p for m in spec.methods for p in m.params)]
+        assert {p.kind for p in params} <= KINDS, spec.name
+
+
+def test_snake_names():
+    assert api.snake("attachToSlot") == "attach_to_slot"
+    assert api.snake("addGUI") == "add_gui"
+    assert api.snake("setCameraPosition") == "set_camera_position"
+
+
+def test_error_codes_match_the_schema():
+    codes = schema()["$defs"]["error"]["properties"]["code"]["enum"]
+    assert sorted(codes) == sorted(ERROR_CODES)
+
+
+def test_api_json_is_valid_json_with_all_types():
+    table = json.loads(api_export.API_PATH.read_text())
+    assert set(table["types"]) == set(api.TYPES)
+
+
+REQUIRED_ARGS = {"GLTFPart": ["round-finger-8.glb"], "RoundFinger": ["round-finger-8.glb"],
+             "RoundPalm": [True, "round-palm.glb"], "AnthroPalm": [True, "anthro-palm.glb"],
+             "AnthroThumb": [True, "anthro-thumb.glb"], "Motor": ["x"],
+             "SceneMesh": [{"kind": "box", "size": [1, 1, 1]}]}
+
+
+def test_each_type_starts_with_the_slots_the_table_says(scene):
+    # clients name the slot addSlot makes next from these counts, without a round trip
+    operations = Operations(scene, "c1")
+    for number, (name, count) in enumerate(api.slot_counts().items()):
+        operations.create(f"c1.{number}", name, REQUIRED_ARGS.get(name, []))
+        slots = scene.nodes[f"c1.{number}"].slots
+        assert [slot.id for slot in slots] == [f"c1.{number}/s{k}" for k in range(count)], name

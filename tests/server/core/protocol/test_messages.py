@@ -1,0 +1,70 @@
+"""Decoding limits and schema checks of incoming messages."""
+
+import fastjsonschema
+import pytest
+
+from server.core.protocol import messages
+from server.core.protocol.messages import check_client_message, validator
+from server.errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp
+
+
+def test_decode_accepts_an_object_or_an_array():
+    assert messages.decode('{"op": "ping"}') == [{"op": "ping"}]
+    assert messages.decode('[{"op": "ping"}, {"op": "ping"}]') == [{"op": "ping"}] * 2
+
+
+def test_oversize_text_is_refused_before_parsing():
+    with pytest.raises(TooLarge):
+        messages.decode(" " * (messages.DEFAULT.message_bytes + 1))
+
+
+def test_too_many_messages_in_one_text():
+    with pytest.raises(LimitExceeded):
+        messages.decode("[" + ",".join(["{}"] * (messages.DEFAULT.messages_per_text + 1)) + "]")
+
+
+@pytest.mark.parametrize("text", ["NaN", "[Infinity]", '{"a": -Infinity}', "{", ""])
+def test_non_json_is_refused(text):
+    with pytest.raises(BadJSON):
+        messages.decode(text)
+
+
+def test_deep_nesting_is_refused_not_crashed():
+    with pytest.raises(BadJSON):
+        messages.decode("[" * 100_000 + "]" * 100_000)
+
+
+def test_schema_errors_name_the_field():
+    with pytest.raises(BadMessage, match="args"):
+        messages.check_client_message({"op": "call", "object": "a", "method": "m", "args": 5})
+    with pytest.raises(UnknownOp):
+        messages.check_client_message({"op": "frame"})
+
+
+def test_encode_refuses_bare_non_finite_numbers():
+    with pytest.raises(ValueError):
+        messages.encode({"op": "frame", "time": float("inf")})
+
+
+@pytest.mark.parametrize("message", [
+    {"op": "call", "id": 1, "object": "c1.h", "method": "setAngles", "args": [0.5, -1, 2.0]},
+    {"op": "call", "id": 1, "object": "c1.h", "method": "setAngles", "args": [0.5] * 10_001},
+    {"op": "call", "id": 1, "object": "c1.h", "method": "setAngles", "args": [0.5, True]},
+    {"op": "call", "id": -1, "object": "c1.h", "method": "setAngles", "args": [0.5]},
+    {"op": "call", "object": "c1.h", "method": "x" * 65, "args": [1]},
+    {"op": "call", "object": "c1.h", "method": "setAngles", "args": [1], "extra": 1},
+    {"op": "call", "object": "c1.h", "method": "setAngles", "args": []},
+])
+def test_calls_with_plain_numbers_are_judged_as_the_schema_judges_them(message):
+    """Such calls skip the per-argument check (each number is a valid argument as it is):
+    what passes and what fails must still be exactly what the schema says."""
+    try:
+        validator("call")(message)
+        expected = None
+    except fastjsonschema.JsonSchemaValueException:
+        expected = BadMessage
+    if expected is None:
+        assert check_client_message(message) is message
+    else:
+        with pytest.raises(expected):
+            check_client_message(message)

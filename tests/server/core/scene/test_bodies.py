@@ -1,0 +1,84 @@
+"""The scene's bodies: collision bodies and ray shapes kept where the tree puts the parts."""
+
+import math
+
+import pytest
+
+from server.core.kit import math3d
+from server.core.model.hands import EdgedHand
+from server.core.model.motor import MotorZ
+from server.core.model.parts import Box, EdgedFinger
+from server.core.model.robot import Robot
+
+
+def test_collision_bodies_follow_the_motors(scene):
+    robot = Robot(scene, "r")
+    finger = EdgedFinger(scene, "f", 1)
+    motor = MotorZ(scene, "m")
+    robot.attach_chain(motor, finger)
+    robot.set_position((0, 1, 0))
+    motor.set_angle(math.pi / 2)
+    scene.tick(0.1)
+    position, orientation = scene.bodies.physics.pose("f")
+    assert position == pytest.approx((0, 1, 0), abs=1e-6)
+    assert orientation == pytest.approx(math3d.axis_angle("z", math.pi / 2), abs=1e-6)
+
+
+def test_a_ray_hits_the_finger_where_the_tree_puts_it(scene):
+    robot = Robot(scene, "r")
+    motor = MotorZ(scene, "m")
+    robot.attach_chain(motor, EdgedFinger(scene, "f", 1, 0.3, 0.3))
+    robot.set_position((0, 1, 0))
+    motor.set_angle(math.pi / 2)  # the finger now lies along -X at height 1
+    scene.tick(0.1)
+    # straight down at x = -0.5: the finger's upper face is 0.15 above its axis
+    [(key, distance)] = scene.bodies.rays.first_hits((-0.5, 3, 0), (0, -1, 0), [0], 10)
+    assert key == "f" and distance == pytest.approx(3 - 1.15, abs=1e-12)
+    [(key, distance)] = scene.bodies.rays.first_hits((0.5, 3, 0), (0, -1, 0), [0], 10)
+    assert key == "ground" and distance == 3
+
+
+def test_a_hand_moved_as_a_whole_keeps_every_body_on_its_part(scene):
+    hand = EdgedHand(scene, "h", True)
+    scene.tick(0.1)
+    hand.set_position((3, 1, -2))
+    hand.flex_fingers(0.7)
+    scene.tick(0.1)
+    parts = [p for p in hand.get_parts() if p.physical]
+    assert len(parts) == 16 and len(scene.bodies) == 16
+    for part in parts:
+        position, orientation = scene.bodies.physics.pose(part.id)
+        assert position == pytest.approx(part.world_pose()[0], abs=1e-12)
+        same_turn = abs(sum(a * b for a, b in zip(orientation, part.world_pose()[1])))
+        assert same_turn == pytest.approx(1, abs=1e-9)  # q and -q are one rotation
+    for part in parts:  # straight down onto the middle of each part's box: the hand
+        low, high = scene.bodies.physics.aabb(part.id)
+        x, z = (low[0] + high[0]) / 2, (low[2] + high[2]) / 2
+        [(key, _)] = scene.bodies.rays.first_hits((x, 9, z), (0, -1, 0), [0], 20)
+        assert key in {p.id for p in parts}, part.id
+
+
+def test_a_part_that_cannot_be_placed_is_left_out_and_the_rest_move(scene, monkeypatch):
+    boxes = [Box(scene, f"b{i}", 0.5, 0.5, 0.5) for i in range(3)]
+    for i, box in enumerate(boxes):
+        box.set_position((2 * i, 2, 0))
+    scene.tick(0.1)
+    for i, box in enumerate(boxes):
+        box.set_position((2 * i, 0.2, 0))  # down onto the ground
+    monkeypatch.setattr(boxes[1], "world_pose", lambda: math.sqrt(-1))  # a bug in one part
+    frame = scene.tick(0.1)[-1]
+    assert scene.bodies.failures == 1 and "b1" not in scene.bodies.physics
+    assert frame["contacts"]["begin"] == [["b0", "ground"], ["b2", "ground"]]
+
+
+def test_a_part_scaled_gets_a_shape_of_its_new_size(scene):
+    box = Box(scene, "b", 1, 1, 1)
+    box.set_position((0, 2, 0))
+    scene.tick(0.1)
+    [(_, before)] = scene.bodies.rays.first_hits((0, 5, 0), (0, -1, 0), [0], 10)
+    assert "ground" not in scene.bodies.touching(box)
+    box.set_scale((1, 4, 1))  # from y = 0 to y = 4
+    scene.tick(0.1)
+    [(key, after)] = scene.bodies.rays.first_hits((0, 5, 0), (0, -1, 0), [0], 10)
+    assert (before, key, after) == (pytest.approx(2.5), "b", pytest.approx(1))
+    assert "ground" in scene.bodies.touching(box)

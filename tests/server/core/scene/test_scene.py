@@ -1,0 +1,197 @@
+"""The scene: ids, transactions, the change feed, ticks, contacts and readings in frames."""
+
+import math
+
+import pytest
+
+from server.core.kit import math3d
+from server.core.model.motor import MotorZ
+from server.core.model.parts import Ball, Box, EdgedFinger, EdgedPalm
+from server.core.model.sensor import Sensor
+from server.core.model.robot import Robot
+from server.errors import DuplicateId, OutOfRange
+
+
+def test_ids_are_unique_and_never_reused(scene):
+    box = Box(scene, "a")
+    with pytest.raises(DuplicateId):
+        Box(scene, "a")
+    scene.delete(box)
+    with pytest.raises(DuplicateId):
+        Box(scene, "a")
+
+
+def test_failed_transaction_undoes_everything(scene):
+    robot = Robot(scene, "r")
+    motor = MotorZ(scene, "m", -1, 1)
+    robot.attach_chain(motor)
+    motor.set_angle(0.5)
+    with pytest.raises(OutOfRange), scene.journal.transaction():
+        motor.set_angle(-0.25)
+        extra = EdgedFinger(scene, "f")
+        extra.attach_to_slot(motor)
+        robot.set_position((1, 2, 3))
+        scene.delete(motor)
+        raise OutOfRange("late failure")
+    assert motor.angle == 0.5 and robot.position == (0, 0, 0)
+    assert "f" not in scene.nodes and scene.nodes["m"] is motor
+    assert motor.parent is robot and motor.slots[0].children == []
+    assert robot.get_motors() == [motor]
+
+
+def test_set_angles_turns_all_motors_at_once_and_undoes_them_together(scene):
+    robot = Robot(scene, "r")
+    motors = [MotorZ(scene, f"m{i}", -1, 1) for i in range(3)]
+    finger = EdgedFinger(scene, "f")
+    robot.attach_chain(*motors, finger)
+    scene.tick(0.1)
+    tip_before = finger.world_pose()
+    with pytest.raises(OutOfRange), scene.journal.transaction():
+        robot.set_angles(0.5, None, 9)  # None keeps one, 9 is clamped to 1
+        assert robot.get_angles() == [0.5, 0.0, 1.0] and finger.world_pose() != tip_before
+        raise OutOfRange("late failure")
+    assert robot.get_angles() == [0.0, 0.0, 0.0] and finger.world_pose() == tip_before
+    robot.set_angles(0.5, 0, 0.25)
+    frame = frame_of(scene.tick(0.1))
+    assert frame["angles"] == {"m0": 0.5, "m2": 0.25}  # m1 did not change
+    assert scene.bodies.physics.pose("f")[0] == pytest.approx(finger.world_pose()[0])
+
+
+def test_tick_reports_added_frame_removed_in_order(scene):
+    first = scene.tick(0.5)
+    assert first == [{"op": "frame", "seq": 1, "time": 0.5}]
+    robot = Robot(scene, "r")
+    motor = MotorZ(scene, "m")
+    robot.attach_chain(motor)
+    added, frame = scene.tick(0.5)
+    assert added["op"] == "added" and [n["id"] for n in added["nodes"]] == ["r", "m", "m/s0"]
+    assert frame == {"op": "frame", "seq": 2, "time": 1.0}  # new nodes come whole
+    motor.set_angle(0.3)
+    robot.set_position((1, 0, 0))
+    [frame] = scene.tick(0.5)
+    assert frame["angles"] == {"m": 0.3}
+    assert frame["poses"] == {"r": [1, 0, 0, 0, 0, 0, 1]}
+    scene.delete(motor)
+    frame, removed = scene.tick(0.5)
+    assert removed == {"op": "removed", "seq": 4, "ids": sorted(["m", "m/s0"])} or \
+        set(removed["ids"]) == {"m", "m/s0"}
+    assert frame["updates"] == {"r": {"children": [], "motors": []}}
+
+
+def test_reattaching_reports_both_parents_children(scene):
+    a, b, part = Box(scene, "a"), Box(scene, "b"), Box(scene, "p")
+    part.attach_to_slot(a)
+    scene.tick(0.1)
+    part.attach_to_slot(b)
+    [frame] = scene.tick(0.1)
+    assert frame["updates"] == {"a": {"children": []}, "b": {"children": ["p"]},
+                                "p": {"parent": "b"}}
+
+
+def test_delta_of_a_recording_holds_only_its_changes(scene):
+    motor = MotorZ(scene, "m")
+    scene.tick(0.1)
+    with scene.recording() as changes:
+        motor.set_angle(1.0)
+    assert scene.delta(changes) == {"angles": {"m": 1.0}}
+
+
+def test_snapshot_lists_parents_before_children_and_encodes_infinity(scene):
+    robot = Robot(scene, "r")
+    robot.attach_chain(MotorZ(scene, "m"))
+    snapshot = scene.snapshot()
+    ids = [n["id"] for n in snapshot["nodes"]]
+    assert ids == ["r", "m", "m/s0"]
+    motor = snapshot["nodes"][1]
+    assert (motor["min"], motor["max"]) == ("-Infinity", "Infinity")
+
+
+def test_camera_changes_are_reported(scene):
+    scene.set_camera_position((1, 2, 3))
+    [frame] = scene.tick(0.1)
+    assert frame["camera"] == {"position": [1, 2, 3], "target": [0, 1, 0]}
+
+
+def frame_of(messages):
+    return next(m for m in messages if m["op"] == "frame")
+
+
+def contacts_of(messages):
+    return frame_of(messages).get("contacts")
+
+
+def test_contacts_begin_and_end_once_each_tick_they_change(scene):
+    finger = EdgedFinger(scene, "f")
+    finger.set_position((0, 1, 0))
+    box = Box(scene, "b", 1, 0.1, 0.1)
+    box.set_position((0, 1.5, 0))
+    assert contacts_of(scene.tick(0.1)) == {"begin": [["b", "f"]], "end": []}
+    assert contacts_of(scene.tick(0.1)) is None  # still touching: no news
+    assert scene.snapshot()["contacts"] == [["b", "f"]]
+    box.set_position((0, -0.01, 0))  # off the finger, onto the ground
+    assert contacts_of(scene.tick(0.1)) == {"begin": [["b", "ground"]], "end": [["b", "f"]]}
+    assert scene.snapshot()["contacts"] == [["b", "ground"]]
+
+
+def test_deleted_or_hidden_parts_end_their_contacts(scene):
+    robot = Robot(scene, "r")
+    finger = EdgedFinger(scene, "f")
+    robot.attach_chain(finger)
+    robot.set_position((0, -0.5, 0))
+    box = Box(scene, "b", 0.5, 0.5, 0.5)
+    box.set_position((0, 0, 0))
+    assert contacts_of(scene.tick(0.1))["begin"] == [["b", "f"], ["b", "ground"],
+                                                    ["f", "ground"]]
+    robot.set_position()  # taken out of the scene
+    assert contacts_of(scene.tick(0.1)) == {"begin": [], "end": [["b", "f"], ["f", "ground"]]}
+    scene.delete(box)
+    assert contacts_of(scene.tick(0.1)) == {"begin": [], "end": [["b", "ground"]]}
+
+
+def test_frames_carry_readings_of_watched_and_laser_sensors(scene):
+    from server.core.model.sensor import Sensor
+    watched, laser, quiet = Sensor(scene, "w"), Sensor(scene, "l", True, True), Sensor(scene, "q")
+    for sensor, x in ((watched, 0), (laser, 1), (quiet, 2)):
+        sensor.set_position((x, 2, 0))
+        sensor.set_rotation(math.pi, 0, 0)
+    watched.watch(client="c1")
+    frame = frame_of(scene.tick(0.1))
+    assert set(frame["sensors"]) == {"w", "l"}
+    assert frame["sensors"]["w"] == {"distance": pytest.approx(2.0), "touch": 0.0,
+                                     "position": [0, 2, 0], "objects": []}
+    watched.set_rotation(0, 0, 0)
+    assert frame_of(scene.tick(0.1))["sensors"]["w"]["distance"] == "Infinity"
+    scene.delete(laser)
+    assert set(frame_of(scene.tick(0.1))["sensors"]) == {"w"}
+    assert scene.watches.ids() == ["w"]
+
+
+@pytest.mark.parametrize("make", [
+    lambda scene: EdgedFinger(scene, "flat", 1, 0, 0.3),   # no thickness
+    lambda scene: EdgedFinger(scene, "flat", 1, 0.3, 0),   # no width
+    lambda scene: EdgedFinger(scene, "flat", 0, 0, 0),     # a point
+    lambda scene: EdgedPalm(scene, "flat", True, 1.4, 1.4, 0),
+    lambda scene: Box(scene, "flat", 1, 0, 1),
+    lambda scene: Ball(scene, "flat", 0),
+])
+def test_parts_without_volume_are_still_met_by_rays_and_contacts(scene, make):
+    part = make(scene)
+    part.set_position((0, 1, 0))
+    Box(scene, "floor", 4, 0.1, 4).set_position((0, 1.05, 0))  # covers the part's origin
+    sensor = Sensor(scene, "s")
+    sensor.set_position((0, 0.5, 0))  # looking up at the part's origin from below
+    distance = sensor.sense_distance()
+    scene.tick(0.1)
+    assert scene.failures == 0
+    assert distance <= 0.5 + 1e-6  # the part (or, for a point, the floor at its origin)
+    assert "floor" in scene.bodies.touching(part)
+
+
+def test_a_client_that_leaves_takes_what_it_made_and_did_not_keep(scene):
+    robot = Robot(scene, "c1.1")
+    robot.attach_chain(MotorZ(scene, "c1.2", -1, 1), EdgedFinger(scene, "c1.3"))
+    Box(scene, "c1.4").keep()
+    Ball(scene, "c2.1")
+    assert scene.remove_client("c1") == ["c1.3", "c1.2", "c1.1"]   # newest first
+    assert sorted(scene.nodes) == ["c1.4", "c2.1"]
+    assert "c1" not in scene.ids.wire()   # its ids are never handed out again
