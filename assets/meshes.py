@@ -4,7 +4,7 @@ Every part is a *loft*: closed rings of points stacked one above the other, join
 triangles, closed by a flat cap or a pole at each end. Flat faces (the cuts of the
 connector sides, the caps, the palm's front and back) are white, curved ones blue, as in
 1.0's files, so a round hand can recolour the blue to grey. Sizes are the bounding boxes
-of 1.0's files (``server.core.model.figures.MESH_BOUNDS``); the shapes are our own.
+of 1.0's files (``server.core.model.part_figures.MESH_BOUNDS``); the shapes are our own.
 
 ``python -m assets.meshes`` writes ``assets/gltf/*.glb``; ``build(name)`` makes one mesh.
 """
@@ -19,7 +19,7 @@ import numpy as np
 import trimesh
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from server.core.model.figures import MESH_BOUNDS, MESH_BLUE, MESH_WHITE  # noqa: E402
+from server.core.model.part_figures import MESH_BOUNDS, MESH_BLUE, MESH_WHITE  # noqa: E402
 
 GLTF_DIR = Path(__file__).resolve().parent / "gltf"
 AROUND = 48  # points per ring

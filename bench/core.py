@@ -13,7 +13,7 @@ import math
 import time
 from typing import Any, Callable
 
-from server.core.model import figures
+from server.core.model import part_figures
 from server.core.physics.geometry import scaled
 from server.core.kit.limits import DEFAULT
 from server.core.protocol.messages import encode
@@ -134,7 +134,7 @@ def _bare_rays(world: BareWorld, scene: Scene, bench: Bench) -> float:
         (x, y, z), (qx, qy, qz, qw) = scene.nodes[node_id].world_pose()
         up = (2 * (qx * qy - qw * qz), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz + qw * qx))
         origins.append((x, y, z))
-        ends.append(tuple(p + figures.SENSOR_RANGE * d for p, d in zip((x, y, z), up)))
+        ends.append(tuple(p + part_figures.SENSOR_RANGE * d for p, d in zip((x, y, z), up)))
     started = time.perf_counter()
     world.rays(origins, ends)
     return (time.perf_counter() - started) * 1000

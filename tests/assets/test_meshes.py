@@ -7,7 +7,7 @@ import pytest
 import trimesh
 
 from assets import meshes
-from server.core.model.figures import MESH_BLUE, MESH_BOUNDS, MESH_WHITE
+from server.core.model.part_figures import MESH_BLUE, MESH_BOUNDS, MESH_WHITE
 
 
 def committed(name: str) -> trimesh.Trimesh:

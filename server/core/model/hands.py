@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from ...errors import OutOfRange
-from . import figures
+from . import part_figures
 from .mesh_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from .motor import Motor, MotorX, MotorY, MotorZ
 from .node import Node, World
@@ -82,7 +82,7 @@ class Hand(Robot):
         offset, scale = self.thumb_spread
         turns = [(self.spread_index(0), offset + scale * angle)] if include_thumb else []
         turns += [(self.spread_index(finger), share * angle)
-                  for finger, share in enumerate(figures.SPREAD_FINGERS, start=1)]
+                  for finger, share in enumerate(part_figures.SPREAD_FINGERS, start=1)]
         self._turn(turns)
 
     def _turn(self, turns: list[tuple[int, float | None]]) -> None:
@@ -96,22 +96,22 @@ class EdgedHand(Hand):
     """Manual ``EdgedHand(isLeft)``: an edged palm with five three-segment fingers."""
 
     type_name = "EdgedHand"
-    thumb_spread = figures.SPREAD_THUMB["EdgedHand"]
+    thumb_spread = part_figures.SPREAD_THUMB["EdgedHand"]
 
     def __init__(self, scene: World, node_id: str, is_left: bool = True) -> None:
         super().__init__(scene, node_id, is_left)
         self.palm = self.make(EdgedPalm, is_left)
         self.palm.attach_to_slot(self)
         for finger in range(FINGERS):
-            spread = self.make(MotorX, *figures.edged_spread_motor(finger)).flip(is_left)
+            spread = self.make(MotorX, *part_figures.edged_spread_motor(finger)).flip(is_left)
             spread.attach_to_slot(self.palm, finger)
             self.add_chain(
                 spread,
-                self.make(MotorZ, *figures.EDGED_FLEX_MOTOR),
-                self.make(EdgedFinger, figures.EDGED_FINGER_SIZES[finger]),
-                self.make(MotorZ, *figures.EDGED_FLEX_MOTOR),
+                self.make(MotorZ, *part_figures.EDGED_FLEX_MOTOR),
+                self.make(EdgedFinger, part_figures.EDGED_FINGER_SIZES[finger]),
+                self.make(MotorZ, *part_figures.EDGED_FLEX_MOTOR),
                 self.make(EdgedFinger, 0.5),
-                self.make(MotorZ, *figures.EDGED_FLEX_MOTOR),
+                self.make(MotorZ, *part_figures.EDGED_FLEX_MOTOR),
                 self.make(EdgedTip, 0.5),
             )
         self.built()
@@ -124,7 +124,7 @@ class RoundHand(Hand):
     """Manual ``RoundHand(isLeft)``: a round palm with five three-segment round fingers."""
 
     type_name = "RoundHand"
-    thumb_spread = figures.SPREAD_THUMB["RoundHand"]
+    thumb_spread = part_figures.SPREAD_THUMB["RoundHand"]
     palm_type: type[RoundPalm] = RoundPalm
     palm_file = "round-palm.glb"
 
@@ -137,7 +137,7 @@ class RoundHand(Hand):
 
     def round(self, part: GLTFPart) -> GLTFPart:
         """A part of this hand, its blue recoloured grey as 1.0's round hands do."""
-        part.recolor(list(figures.MESH_BLUE), list(figures.ROUND_HAND_GREY))
+        part.recolor(list(part_figures.MESH_BLUE), list(part_figures.ROUND_HAND_GREY))
         return part
 
     def motor(self, motor_type: str, name: str, arguments: tuple[float, ...],
@@ -160,27 +160,27 @@ class RoundHand(Hand):
                flex: list[tuple[str, tuple[float, ...]]]) -> None:
         """A finger on its palm slot: the named spread motor, then ``flexing``."""
         kind, *arguments, flip_when_left = spread
-        motor = self.motor(kind, figures.FINGER_NAMES[finger], tuple(arguments), flip_when_left)
+        motor = self.motor(kind, part_figures.FINGER_NAMES[finger], tuple(arguments), flip_when_left)
         motor.attach_to_slot(self.palm, finger)
         self.flexing(motor, flex)
 
     def build_fingers(self) -> None:
         for finger in range(FINGERS):
-            self.finger(finger, figures.ROUND_THUMB_SPREAD if finger == 0
-                        else figures.ROUND_FINGER_SPREAD, _ROUND_MOTORS)
+            self.finger(finger, part_figures.ROUND_THUMB_SPREAD if finger == 0
+                        else part_figures.ROUND_FINGER_SPREAD, _ROUND_MOTORS)
 
 
-_ROUND_SEGMENTS = [(file, length) for _, _, file, length in figures.ROUND_FLEX]
-_ROUND_MOTORS = [(name, arguments) for name, arguments, _, _ in figures.ROUND_FLEX]
-_ANTHRO_MOTORS = [("proximal", figures.ANTHRO_PROXIMAL), ("middle", figures.ANTHRO_FLEX),
-                  ("distal", figures.ANTHRO_FLEX)]
+_ROUND_SEGMENTS = [(file, length) for _, _, file, length in part_figures.ROUND_FLEX]
+_ROUND_MOTORS = [(name, arguments) for name, arguments, _, _ in part_figures.ROUND_FLEX]
+_ANTHRO_MOTORS = [("proximal", part_figures.ANTHRO_PROXIMAL), ("middle", part_figures.ANTHRO_FLEX),
+                  ("distal", part_figures.ANTHRO_FLEX)]
 
 
 class AnthroHand(RoundHand):
     """Manual ``AnthroHand(isLeft)``: an anthropomorphic palm and thumb, round fingers."""
 
     type_name = "AnthroHand"
-    thumb_spread = figures.SPREAD_THUMB["AnthroHand"]
+    thumb_spread = part_figures.SPREAD_THUMB["AnthroHand"]
     palm_type = AnthroPalm
     palm_file = "anthro-palm.glb"
 
@@ -191,7 +191,7 @@ class AnthroHand(RoundHand):
         return range(4 * finger + 3, 4 * finger + 6)
 
     def build_fingers(self) -> None:
-        (palm_type, palm_name, *palm_args, palm_flip), *thumb_motors = figures.ANTHRO_THUMB_MOTORS
+        (palm_type, palm_name, *palm_args, palm_flip), *thumb_motors = part_figures.ANTHRO_THUMB_MOTORS
         base = self.motor(palm_type, palm_name, tuple(palm_args), palm_flip)
         base.attach_to_slot(self.palm, 0)
         chain: list[Node] = [base, self.round(self.make(AnthroThumb, self.is_left, "anthro-thumb.glb"))]
@@ -201,4 +201,4 @@ class AnthroHand(RoundHand):
         _, proximal_name, *proximal, _ = thumb_motors[-1]
         self.flexing(chain[-1], [(proximal_name, tuple(proximal)), *_ANTHRO_MOTORS[1:]])
         for finger in range(1, FINGERS):
-            self.finger(finger, figures.ROUND_FINGER_SPREAD, _ANTHRO_MOTORS)
+            self.finger(finger, part_figures.ROUND_FINGER_SPREAD, _ANTHRO_MOTORS)

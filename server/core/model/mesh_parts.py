@@ -9,13 +9,13 @@ from __future__ import annotations
 from typing import Any
 
 from ...errors import LimitExceeded
-from . import figures
+from ..kit.math3d import Vec3, euler_to_quat, rotate
+from ..kit.numbers import Finite
 from ..physics.assets import Mesh
 from ..physics.envelopes import Plane, envelope, half_space, pyramid
-from ..kit.math3d import Vec3, euler_to_quat, rotate
+from . import part_figures
 from .node import World
 from .parts import Part
-from ..kit.numbers import Finite
 
 MAX_RECOLORS = 64  # recolor calls a part keeps (each is sent to every viewer that joins)
 
@@ -96,14 +96,14 @@ class RoundFinger(GLTFPart):
     physical = True
 
     def __init__(self, scene: World, node_id: str, filename: str,
-                 length: float = figures.ROUND_FINGER_LENGTH) -> None:
+                 length: float = part_figures.ROUND_FINGER_LENGTH) -> None:
         super().__init__(scene, node_id, filename, length)
 
     def slot_figures(self) -> list[tuple[Any, ...]]:
         return [((0.0, self.length, 0.0),)]
 
     def envelope_cuts(self) -> list[Plane]:
-        gap, up, down = figures.FINGER_JOINT_GAP, (0.0, 1.0, 0.0), (0.0, -1.0, 0.0)
+        gap, up, down = part_figures.FINGER_JOINT_GAP, (0.0, 1.0, 0.0), (0.0, -1.0, 0.0)
         return [*pyramid((0.0, 0.0, 0.0), up, gap), *pyramid((0.0, self.length, 0.0), down, gap)]
 
 
@@ -113,7 +113,7 @@ class HandedPart(GLTFPart):
     physical = True
 
     def __init__(self, scene: World, node_id: str, left: bool, filename: str,
-                 length: float = figures.ROUND_PALM_LENGTH) -> None:
+                 length: float = part_figures.ROUND_PALM_LENGTH) -> None:
         self.left = left  # before the slots and the envelope, which depend on it
         super().__init__(scene, node_id, filename, length)
 
@@ -129,17 +129,17 @@ class RoundPalm(HandedPart):
     def envelope_cuts(self) -> list[Plane]:
         """Flat below each finger slot, and inside the thumb slot's side of the palm."""
         slots = self.slot_figures()
-        gap = figures.PALM_JOINT_GAP
+        gap = part_figures.PALM_JOINT_GAP
         cuts = [half_space(position, slot_direction(rotation, order), gap)
                 for position, rotation, order in slots[1:]]
         return cuts + self.thumb_cuts(slots[0])
 
-    def thumb_cuts(self, thumb: figures.SlotFigure) -> list[Plane]:
+    def thumb_cuts(self, thumb: part_figures.SlotFigure) -> list[Plane]:
         side = 1.0 if self.left else -1.0
-        return [half_space(thumb[0], (side, 0.0, 0.0), figures.PALM_JOINT_GAP)]
+        return [half_space(thumb[0], (side, 0.0, 0.0), part_figures.PALM_JOINT_GAP)]
 
-    def slot_figures(self) -> list[figures.SlotFigure]:
-        return figures.round_palm_slots(self.left, self.length)
+    def slot_figures(self) -> list[part_figures.SlotFigure]:
+        return part_figures.round_palm_slots(self.left, self.length)
 
 
 class AnthroPalm(RoundPalm):
@@ -147,11 +147,11 @@ class AnthroPalm(RoundPalm):
 
     type_name = "AnthroPalm"
 
-    def thumb_cuts(self, thumb: figures.SlotFigure) -> list[Plane]:
+    def thumb_cuts(self, thumb: part_figures.SlotFigure) -> list[Plane]:
         return []  # the mesh is cut away where the thumb sits
 
-    def slot_figures(self) -> list[figures.SlotFigure]:
-        return figures.anthro_palm_slots(self.left, self.length)
+    def slot_figures(self) -> list[part_figures.SlotFigure]:
+        return part_figures.anthro_palm_slots(self.left, self.length)
 
 
 class AnthroThumb(HandedPart):
@@ -159,8 +159,8 @@ class AnthroThumb(HandedPart):
 
     type_name = "AnthroThumb"
 
-    def slot_figures(self) -> list[figures.SlotFigure]:
-        return [figures.anthro_thumb_slot(self.left, self.length)]
+    def slot_figures(self) -> list[part_figures.SlotFigure]:
+        return [part_figures.anthro_thumb_slot(self.left, self.length)]
 
     @property
     def offset(self) -> Vec3:
@@ -168,7 +168,7 @@ class AnthroThumb(HandedPart):
 
     def envelope_cuts(self) -> list[Plane]:
         """Clear of the palm while it swings about its motor's Z, and of its finger."""
-        gap = figures.FINGER_JOINT_GAP
+        gap = part_figures.FINGER_JOINT_GAP
         [(position, rotation, order)] = self.slot_figures()
         toward_finger = slot_direction(rotation, order)
         return [*pyramid((0.0, 0.0, 0.0), (0.0, -1.0, 0.0), gap, ((1, 0, 0), (-1, 0, 0))),

@@ -6,9 +6,9 @@ import math
 from typing import Any
 
 from ...errors import OutOfRange
-from . import figures
 from ..kit import math3d
 from ..kit.math3d import Pose
+from . import part_figures
 from .node import World
 from .parts import Part
 
@@ -84,22 +84,22 @@ class Motor(Part):
 
 
 class AxisMotor(Motor):
-    """A motor class with a fixed axis, drawn as a cylinder, with slot 0 per the figures."""
+    """A motor class with a fixed axis, drawn as a cylinder, with slot 0 per the part_figures."""
 
     def __init__(self, scene: World, node_id: str, min: float = -math.inf,
                  max: float = math.inf, default: float = 0.0, width: float | None = None,
                  height: float | None = None) -> None:
-        figure = figures.MOTORS[self.type_name]
+        figure = part_figures.MOTORS[self.type_name]
         super().__init__(scene, node_id, figure.axis, min, max, default)
         self.width = figure.width if width is None else width
         self.height = figure.height if height is None else height
-        self.new_slot(figures.motor_slot(figure.axis, self.height))
+        self.new_slot(part_figures.motor_slot(figure.axis, self.height))
 
     def constructor_args(self) -> list[Any]:
         return [self.min, self.max, self.default, self.width, self.height]
 
     def geometry(self) -> dict[str, Any]:
-        return figures.motor_cylinder(self.type_name, self.width, self.height)
+        return part_figures.motor_cylinder(self.type_name, self.width, self.height)
 
 
 class MotorX(AxisMotor):

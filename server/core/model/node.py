@@ -6,11 +6,11 @@ from typing import Any, ClassVar, Iterator, Mapping, Protocol, Sequence
 
 from ...errors import Cycle, LimitExceeded
 from ..kit import math3d
-from ..physics.assets import AssetLibrary
 from ..kit.ids import owner_of
 from ..kit.journal import Journal
 from ..kit.limits import Limits
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
+from ..physics.assets import AssetLibrary
 from .watches import Watches
 
 UNIT_SCALE: Vec3 = (1.0, 1.0, 1.0)

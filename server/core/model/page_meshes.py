@@ -9,9 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from . import figures
-
 from ..physics import geometry
+from . import part_figures
 from .node import World
 from .parts import Part
 
@@ -24,7 +23,7 @@ class SceneMesh(Part):
     listed = False  # not one of a robot's getParts(): 1.0 pages' meshes were not parts
 
     def __init__(self, scene: World, node_id: str, shape: dict[str, Any],
-                 color: str | int = figures.DEFAULT_COLOR) -> None:
+                 color: str | int = part_figures.DEFAULT_COLOR) -> None:
         limits = scene.limits  # checked before the node exists: a refusal leaves no trace
         self.shape = geometry.check(shape, "new SceneMesh, argument 0 (geometry)",
                                     limits.shape_vertices, limits.shape_triangles)

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 from typing import Any, Sequence
 
-from . import figures
 from ..kit.math3d import ORIGIN, Vec3, euler_to_quat
-from .node import Node, Slot, World
 from ..kit.numbers import Finite
+from . import part_figures
+from .node import Node, Slot, World
 
 
 class Part(Node):
@@ -67,7 +67,7 @@ class Ball(Part):
     physical = True
 
     def __init__(self, scene: World, node_id: str, radius: float = 1.0,
-                 color: str | int = figures.DEFAULT_COLOR) -> None:
+                 color: str | int = part_figures.DEFAULT_COLOR) -> None:
         super().__init__(scene, node_id)
         self.radius, self.color = radius, color
 
@@ -85,7 +85,7 @@ class Box(Part):
     physical = True
 
     def __init__(self, scene: World, node_id: str, sizex: float = 1.0, sizey: float = 1.0,
-                 sizez: float = 1.0, color: str | int = figures.DEFAULT_COLOR) -> None:
+                 sizez: float = 1.0, color: str | int = part_figures.DEFAULT_COLOR) -> None:
         super().__init__(scene, node_id)
         self.size, self.color = (sizex, sizey, sizez), color
 
@@ -117,8 +117,8 @@ class EdgedFinger(ConvexPart):
                  thickness: float = 0.3) -> None:
         super().__init__(scene, node_id)
         self.length, self.width, self.thickness = length, width, thickness
-        profile = figures.edged_finger_profile(length, thickness, self.tip)
-        self.points = figures.extrude(profile, width)
+        profile = part_figures.edged_finger_profile(length, thickness, self.tip)
+        self.points = part_figures.extrude(profile, width)
         self.new_slot((0.0, length, 0.0))
 
     def constructor_args(self) -> list[Any]:
@@ -141,8 +141,8 @@ class EdgedPalm(ConvexPart):
                  width: float = 1.4, thickness: float = 0.3) -> None:
         super().__init__(scene, node_id)
         self.left, self.length, self.width, self.thickness = left, length, width, thickness
-        self.points = figures.extrude(figures.edged_palm_profile(left, length, width), thickness)
-        for position, rotation, order in figures.edged_palm_slots(left, length, width):
+        self.points = part_figures.extrude(part_figures.edged_palm_profile(left, length, width), thickness)
+        for position, rotation, order in part_figures.edged_palm_slots(left, length, width):
             self.new_slot(position, rotation, order)
 
     def constructor_args(self) -> list[Any]:

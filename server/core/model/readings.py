@@ -14,9 +14,9 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 
-from . import figures
 from ..kit.math3d import Vec3
 from ..kit.numbers import wire_number
+from . import part_figures
 
 if TYPE_CHECKING:
     from .node import Node
@@ -48,8 +48,8 @@ def read_sensors(targets: RayTargets, sensors: Sequence[Node],
     # each sensor's +Y axis in the world: the second column of its rotation matrix
     directions = np.array([(2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x))
                            for _, (x, y, z, w) in poses])
-    _, hits = targets.cast(origins, directions, (0.0, figures.SENSOR_NEAR), figures.SENSOR_RANGE)
-    touches = np.maximum(0.0, 1.0 - hits[:, 0] / figures.TOUCH_RANGE)  # 0 for inf too
+    _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
+    touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
     return {sensor.id: Reading(distance, touch, pose[0], tuple(contacts_of(sensor)))
             for sensor, distance, touch, pose in zip(sensors, hits[:, 1].tolist(),
                                                      touches.tolist(), poses)}

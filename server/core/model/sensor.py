@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from . import figures
 from ..kit.math3d import Vec3
+from . import part_figures
 from .node import World
 from .parts import Part
 from .readings import Reading
@@ -26,7 +26,7 @@ class Sensor(Part):
         super().__init__(scene, node_id)
         self.visible = visible
         if isinstance(laser_color, bool):
-            laser_color = figures.LASER_COLOR if laser_color else None
+            laser_color = part_figures.LASER_COLOR if laser_color else None
         self.laser_color = laser_color
         if laser_color is not None:
             scene.watches.add(node_id, LASER)
@@ -35,7 +35,7 @@ class Sensor(Part):
         return [self.visible, self.laser_color]
 
     def geometry(self) -> dict[str, Any] | None:
-        return figures.sensor_pad()  # drawn or not as `visible` says (it may change)
+        return part_figures.sensor_pad()  # drawn or not as `visible` says (it may change)
 
     def properties(self) -> dict[str, Any]:
         return {**super().properties(), "laserColor": self.laser_color}

@@ -27,8 +27,8 @@ import numpy as np
 
 from ...errors import (BadAsset, Forbidden, InternalError, LimitExceeded, TooLarge,
                       UnknownAsset)
-from . import gltf_file
 from ..kit.limits import DEFAULT, MAX_SIZE, Limits
+from . import gltf_file
 
 BUNDLED_DIR = Path(__file__).resolve().parents[3] / "assets" / "gltf"
 BUNDLED_URL = "/assets/gltf/"

@@ -40,9 +40,9 @@ def _quiet_import():  # type: ignore[no-untyped-def]
 
 pybullet = _quiet_import()
 
+from ..kit.math3d import Pose, Vec3
 from .geometry import solid_points
 from .hulls import HAIR
-from ..kit.math3d import Pose, Vec3
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"

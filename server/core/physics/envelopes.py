@@ -19,9 +19,9 @@ from typing import Sequence
 import numpy as np
 
 from ...errors import BadAsset
+from ..kit.math3d import Vec3
 from .assets import Mesh
 from .hulls import convex_hull, solid
-from ..kit.math3d import Vec3
 
 ENVELOPE_POINTS = 64
 PYRAMID_SIDES = 8  # faces of a joint's pyramid: its corners stand 47° off its axis

@@ -23,8 +23,8 @@ from typing import Any, Sequence
 import numpy as np
 
 from ...errors import BadArguments, OutOfRange, WrongType, show
-from .hulls import convex_hull
 from ..kit.limits import MAX_COORDINATE, MAX_SIZE, MIN_SIZE
+from .hulls import convex_hull
 
 MIN_SCALE = 1e-6  # a shape scaled to nothing keeps this much of its size (Bullet needs some)
 MAX_SEGMENTS = 256

@@ -16,8 +16,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from .assets import AssetLibrary
 from ..kit.math3d import Pose
+from .assets import AssetLibrary
 from .rayshapes import GROUND_SHAPE, Convex, Shape, convex_entries, shape_of
 
 GROUND = "ground"

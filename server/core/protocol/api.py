@@ -31,8 +31,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..model import figures
 from ..kit.math3d import ORIGIN
+from ..model import part_figures
 
 REQUIRED: Any = type("Required", (), {"__repr__": lambda self: "REQUIRED"})()
 
@@ -93,7 +93,7 @@ def _sizes(*names_defaults: tuple[str, float]) -> tuple[Param, ...]:
 
 
 def _motor_params(motor: str) -> tuple[Param, ...]:
-    figure = figures.MOTORS[motor]
+    figure = part_figures.MOTORS[motor]
     return (Param("min", "limit", -math.inf), Param("max", "limit", math.inf),
             Param("def", "number", 0.0), *_sizes(("width", figure.width),
                                                 ("height", figure.height)))
@@ -147,13 +147,13 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
     TypeSpec("MotorY", "Motor", _motor_params("MotorY"), slots=1),
     TypeSpec("MotorZ", "Motor", _motor_params("MotorZ"), slots=1),
     TypeSpec("Ball", "Part", (Param("radius", "size", 1.0),
-                              Param("color", "color", figures.DEFAULT_COLOR))),
+                              Param("color", "color", part_figures.DEFAULT_COLOR))),
     TypeSpec("Box", "Part", (*_sizes(("sizex", 1.0), ("sizey", 1.0), ("sizez", 1.0)),
-                             Param("color", "color", figures.DEFAULT_COLOR))),
-    TypeSpec("EdgedFinger", "Part", _edged(figures.EDGED_FINGER_DEFAULTS), slots=1),
-    TypeSpec("EdgedTip", "Part", _edged(figures.EDGED_FINGER_DEFAULTS), slots=1),
+                             Param("color", "color", part_figures.DEFAULT_COLOR))),
+    TypeSpec("EdgedFinger", "Part", _edged(part_figures.EDGED_FINGER_DEFAULTS), slots=1),
+    TypeSpec("EdgedTip", "Part", _edged(part_figures.EDGED_FINGER_DEFAULTS), slots=1),
     TypeSpec("EdgedPalm", "Part", (Param("left", "bool", False),
-                                   *_edged(figures.EDGED_PALM_DEFAULTS)), slots=5),
+                                   *_edged(part_figures.EDGED_PALM_DEFAULTS)), slots=5),
     TypeSpec("Sensor", "Part", (Param("visible", "bool", True),
                                 Param("laserColor", "laser", None)), (
         Method("senseDistance", returns="number", mutates=False),
@@ -193,13 +193,13 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
              (Method("recolor", (Param("fromColor", "rgb"), Param("toColor", "rgb"),
                                  Param("eps", "number", 0.01))),)),
     TypeSpec("RoundFinger", "GLTFPart", (Param("filename", "asset"),
-                                         Param("length", "size", figures.ROUND_FINGER_LENGTH)),
+                                         Param("length", "size", part_figures.ROUND_FINGER_LENGTH)),
              slots=1),
     *(TypeSpec(name, "GLTFPart", (Param("left", "bool"), Param("filename", "asset"),
-                                  Param("length", "size", figures.ROUND_PALM_LENGTH)), slots=slots)
+                                  Param("length", "size", part_figures.ROUND_PALM_LENGTH)), slots=slots)
       for name, slots in (("RoundPalm", 5), ("AnthroPalm", 5), ("AnthroThumb", 1))),
     TypeSpec("SceneMesh", "Part", (Param("geometry", "geometry"),
-                               Param("color", "color", figures.DEFAULT_COLOR)),
+                               Param("color", "color", part_figures.DEFAULT_COLOR)),
              (Method("setColor", (Param("color", "color"),)),)),
     TypeSpec("RoundHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
     TypeSpec("AnthroHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),

@@ -6,8 +6,8 @@ import json
 from pathlib import Path
 from typing import Any
 
-from .api import REQUIRED, TYPES, Param, snake
 from ..kit.numbers import encode_numbers
+from .api import REQUIRED, TYPES, Param, snake
 
 API_PATH = Path(__file__).resolve().parents[3] / "protocol" / "api.json"
 

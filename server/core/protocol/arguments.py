@@ -12,14 +12,14 @@ import re
 from typing import Any, Callable, Sequence
 
 from ...errors import BadArguments, OutOfRange, WrongType, show
-from .api import REQUIRED, Param
 from ..kit.limits import MAX_COORDINATE, MAX_SIZE, MIN_SIZE
 from ..kit.math3d import EULER_ORDERS, Quat, Vec3
+from ..kit.numbers import NON_FINITE
 from ..model.node import Node, Slot
 from ..model.parts import Part
-from ..physics.engine import GROUND
 from ..model.robot import Robot
-from ..kit.numbers import NON_FINITE
+from ..physics.engine import GROUND
+from .api import REQUIRED, Param
 
 Resolver = Callable[[str], Node]
 

@@ -16,8 +16,8 @@ import logging
 from typing import Any, Iterable
 
 from ...errors import VPError
-from .messages import encode
 from ..scene.scene import Scene
+from .messages import encode
 from .session import Session
 
 log = logging.getLogger(__name__)

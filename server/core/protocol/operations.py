@@ -5,19 +5,19 @@ from __future__ import annotations
 from typing import Any, Callable
 
 from ...errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
-from . import api
-from .arguments import bind
+from ..kit.numbers import encode_numbers
 from ..model.hands import AnthroHand, EdgedHand, RoundHand
 from ..model.mesh_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from ..model.motor import Motor, MotorX, MotorY, MotorZ
 from ..model.node import Node, Slot
-from .ownership import Ownership
+from ..model.page_meshes import SceneMesh
 from ..model.parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
 from ..model.robot import Robot
-from ..scene.scene import Scene
 from ..model.sensor import Sensor
-from ..model.page_meshes import SceneMesh
-from ..kit.numbers import encode_numbers
+from ..scene.scene import Scene
+from . import api
+from .arguments import bind
+from .ownership import Ownership
 
 NODE_CLASSES: dict[str, type[Node]] = {cls.type_name: cls for cls in (
     Slot, Part, Motor, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,

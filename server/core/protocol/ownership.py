@@ -13,11 +13,11 @@ from __future__ import annotations
 from typing import Any, Iterator, Sequence
 
 from ...errors import Forbidden
-from .api import Method, Param
-from .arguments import NODE_KINDS
+from ..kit.ids import owner_of
 from ..model.node import Node
 from ..model.robot import Robot
-from ..kit.ids import owner_of
+from .api import Method, Param
+from .arguments import NODE_KINDS
 
 
 def shared_robot(node: Node) -> Robot | None:

@@ -5,12 +5,12 @@ from __future__ import annotations
 from typing import Any
 
 from ..kit import math3d
+from ..kit.ids import owner_of
+from ..kit.numbers import encode_numbers
 from ..model.motor import Motor
 from ..model.robot import Robot
-from ..kit.ids import owner_of
-from ..scene.scene import Scene
 from ..model.sensor import Sensor
-from ..kit.numbers import encode_numbers
+from ..scene.scene import Scene
 
 
 def robots(scene: Scene) -> list[Robot]:

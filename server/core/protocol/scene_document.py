@@ -19,21 +19,21 @@ from functools import cache
 from typing import Any, Callable
 
 from ...errors import BadJSON, BadMessage, Forbidden, UnknownAsset, WrongType
+from ..kit.ids import IdBook, owner_of
+from ..kit.numbers import encode_numbers
+from ..model.mesh_parts import GLTFPart
+from ..model.motor import Motor
+from ..model.node import Node, Slot
+from ..model.page_meshes import SceneMesh
+from ..model.parts import Part
+from ..model.robot import Robot
+from ..physics.assets import UPLOADED_URL, AssetLibrary
+from ..scene.scene import Scene
 from . import api
 from .api import Param
 from .arguments import bind
-from ..physics.assets import UPLOADED_URL, AssetLibrary
-from ..kit.ids import IdBook, owner_of
-from ..model.mesh_parts import GLTFPart
 from .messages import check_document, encode
-from ..model.motor import Motor
-from ..model.node import Node, Slot
 from .operations import NODE_CLASSES
-from ..model.parts import Part
-from ..model.robot import Robot
-from ..scene.scene import Scene
-from ..model.page_meshes import SceneMesh
-from ..kit.numbers import encode_numbers
 
 FORMAT = "virtual-prosthetics-scene"
 VERSION = 1

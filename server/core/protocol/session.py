@@ -12,13 +12,13 @@ import time
 from typing import Any, Callable
 
 from ...errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
+from ..kit.rates import TokenBucket
+from ..physics.engine import ENGINE
+from ..scene.scene import Scene
 from . import api
 from .messages import (PROTOCOL_VERSION, byte_size, check_client_message, decode, encode,
                        request_id)
 from .operations import Operations
-from ..physics.engine import ENGINE
-from ..kit.rates import TokenBucket
-from ..scene.scene import Scene
 
 log = logging.getLogger(__name__)
 ROLES = ("controller", "viewer")

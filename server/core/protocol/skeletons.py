@@ -15,10 +15,10 @@ import json
 from pathlib import Path
 from typing import Any
 
-from ..model import figures
+from ..kit.numbers import encode_numbers
+from ..model import part_figures
 from ..model.hands import FINGERS, AnthroHand, EdgedHand, Hand, RoundHand
 from ..scene.scene import Scene
-from ..kit.numbers import encode_numbers
 
 SKELETONS_PATH = Path(__file__).resolve().parents[3] / "clients" / "js" / "skeletons.js"
 HANDS: tuple[type[Hand], ...] = (EdgedHand, RoundHand, AnthroHand)
@@ -59,7 +59,7 @@ def fingers(hand_class: type[Hand]) -> dict[str, Any]:
     hand = hand_class.__new__(hand_class)  # the index rules need no parts
     return {"spread": [hand.spread_index(f) for f in range(FINGERS)],
             "flex": [list(hand.flex_indices(f)) for f in range(FINGERS)],
-            "thumb": list(hand_class.thumb_spread), "shares": list(figures.SPREAD_FINGERS)}
+            "thumb": list(hand_class.thumb_spread), "shares": list(part_figures.SPREAD_FINGERS)}
 
 
 def skeletons() -> dict[str, dict[str, Any]]:

@@ -13,14 +13,14 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING, Callable, Iterable, Mapping
 
-from ..physics.assets import AssetLibrary
-from ..physics.contacts import ContactBook, ContactTracker, Overlaps
-from ..physics.geometry import scaled
 from ..kit.limits import Limits
 from ..model.node import UNIT_SCALE, Node
-from ..physics.engine import PhysicsWorld
-from ..physics.raycast import RayTargets
 from ..model.readings import Reading, read_sensors
+from ..physics.assets import AssetLibrary
+from ..physics.contacts import ContactBook, ContactTracker, Overlaps
+from ..physics.engine import PhysicsWorld
+from ..physics.geometry import scaled
+from ..physics.raycast import RayTargets
 
 if TYPE_CHECKING:
     from ..kit.math3d import Pose, Vec3

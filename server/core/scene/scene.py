@@ -12,21 +12,21 @@ from contextlib import contextmanager
 from typing import Any, Iterator
 
 from ...errors import DuplicateId, LimitExceeded, UnknownObject
-from . import frames
-from ..model import figures
-from ..physics.assets import AssetLibrary
-from .changes import ChangeSet
 from ..kit.ids import IdBook, owner_of
 from ..kit.journal import Journal
 from ..kit.limits import DEFAULT, Limits
 from ..kit.math3d import Quat, Vec3
+from ..kit.numbers import encode_numbers
+from ..model import part_figures
 from ..model.motor import Motor
 from ..model.node import Node
-from ..model.robot import Robot
-from .bodies import SceneBodies
 from ..model.readings import Reading
+from ..model.robot import Robot
 from ..model.watches import Watches
-from ..kit.numbers import encode_numbers
+from ..physics.assets import AssetLibrary
+from . import frames
+from .bodies import SceneBodies
+from .changes import ChangeSet
 
 log = logging.getLogger(__name__)
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped", "scale")
@@ -51,8 +51,8 @@ class Scene:
         self.seq = 0
         self.tree_version = 0
         self.revision = 0  # ticks that sent changes: a document of the scene is out of date
-        self.camera: dict[str, Vec3] = {"position": figures.CAMERA_POSITION,
-                                        "target": figures.CAMERA_TARGET}
+        self.camera: dict[str, Vec3] = {"position": part_figures.CAMERA_POSITION,
+                                        "target": part_figures.CAMERA_TARGET}
         self._pending = ChangeSet()
         self._recorders: list[ChangeSet] = [self._pending]
         self.watches = Watches(self.journal, limits.watched_sensors)

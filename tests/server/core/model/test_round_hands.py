@@ -5,7 +5,7 @@ import math
 import pytest
 
 from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
-from server.core.model.figures import PALM_JOINT_GAP, round_palm_slots
+from server.core.model.part_figures import PALM_JOINT_GAP, round_palm_slots
 from server.core.model.mesh_parts import AnthroPalm, AnthroThumb, RoundFinger, RoundPalm, slot_direction
 
 FINGERS = ["Thumb", "Index finger", "Middle finger", "Ring finger", "Little finger"]

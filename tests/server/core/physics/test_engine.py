@@ -2,12 +2,12 @@
 
 import pytest
 
-from server.core.model import figures
+from server.core.model import part_figures
 from server.core.physics.engine import GROUND, PhysicsWorld
 
 IDENTITY = (0.0, 0.0, 0.0, 1.0)
 CUBE = {"kind": "box", "size": [1, 1, 1]}
-HULL = {"kind": "convex", "points": figures.extrude([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5),
+HULL = {"kind": "convex", "points": part_figures.extrude([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5),
                                                       (-0.5, 0.5)], 1.0)}
 
 
