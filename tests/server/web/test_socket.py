@@ -69,7 +69,8 @@ def test_idle_frames_keep_time_and_sequence(server, scene_name):
     ws, _, snapshot = open_client(server, scene_name)
     with ws:
         frames = [next_message(ws, "frame") for _ in range(5)]
-    assert [f["seq"] for f in frames] == list(range(frames[0]["seq"], frames[0]["seq"] + 5))
+    # one after another (a connection that falls behind gets two ticks folded into one)
+    assert all(a["seq"] < b["seq"] and a["time"] < b["time"] for a, b in zip(frames, frames[1:]))
     assert all(set(f) == {"op", "seq", "time"} for f in frames)
     assert frames[-1]["time"] > frames[0]["time"] >= snapshot["time"]
 
