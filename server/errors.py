@@ -37,6 +37,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from .core.kit.wire_messages import Error as ErrorMessage
+
 MAX_MESSAGE = 500
 MAX_DETAIL = 120
 
@@ -76,10 +78,10 @@ class VPError(Exception):
         # the details travel too when an error crosses from a scene's process
         return _rebuild, (type(self), self.message, self.details)
 
-    def to_wire(self, request_id: int | None = None, op: str | None = None) -> dict[str, Any]:
+    def to_wire(self, request_id: int | None = None, op: str | None = None) -> ErrorMessage:
         """The error message that answers a request (``request_id`` None: fire-and-forget)."""
-        wire: dict[str, Any] = {"op": "error", "id": request_id, "code": self.code,
-                                "message": _cut(self.message, MAX_MESSAGE)}
+        wire = ErrorMessage(op="error", id=request_id, code=self.code,
+                            message=_cut(self.message, MAX_MESSAGE))
         if op is not None:
             wire["request"] = op
         if self.details:

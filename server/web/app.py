@@ -15,8 +15,8 @@ from fastapi import Depends, FastAPI, Request
 from fastapi.responses import JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from ..core.physics.assets import AssetLibrary
 from ..core.kit.limits import DEFAULT, Limits
+from ..core.physics.assets import AssetLibrary
 from ..errors import Forbidden, InternalError, LimitExceeded, LookupFailure, TooLarge, VPError
 from . import assets, heap, rest, socket
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed

@@ -16,11 +16,11 @@ import secrets
 import time
 from typing import Any, Callable
 
-from ..core.physics.assets import AssetLibrary
 from ..core.kit.ids import owner_of
 from ..core.kit.limits import DEFAULT, Limits
-from ..core.scene.scene import Scene
+from ..core.physics.assets import AssetLibrary
 from ..core.protocol.scene_document import uploaded_assets
+from ..core.scene.scene import Scene
 from ..errors import LimitExceeded, OutOfRange, UnknownScene, VPError
 from . import heap
 from .offload import Offload

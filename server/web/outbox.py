@@ -7,8 +7,8 @@ import json
 from collections import deque
 from typing import Any
 
-from ..core.scene.frames import merge_frames
 from ..core.protocol.messages import encode
+from ..core.scene.frames import merge_frames
 
 
 class Outgoing:

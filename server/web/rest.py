@@ -16,12 +16,12 @@ from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
 from pydantic import BaseModel
 
+from ..core.model.robot import Robot
+from ..core.model.sensor import Sensor
 from ..core.protocol import reports
 from ..core.protocol.messages import PROTOCOL_VERSION
 from ..core.protocol.scene_document import check_document_bytes, export_scene
-from ..core.model.robot import Robot
 from ..core.scene.scene import Scene
-from ..core.model.sensor import Sensor
 from ..errors import TooLarge, UnknownObject, UnknownScene, VPError
 from . import prometheus
 from .access import changing_allowed

@@ -17,8 +17,8 @@ import sys
 import threading
 from typing import Any, Callable
 
-from ..core.physics.assets import AssetLibrary
 from ..core.kit.limits import Limits
+from ..core.physics.assets import AssetLibrary
 from ..errors import UnknownScene
 from . import worker
 from .state_dir import SceneStore

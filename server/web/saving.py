@@ -16,9 +16,9 @@ import time
 from typing import Any, Callable
 
 from ..core.protocol.command_log import applied_line, left_line
-from ..core.scene.scene import Scene
 from ..core.protocol.scene_document import encode_document, export_scene
 from ..core.protocol.session import Session
+from ..core.scene.scene import Scene
 from .scene_store import SceneStore
 
 log = logging.getLogger(__name__)

@@ -16,8 +16,8 @@ import time
 from dataclasses import dataclass, field
 from typing import Any, AsyncIterator, Callable
 
-from ..core.physics.assets import AssetLibrary
 from ..core.kit.limits import Limits
+from ..core.physics.assets import AssetLibrary
 from ..errors import UnknownScene
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .runner import SceneRunner

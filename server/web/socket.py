@@ -19,8 +19,8 @@ from ..core.protocol.session import ROLES
 from ..errors import LimitExceeded, OutOfRange, VPError
 from .access import AccessPolicy
 from .hub import Hubs
-from .scene_hub import Connection, SceneHub
 from .outbox import Outbox, Outgoing
+from .scene_hub import Connection, SceneHub
 
 log = logging.getLogger(__name__)
 router = APIRouter()

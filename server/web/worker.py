@@ -42,15 +42,16 @@ from collections import deque
 from multiprocessing.connection import Connection as Pipe
 from typing import Any, Callable
 
-from ..core.physics.assets import AssetLibrary
-from ..core.protocol.command_log import replay
 from ..core.kit.ids import owner_of
 from ..core.kit.limits import Limits
+from ..core.kit.numbers import encode_numbers
+from ..core.kit.wire_messages import WarningMessage
+from ..core.physics.assets import AssetLibrary
+from ..core.protocol.command_log import replay
 from ..core.protocol.messages import encode
-from ..core.scene.scene import Scene
 from ..core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
 from ..core.protocol.session import Session
-from ..core.kit.numbers import encode_numbers
+from ..core.scene.scene import Scene
 from ..errors import InternalError, VPError
 from . import heap
 from .outbox import Outgoing
@@ -243,7 +244,7 @@ class SceneWorker:
 
     def _tell(self, code: str, message: str) -> None:
         """A warning for every client of the scene, sent with the next tick."""
-        self._notices.append(Outgoing.of({"op": "warning", "code": code, "message": message}))
+        self._notices.append(Outgoing.of(WarningMessage(op="warning", code=code, message=message)))
 
     def ready(self) -> None:
         """Tell the server the scene is made, with every owner of its objects and ids: no

@@ -15,10 +15,11 @@ import fastjsonschema
 
 from ...errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp, show
 from ..kit.limits import DEFAULT, Limits
+from ..kit.wire_messages import CLIENT_MESSAGES
 
 PROTOCOL_VERSION = 1
 SCHEMA_PATH = Path(__file__).resolve().parents[3] / "protocol" / "schema" / "protocol.json"
-CLIENT_OPS = ("create", "call", "delete", "batch", "ping")
+CLIENT_OPS = tuple(CLIENT_MESSAGES)
 MAX_REQUEST_ID = 2 ** 53 - 1  # the schema's requestId maximum: exact in every language
 
 

@@ -13,6 +13,7 @@ from typing import Any, Callable
 
 from ...errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
 from ..kit.rates import TokenBucket
+from ..kit.wire_messages import Hello, Ok
 from ..physics.engine import ENGINE
 from ..scene.scene import Scene
 from . import api
@@ -43,12 +44,15 @@ class Session:
         self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
         self._own_id = re.compile(rf"{re.escape(client_id)}\.[A-Za-z0-9_.:-]+")
 
-    def hello(self, tick_rate: float) -> dict[str, Any]:
+    def hello(self, tick_rate: float) -> Hello:
         """The first message a client receives."""
-        return {"op": "hello", "protocol": PROTOCOL_VERSION, "client": self.client_id,
-                "role": self.role, "scene": self.scene.name, "time": self.scene.time,
-                "tickRate": tick_rate, "limits": self.scene.limits.wire(), "engine": ENGINE,
-                "slots": api.slot_counts(), **({"resume": self.resume} if self.resume else {})}
+        hello = Hello(op="hello", protocol=PROTOCOL_VERSION, client=self.client_id,
+                      role=self.role, scene=self.scene.name, time=self.scene.time,
+                      tickRate=tick_rate, limits=self.scene.limits.wire(), engine=ENGINE,
+                      slots=api.slot_counts())
+        if self.resume:
+            hello["resume"] = self.resume
+        return hello
 
     def receive(self, text: str | bytes, now: float | None = None) -> list[dict[str, Any]]:
         """Apply every message in one WebSocket text message; the answers, in order.
@@ -115,7 +119,7 @@ class Session:
         cannot carry undoes the request."""
         if answer_id is None:
             return None
-        answer: dict[str, Any] = {"op": "ok", "id": answer_id}
+        answer = Ok(op="ok", id=answer_id)
         if result is not None:
             answer["result"] = result
         delta = self.scene.delta(changes)

@@ -12,16 +12,18 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..kit.wire_messages import Added, Frame, Removed
+
 _LATEST_WINS = ("angles", "poses", "sensors")
 
 
-def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[dict[str, Any]]:
+def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[Added | Frame | Removed]:
     """The messages of tick ``seq``: its ``added`` nodes, its frame, its ``removed`` ids."""
-    frame = dict(changes)
-    added, removed = frame.pop("added", None), frame.pop("removed", None)
-    return [*([{"op": "added", "seq": seq, "nodes": added}] if added else []),
-            {"op": "frame", "seq": seq, "time": time, **frame},
-            *([{"op": "removed", "seq": seq, "ids": removed}] if removed else [])]
+    fields = dict(changes)
+    added, removed = fields.pop("added", None), fields.pop("removed", None)
+    return [*([Added(op="added", seq=seq, nodes=added)] if added else []),
+            Frame(op="frame", seq=seq, time=time, **fields),
+            *([Removed(op="removed", seq=seq, ids=removed)] if removed else [])]
 
 
 def held_back(**counts: int) -> dict[str, Any]:

@@ -17,6 +17,7 @@ from ..kit.journal import Journal
 from ..kit.limits import DEFAULT, Limits
 from ..kit.math3d import Quat, Vec3
 from ..kit.numbers import encode_numbers
+from ..kit.wire_messages import Snapshot
 from ..model import part_figures
 from ..model.motor import Motor
 from ..model.node import Node
@@ -293,12 +294,12 @@ class Scene:
         self._pending.clear()
         self.revision += 1
 
-    def snapshot(self) -> dict[str, Any]:
+    def snapshot(self) -> Snapshot:
         """The whole scene: every node (parents before children), camera, time."""
         nodes = [encode_numbers(n.describe()) for root in self.roots() for n in root.walk()]
-        return {"op": "snapshot", "scene": self.name, "seq": self.seq, "time": self.time,
-                "camera": {k: list(v) for k, v in self.camera.items()}, "nodes": nodes,
-                "contacts": self.bodies.contacts.wire()}
+        return Snapshot(op="snapshot", scene=self.name, seq=self.seq, time=self.time,
+                        camera={k: list(v) for k, v in self.camera.items()}, nodes=nodes,
+                        contacts=self.bodies.contacts.wire())
 
     # --- scene calls (the manual's Scene API) --------------------------------------------
 
