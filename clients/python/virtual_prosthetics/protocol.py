@@ -13,10 +13,10 @@ from typing import Any, Callable
 
 from .codec import decode, encode
 from .errors import ConnectionLost, ProtocolError, ServerError
+from .wire_messages import SERVER_MESSAGES
 
 Handler = Callable[[dict[str, Any]], None]
-SERVER_OPS = frozenset({"hello", "snapshot", "ok", "error", "frame", "added", "removed",
-                        "warning"})
+SERVER_OPS = frozenset(SERVER_MESSAGES)
 
 
 @dataclass(frozen=True)

@@ -12,6 +12,7 @@ from .codec import encode_arg
 from .connection import Connection
 from .errors import ConnectionLost, Timeout, VPError
 from .mirror import Mirror
+from .wire_messages import Call, Create, Delete
 
 T = TypeVar("T")
 SCENE_ID = "scene"
@@ -120,19 +121,18 @@ class Scene:
     def create(self, obj: SceneObject, type_name: str, args: tuple[Any, ...]) -> None:
         """Ask the server to make ``obj`` (returns at once)."""
         self.objects[obj.id] = obj
-        self.connection.send({"op": "create", "object": obj.id, "type": type_name,
-                              "args": trim(args)})
+        self.connection.send(Create(op="create", object=obj.id, type=type_name, args=trim(args)))
 
     def call(self, object_id: str, method: str, args: tuple[Any, ...] = (),
              wait: bool = False) -> Any:
         """Call a manual method on the server; with ``wait``, return its result."""
-        return self.connection.send({"op": "call", "object": object_id, "method": method,
-                                     "args": [encode_arg(a) for a in args]}, wait=wait)
+        return self.connection.send(Call(op="call", object=object_id, method=method,
+                                         args=[encode_arg(a) for a in args]), wait=wait)
 
     def delete(self, object_id: str) -> None:
         """Delete an object and everything attached below it."""
         self.objects.pop(object_id, None)
-        self.connection.send({"op": "delete", "object": object_id})
+        self.connection.send(Delete(op="delete", object=object_id))
 
     def read(self, reader: Callable[[Mirror], T]) -> T:
         """Run ``reader`` on the mirror once every earlier write has been answered."""

@@ -1,71 +1,66 @@
-"""One typed definition per wire message (``protocol/schema/protocol.json`` is the source;
-tests/server/core/kit/test_wire_messages.py fails when the two differ).
+"""One typed definition per wire message. Written by
+``python -m server.core.protocol.message_types`` from protocol/schema/protocol.json; do
+not edit (a test fails when the two differ).
 
-Messages stay plain dicts on the wire and in the code (``Frame(op="frame", …)`` makes one);
-these definitions say which keys each has, for readers and type checkers. In the kit so
-that every layer that builds a message (the scene its frames, the protocol its answers,
-``server.errors`` the error) can name its type.
+Messages stay plain dicts on the wire and in the code: ``Frame(op="frame", seq=1, time=0.0)``
+makes one; the definitions say which keys each has, for readers and type checkers.
 """
 
 # (no `from __future__ import annotations`: TypedDict reads NotRequired from the
 # evaluated annotations)
 from typing import Any, Literal, NotRequired, TypedDict
 
-# --- client to server ---------------------------------------------------------------------
 
 
 class Create(TypedDict):
-    op: Literal["create"]
-    id: NotRequired[int | str]
+    op: Literal['create']
+    id: NotRequired[int]
     object: str
     type: str
     args: NotRequired[list[Any]]
 
 
 class Call(TypedDict):
-    op: Literal["call"]
-    id: NotRequired[int | str]
+    op: Literal['call']
+    id: NotRequired[int]
     object: str
     method: str
     args: NotRequired[list[Any]]
 
 
 class Delete(TypedDict):
-    op: Literal["delete"]
-    id: NotRequired[int | str]
+    op: Literal['delete']
+    id: NotRequired[int]
     object: str
 
 
 class Batch(TypedDict):
-    op: Literal["batch"]
-    id: NotRequired[int | str]
+    op: Literal['batch']
+    id: NotRequired[int]
     ops: list[dict[str, Any]]
 
 
 class Ping(TypedDict):
-    op: Literal["ping"]
-    id: NotRequired[int | str]
-
-
-# --- server to client ---------------------------------------------------------------------
+    op: Literal['ping']
+    id: NotRequired[int]
 
 
 class Hello(TypedDict):
-    op: Literal["hello"]
-    protocol: int
+    op: Literal['hello']
+    protocol: Literal[1]
     client: str
     role: str
     scene: str
     time: float
     tickRate: float
-    limits: dict[str, Any]
+    limits: dict[str, int]
     engine: str
     slots: dict[str, int]
     resume: NotRequired[str]
 
 
 class Snapshot(TypedDict):
-    op: Literal["snapshot"]
+    op: Literal['snapshot']
     scene: str
     seq: int
     time: float
@@ -75,16 +70,16 @@ class Snapshot(TypedDict):
 
 
 class Ok(TypedDict):
-    op: Literal["ok"]
-    id: int | str | None
+    op: Literal['ok']
+    id: int
     result: NotRequired[Any]
     changes: NotRequired[dict[str, Any]]
     warnings: NotRequired[list[str]]
 
 
 class Error(TypedDict):
-    op: Literal["error"]
-    id: int | str | None
+    op: Literal['error']
+    id: int | None
     code: str
     message: str
     request: NotRequired[str]
@@ -92,38 +87,35 @@ class Error(TypedDict):
 
 
 class Frame(TypedDict):
-    op: Literal["frame"]
+    op: Literal['frame']
     seq: int
     time: float
-    angles: NotRequired[dict[str, float]]
-    poses: NotRequired[dict[str, list[float]]]
-    updates: NotRequired[dict[str, dict[str, Any]]]
+    angles: NotRequired[Any]
+    poses: NotRequired[Any]
+    updates: NotRequired[Any]
     camera: NotRequired[dict[str, Any]]
-    contacts: NotRequired[dict[str, list[list[str]]]]
+    contacts: NotRequired[dict[str, Any]]
     sensors: NotRequired[dict[str, dict[str, Any]]]
     limited: NotRequired[dict[str, int]]
 
 
 class Added(TypedDict):
-    op: Literal["added"]
+    op: Literal['added']
     seq: int
     nodes: list[dict[str, Any]]
 
 
 class Removed(TypedDict):
-    op: Literal["removed"]
+    op: Literal['removed']
     seq: int
     ids: list[str]
 
 
 class WarningMessage(TypedDict):
-    op: Literal["warning"]
+    op: Literal['warning']
     code: str
     message: str
 
 
-CLIENT_MESSAGES: dict[str, type] = {"create": Create, "call": Call, "delete": Delete,
-                                    "batch": Batch, "ping": Ping}
-SERVER_MESSAGES: dict[str, type] = {"hello": Hello, "snapshot": Snapshot, "ok": Ok,
-                                    "error": Error, "frame": Frame, "added": Added,
-                                    "removed": Removed, "warning": WarningMessage}
+CLIENT_MESSAGES: dict[str, type] = {"create": Create, "call": Call, "delete": Delete, "batch": Batch, "ping": Ping}
+SERVER_MESSAGES: dict[str, type] = {"hello": Hello, "snapshot": Snapshot, "ok": Ok, "error": Error, "frame": Frame, "added": Added, "removed": Removed, "warning": WarningMessage}

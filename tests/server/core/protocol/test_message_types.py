@@ -1,0 +1,16 @@
+"""The typed message definitions are written from the schema: none drifts from it."""
+
+from server.core.protocol import message_types
+
+
+def test_every_written_definition_file_is_the_schemas():
+    text = message_types.render()
+    for target in message_types.TARGETS:
+        assert target.read_text() == text, f"run: python -m server.core.protocol.message_types ({target.name})"
+
+
+def test_types_follow_the_schema():
+    text = message_types.render()
+    assert "class Frame(TypedDict):\n    op: Literal['frame']\n    seq: int\n    time: float\n" in text
+    assert "    limited: NotRequired[dict[str, int]]\n" in text
+    assert "    id: int | None\n" in text   # an error's id: a request's, or null
