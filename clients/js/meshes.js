@@ -9,6 +9,7 @@
 // triangles. A geometry edited in place is not sent again: give the mesh a new one.
 
 import * as THREE from 'three';
+import { createMessage, deleteMessage } from './messages.js';
 
 const position = new THREE.Vector3(), quaternion = new THREE.Quaternion(), scale = new THREE.Vector3();
 const FULL_TURN = 2 * Math.PI;
@@ -75,7 +76,7 @@ export class PageMeshes {
 		const id = this.session.newId();
 		const color = colorOf(mesh);
 		const geometry = this.describe(mesh);
-		this.session.send({ op: 'create', object: id, type: 'SceneMesh', args: color === null ? [geometry] : [geometry, color] });
+		this.session.send(createMessage(id, 'SceneMesh', color === null ? [geometry] : [geometry, color]));
 		this.ids.add(id);
 		const record = { id, geometry: mesh.geometry, matrix: new Float64Array(16).fill(NaN), color, visible: true };
 		this.records.set(mesh, record);
@@ -86,7 +87,7 @@ export class PageMeshes {
 		this.records.delete(mesh);
 		if (!record.id) return;
 		this.ids.delete(record.id);
-		if (!this.session.closed) this.session.send({ op: 'delete', object: record.id });
+		if (!this.session.closed) this.session.send(deleteMessage(record.id));
 	}
 
 	// The SceneMesh geometry of a mesh: three.js's own primitives as such, any other geometry

@@ -6,6 +6,7 @@
 
 import * as THREE from 'three';
 import { filled } from './lenient.js';
+import { deleteMessage } from './messages.js';
 import { currentSession } from './session.js';
 
 let adopting = null;   // {session, id, type} while an object is made for an existing node
@@ -51,7 +52,7 @@ export class SceneObject extends THREE.Object3D {
 
 	// Remove the object (and what is attached below it) from the scene.
 	delete() {
-		this.vp.session.send({ op: 'delete', object: this.vp.id });
+		this.vp.session.send(deleteMessage(this.vp.id));
 	}
 
 	// setPosition(x, y, z) or setPosition([x, y, z]); a coordinate left out keeps its value.

@@ -5,8 +5,7 @@
 
 import { encode } from './codec.js';
 import { ProtocolError, ServerError } from './errors.js';
-
-export const SERVER_OPS = Object.freeze(['hello', 'snapshot', 'ok', 'error', 'frame', 'added', 'removed', 'warning']);
+import { SERVER_OPS } from './messages.js';
 
 export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):

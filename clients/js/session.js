@@ -10,6 +10,7 @@
 import * as THREE from 'three';
 import { encode } from './codec.js';
 import { ConnectionLost } from './errors.js';
+import { callMessage, createMessage } from './messages.js';
 import { Mirror } from './mirror.js';
 import { baseRotation, shownRotation } from './pose.js';
 import { Prediction } from './prediction.js';
@@ -113,7 +114,7 @@ export class Session {
 		const id = this.newId();
 		this.register(object, id, type);
 		object.vp.slots = this.hello.slots[type] ?? 0;
-		const message = { op: 'create', object: id, type, args: trimmed(args.map((a) => this.arg(a))) };
+		const message = createMessage(id, type, trimmed(args.map((a) => this.arg(a))));
 		const at = object.constructor.vpFileArgument, file = message.args[at];
 		if (typeof file !== 'string' || !this.meshFiles) return void this.send(message);
 		this.sendLater(message, this.meshFiles.nameFor(file).then((name) => {
@@ -265,7 +266,7 @@ export class Session {
 	}
 
 	call(object, method, args, { wait = false } = {}) {
-		return this.send({ op: 'call', object, method, args: args.map((a) => this.arg(a)) }, { wait });
+		return this.send(callMessage(object, method, args.map((a) => this.arg(a))), { wait });
 	}
 
 	// Queue a request; it leaves with the others of this task. What it will do to the

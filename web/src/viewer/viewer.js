@@ -3,6 +3,7 @@
 // connection (the viewer page's own, or the JavaScript client's in a 1.0 page).
 
 import * as THREE from 'three';
+import { callMessage } from '/client/messages.js';
 import { dispatch, makeHandlers } from './handlers.js';
 import { installHook } from './hook.js';
 import { Lasers } from './lasers.js';
@@ -59,7 +60,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		// a controller steers its own robots and shared ones (the server refuses the rest)
 		editable: (robot) => options.role === 'controller' && (robot.shared || robot.owner === view.hook.client),
 		setAngle: (motorId, angle) => request(
-			{ op: 'call', object: motorId, method: 'setAngle', args: [angle] }).catch(() => {}),
+			callMessage(motorId, 'setAngle', [angle])).catch(() => {}),
 		showGesture: (text) => { gestureBox.textContent = text; gestureBox.hidden = false; },
 		guiFor,
 	});
