@@ -1,0 +1,39 @@
+"""Binding a request's wire arguments to a method's parameters, with errors that name them."""
+
+import pytest
+
+from server.core.model.parts import Ball
+from server.core.protocol.api import methods_of
+from server.core.protocol.arguments import bind
+from server.errors import BadArguments, OutOfRange, UnknownObject, WrongType
+
+
+def params(type_name: str, method: str):
+    return methods_of(type_name)[method].params
+
+
+def test_a_point_is_one_list_or_three_numbers():
+    where = "setPosition of c1.1"
+    assert bind(params("Part", "setPosition"), [[1, 2, 3]], None, where) == [(1.0, 2.0, 3.0)]
+    assert bind(params("Part", "setPosition"), [1, 2, 3], None, where) == [(1.0, 2.0, 3.0)]
+    with pytest.raises(BadArguments, match="a point needs 3 numbers, got 2"):
+        bind(params("Part", "setPosition"), [[1, 2]], None, where)
+    with pytest.raises(OutOfRange, match="coordinates lie within"):
+        bind(params("Part", "setPosition"), [[1e9, 0, 0]], None, where)
+
+
+def test_wrong_values_and_too_many_arguments_name_the_call_and_argument():
+    where = "setAngle of c1.2"
+    with pytest.raises(WrongType, match=r"setAngle of c1.2, argument 1 \(angle\): expected a number"):
+        bind(params("Robot", "setAngle"), [0, "wide"], None, where)
+    with pytest.raises(BadArguments, match="takes at most 2 arguments, got 3"):
+        bind(params("Robot", "setAngle"), [0, 1, 2], None, where)
+
+
+def test_angles_pass_as_they_came_and_references_are_resolved(scene):
+    assert bind(params("Robot", "setAngles"), [0.5, -0.25], scene.get, "setAngles") == [0.5, -0.25]
+    ball = Ball(scene, "c1.3")
+    [parent, slot] = bind(params("Part", "attachToSlot"), [{"ref": "c1.3"}], scene.get, "attachToSlot")
+    assert parent is ball and slot == 0
+    with pytest.raises(UnknownObject):
+        bind(params("Part", "attachToSlot"), [{"ref": "c1.9"}], scene.get, "attachToSlot")
