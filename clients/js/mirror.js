@@ -24,7 +24,7 @@ export class Mirror {
 		this.readings = new Map(); // sensor id -> {distance, touch, position, objects}
 		this.events = [];          // [kind, a, b] contact changes not yet dispatched
 		this.listeners = [];       // (kind, id, fields) for every node change
-		this.held = new Map();     // id -> {until, known, server}: see predict
+		this.held = new Map();     // id -> {until, known, fields, server}, by until: see predict
 	}
 
 	// Fold one server message (snapshot, added, removed, frame) into the mirror.
@@ -115,8 +115,10 @@ export class Mirror {
 	// node `id` (making the node if it is new): they are set now and held until its answer.
 	predict(id, fields, until) {
 		const node = this.nodes.get(id);
-		let hold = this.held.get(id);
-		if (!hold) this.held.set(id, hold = { until, known: Boolean(node), server: {}, fields: new Set() });
+		const hold = this.held.get(id) ?? { until, known: Boolean(node), server: {}, fields: new Set() };
+		// requests are numbered in order: moved to the end, the holds stay ordered by until
+		this.held.delete(id);
+		this.held.set(id, hold);
 		hold.until = Math.max(hold.until, until);
 		for (const key of Object.keys(fields)) {
 			if (hold.known && !hold.fields.has(key) && node) hold.server[key] = node[key];
@@ -134,7 +136,7 @@ export class Mirror {
 	// to what it said (a node it never made goes).
 	release(id) {
 		for (const [nodeId, hold] of this.held) {
-			if (hold.until > id) continue;
+			if (hold.until > id) break;   // and every later one
 			this.held.delete(nodeId);
 			if (!hold.known) this.forget(nodeId);
 			else this.set(nodeId, Object.fromEntries(Object.entries(hold.server).filter(

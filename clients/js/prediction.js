@@ -18,6 +18,7 @@ export class Prediction {
 		this.mirror = mirror;
 		this.slots = slots;
 		this.classes = classes;
+		this.built = new Map();   // hand type -> id suffixes of the motors it is built with
 	}
 
 	isMotor(type) {
@@ -36,8 +37,8 @@ export class Prediction {
 			case 'attachToSlot': this.attached(id, args[0], args[1] ?? 0, until); break;
 			case 'attachChain': this.chained([id, ...args], until); break;
 			case 'addChain': this.chained(args, until); break;
-			case 'setAngle': this.turned(id, args, until); break;
-			case 'setAngles': this.turned(id, args.map((angle, index) => [index, angle]), until); break;
+			case 'setAngle': case 'setAngles':
+				this.turn(this.angleTurns(id, message.method, args), until); break;
 			case 'flexFinger': case 'flexFingers': case 'spreadFinger': case 'spreadFingers':
 				this.turn(this.fingerTurns(id, message.method, args), until);
 		}
@@ -57,13 +58,12 @@ export class Prediction {
 		return [{ id, ...node }, ...slots.map((slot) => ({ id: slot, type: 'Slot', parent: id, children: [] }))];
 	}
 
-	// motor.setAngle(angle), robot.setAngle(index, angle) or, as [[index, angle], …],
-	// robot.setAngles: null and NaN leave a motor as it is, the rest is clamped.
-	turned(id, args, until) {
-		const node = this.mirror.nodes.get(id);
-		if (!node) return;
-		this.turn(node.motors === undefined ? [[id, args[0]]]
-			: (Array.isArray(args[0]) ? args : [args]).map(([index, angle]) => [node.motors[index], angle]), until);
+	// motor.setAngle(angle), robot.setAngle(index, angle), robot.setAngles(a0, a1, …):
+	// [[motor id, angle], …].
+	angleTurns(id, method, args) {
+		const motors = this.mirror.nodes.get(id)?.motors;
+		if (motors === undefined) return method === 'setAngle' ? [[id, args[0]]] : [];
+		return method === 'setAngle' ? [[motors[args[0]], args[1]]] : args.map((angle, index) => [motors[index], angle]);
 	}
 
 	// [[motor id, angle], …]: each motor to its angle, clamped; null and NaN are left out.
@@ -90,9 +90,16 @@ export class Prediction {
 			spreadFingers: () => (typeof first !== 'number' ? [] : [...(second ? [[spread[0], offset + scale * first]] : []),
 				...shares.map((share, k) => [spread[k + 1], share * first])]),
 		}[method]();
-		const built = hand.left.filter(([, type]) => this.isMotor(type)).map(([suffix]) => id + suffix);
+		const built = this.builtMotors(node.type).map((suffix) => id + suffix);
 		return turns.filter(([index]) => this.root(built[index]) === id)
 			.map(([index, angle]) => [built[index], typeof angle === 'number' ? -angle : null]);
+	}
+
+	builtMotors(type) {
+		if (!this.built.has(type)) {
+			this.built.set(type, SKELETONS[type].left.filter(([, kind]) => this.isMotor(kind)).map(([suffix]) => suffix));
+		}
+		return this.built.get(type);
 	}
 
 	// A hand and its parts; isLeft is true unless given as false (the server's default).

@@ -273,10 +273,7 @@ export class Session {
 	// tree and the motors shows in the mirror at once (prediction.js), as 1.0 did it at
 	// once. With `wait`, a promise of its result.
 	send(message, { wait = false } = {}) {
-		if (this.closed) throw new ConnectionLost(this.closed);
-		this.core.raiseDeferred();
-		this.prediction?.request(message, this.core.nextId);
-		const { text, answer } = this.core.request(message, { wait });
+		const { text, answer } = this.requested(message, { wait });
 		this.queue(text);
 		return answer;
 	}
@@ -284,16 +281,21 @@ export class Session {
 	// Queue a request whose final form `ready` gives later: it and every request after
 	// it wait here until then, so the server still takes them in order.
 	sendLater(message, ready) {
-		if (this.closed) throw new ConnectionLost(this.closed);
-		this.core.raiseDeferred();
-		this.prediction?.request(message, this.core.nextId);
-		const { id } = this.core.request(message);
+		const { id } = this.requested(message);
 		const entry = { text: null };
 		this.queue(entry);
 		ready.then((final) => {
 			entry.text = encode({ ...final, id });
 			this.flush();
 		});
+	}
+
+	// A request numbered, and what it does predicted (a closed session or a kept error throws).
+	requested(message, options) {
+		if (this.closed) throw new ConnectionLost(this.closed);
+		this.core.raiseDeferred();
+		this.prediction?.request(message, this.core.nextId);
+		return this.core.request(message, options);
 	}
 
 	queue(entry) {

@@ -8,10 +8,10 @@ import time
 from typing import Callable
 
 from . import objects
+from . import scene as scenes
 from .errors import ConnectionLost
 from .objects import Node
 from .robots import AnthroHand, EdgedHand, Robot, RoundHand
-from . import scene as scenes
 from .scene import Scene, current_scene, set_current_scene
 from .sensor import Sensor
 
@@ -32,7 +32,6 @@ def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
     opened = Scene(url, scene, role, token=token, keep=keep)
     set_current_scene(opened)
     return opened
-
 
 
 def set_animation(func: Callable[..., None], fps: float = 30) -> None:

@@ -11,7 +11,6 @@ makes one; the definitions say which keys each has, for readers and type checker
 from typing import Any, Literal, NotRequired, TypedDict
 
 
-
 class Create(TypedDict):
     op: Literal['create']
     id: NotRequired[int]

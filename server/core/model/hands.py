@@ -41,11 +41,13 @@ class Hand(Robot):
         self._parts_made += 1
         return node
 
-    def spread_index(self, finger: int) -> int:
+    @classmethod
+    def spread_index(cls, finger: int) -> int:
         """Index of the motor that spreads ``finger``."""
         return 4 * finger
 
-    def flex_indices(self, finger: int) -> range:
+    @classmethod
+    def flex_indices(cls, finger: int) -> range:
         """Indices of the motors that flex ``finger``."""
         return range(4 * finger + 1, 4 * finger + 4)
 
@@ -184,10 +186,12 @@ class AnthroHand(RoundHand):
     palm_type = AnthroPalm
     palm_file = "anthro-palm.glb"
 
-    def spread_index(self, finger: int) -> int:
+    @classmethod
+    def spread_index(cls, finger: int) -> int:
         return 1 if finger == 0 else 4 * finger + 2
 
-    def flex_indices(self, finger: int) -> range:
+    @classmethod
+    def flex_indices(cls, finger: int) -> range:
         return range(4 * finger + 3, 4 * finger + 6)
 
     def build_fingers(self) -> None:

@@ -67,7 +67,7 @@ def definition(op: str, defs: dict[str, Any]) -> str:
 def render() -> str:
     """The text of every written file."""
     defs = schema()["$defs"]
-    parts = [HEADER]
+    parts = [HEADER.rstrip("\n")]
     tables = []
     for side in ("clientMessage", "serverMessage"):
         ops = defs[side]["properties"]["op"]["enum"]

@@ -56,9 +56,8 @@ def skeleton(hand_class: type[Hand], is_left: bool) -> list[list[Any]]:
 
 def fingers(hand_class: type[Hand]) -> dict[str, Any]:
     """Which motors (indices in the hand's motor list) the finger methods turn, and how."""
-    hand = hand_class.__new__(hand_class)  # the index rules need no parts
-    return {"spread": [hand.spread_index(f) for f in range(FINGERS)],
-            "flex": [list(hand.flex_indices(f)) for f in range(FINGERS)],
+    return {"spread": [hand_class.spread_index(f) for f in range(FINGERS)],
+            "flex": [list(hand_class.flex_indices(f)) for f in range(FINGERS)],
             "thumb": list(hand_class.thumb_spread), "shares": list(part_figures.SPREAD_FINGERS)}
 
 
