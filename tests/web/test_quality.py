@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import pytest
 
-from .conftest import open_page
 
 # A Quality fed `waits` (ms, one list per group of pictures judged together), starting at
 # level `start`: the level names it went through and where it ended.

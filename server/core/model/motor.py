@@ -27,6 +27,7 @@ class Motor(Part):
     """
 
     type_name = "Motor"
+    is_motor = True
 
     def __init__(self, scene: World, node_id: str, axis: str, min: float = -math.inf,
                  max: float = math.inf, default: float = 0.0) -> None:

@@ -56,6 +56,9 @@ class Node:
 
     type_name: ClassVar[str] = "Node"
     physical: ClassVar[bool] = False
+    is_motor: ClassVar[bool] = False  # turns what hangs on it (the scene reports its angle)
+    lists_motors: ClassVar[bool] = False  # a root whose motor list follows its tree (robots)
+    leaves_when_hidden: ClassVar[bool] = False  # a root that, hidden, takes its tree out
 
     def __init__(self, scene: World, node_id: str) -> None:
         self.scene = scene
@@ -249,8 +252,14 @@ class Node:
     def set_visible(self, visible: bool) -> None:
         """Draw the node and its descendants or not (three.js ``visible``); rays and
         contacts still meet its shapes, as 1.0's raycaster did. A robot out of sight is
-        out of the scene instead (:meth:`Scene.in_scene`, as ``setPosition()`` takes it)."""
+        out of the scene instead (:meth:`in_scene`, as ``setPosition()`` takes it)."""
         self._assign("visible", visible)
+
+    def in_scene(self) -> bool:
+        """False for the parts of a robot taken out of the scene with ``setPosition()``:
+        they keep their place in the tree, without bodies."""
+        root = self.root()
+        return root.visible or not root.leaves_when_hidden
 
     def keep(self, on: bool = True) -> Node:
         """Leave this object (and what hangs below it) in the scene when its owner leaves

@@ -20,6 +20,8 @@ class Robot(Node):
     """
 
     type_name = "Robot"
+    lists_motors = True
+    leaves_when_hidden = True
 
     def __init__(self, scene: World, node_id: str) -> None:
         super().__init__(scene, node_id)

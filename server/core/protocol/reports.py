@@ -23,7 +23,7 @@ def scene_summary(scene: Scene) -> dict[str, Any]:
     return {"name": scene.name, "time": scene.time, "seq": scene.seq,
             "objects": len(scene.nodes), "robots": len(robots(scene)),
             "bodies": len(scene.bodies),
-            "camera": {k: list(v) for k, v in scene.camera.items()}}
+            "camera": scene.camera.wire()}
 
 
 def robot_summary(robot: Robot) -> dict[str, Any]:

@@ -19,7 +19,7 @@ from functools import cache
 from typing import Any, Callable
 
 from ...errors import BadJSON, BadMessage, Forbidden, UnknownAsset, WrongType
-from ..kit.ids import IdBook, owner_of
+from ..kit.ids import owner_of
 from ..kit.numbers import encode_numbers
 from ..model.mesh_parts import GLTFPart
 from ..model.motor import Motor
@@ -91,7 +91,7 @@ def export_scene(scene: Scene, embed_assets: bool = True) -> dict[str, Any]:
     """The scene as a document; uploaded mesh files by content hash, with their bytes
     (base64) when ``embed_assets`` (a document another server can import)."""
     return {"format": FORMAT, "version": VERSION, "scene": scene.name,
-            "camera": {k: list(v) for k, v in scene.camera.items()},
+            "camera": scene.camera.wire(),
             "ids": scene.ids.wire(),
             "assets": [_asset_entry(scene.assets, name, embed_assets)
                        for name in uploaded_assets(scene)],
@@ -204,7 +204,7 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     _store_assets(scene, document["assets"])
     for root in scene.roots():
         scene.delete(root)
-    _fresh_ids(scene)
+    scene.registry.fresh_ids()
     for entry in entries:
         _make(scene, entry)
     for node in list(scene.nodes.values()):
@@ -240,12 +240,6 @@ def _store_assets(scene: Scene, assets: list[dict[str, Any]]) -> None:
             if hashlib.sha256(path.read_bytes()).hexdigest() != asset["sha256"]:
                 raise UnknownAsset(f"asset {name} here is not the document's file "
                                    f"(another content hash)", filename=name)
-
-
-def _fresh_ids(scene: Scene) -> None:
-    old = scene.ids
-    scene.journal.record(lambda: setattr(scene, "ids", old))
-    scene.ids = IdBook(scene.journal, scene.limits.client_names)
 
 
 def _make(scene: Scene, entry: dict[str, Any]) -> None:

@@ -31,14 +31,12 @@ log = logging.getLogger(__name__)
 class SceneBodies:
     """Collision bodies and ray shapes of the physical parts of one scene's nodes.
 
-    ``in_scene(node)`` tells whether a part counts (a robot taken out of the scene keeps
-    its parts, without bodies).
+    Only parts that are :meth:`~server.core.model.node.Node.in_scene` have bodies (a robot
+    taken out of the scene keeps its parts, without bodies).
     """
 
-    def __init__(self, nodes: Mapping[str, Node], in_scene: Callable[[Node], bool],
-                 limits: Limits, assets: AssetLibrary, name: str = "") -> None:
+    def __init__(self, nodes: Mapping[str, Node], limits: Limits, assets: AssetLibrary, name: str = "") -> None:
         self._nodes = nodes
-        self._in_scene = in_scene
         self._name = name
         self.physics = PhysicsWorld()
         self.rays = RayTargets(assets)
@@ -88,7 +86,7 @@ class SceneBodies:
 
     def _only_moved(self, node: Node) -> bool:
         """True when the part keeps its body and shape and only its pose may differ."""
-        return node.physical and self._in_scene(node) and \
+        return node.physical and node.in_scene() and \
             self._scales.get(node.id, UNIT_SCALE) == node.world_scale()
 
     def _move(self, keys: list[str], poses: list[Pose]) -> None:
@@ -108,7 +106,7 @@ class SceneBodies:
         """Make the part's body and shape afresh (or only remove them when it is gone)."""
         self._forget(node_id)
         node = self._nodes.get(node_id)
-        if node is None or not node.physical or not self._in_scene(node):
+        if node is None or not node.physical or not node.in_scene():
             return
         geometry, pose, scale = node.geometry(), node.world_pose(), node.world_scale()
         if scale != UNIT_SCALE:

@@ -10,9 +10,12 @@ it in ``added``, removed ones after it in ``removed``.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Mapping
 
+from ..kit.numbers import encode_numbers
 from ..kit.wire_messages import Added, Frame, Removed
+from ..model.node import Node
+from .changes import ChangeSet
 
 _LATEST_WINS = ("angles", "poses", "sensors")
 
@@ -24,6 +27,33 @@ def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[Added 
     return [*([Added(op="added", seq=seq, nodes=added)] if added else []),
             Frame(op="frame", seq=seq, time=time, **fields),
             *([Removed(op="removed", seq=seq, ids=removed)] if removed else [])]
+
+
+def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet,
+                 camera: dict[str, list[float]]) -> dict[str, Any]:
+    """What a change set amounts to now, in wire form (empty parts left out): a frame's
+    ``angles``, ``poses``, ``updates`` and ``camera``, with ``added`` and ``removed``."""
+    born = changes.born
+    out: dict[str, Any] = {
+        "added": [encode_numbers(nodes[i].describe()) for i in born if i in nodes],
+        "angles": {i: nodes[i].angle for i in changes.angles if i in nodes and i not in born},
+        "poses": {i: [*nodes[i].position, *nodes[i].quaternion] for i in changes.poses
+                  if i in nodes and i not in born},
+        "updates": {i: {f: _field(nodes[i], f) for f in sorted(fields)}
+                    for i, fields in changes.updates.items() if i in nodes and i not in born},
+        "removed": [i for i in changes.died if i not in nodes and i not in born],
+    }
+    if changes.camera:
+        out["camera"] = camera
+    return {k: v for k, v in out.items() if v}
+
+
+def _field(node: Node, field: str) -> Any:
+    if field == "parent":
+        return node.parent.id if node.parent is not None else None
+    if field == "children":
+        return [child.id for child in node.children]
+    return encode_numbers(getattr(node, field))
 
 
 def held_back(**counts: int) -> dict[str, Any]:

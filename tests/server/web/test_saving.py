@@ -117,7 +117,7 @@ def test_a_change_answered_ok_survives_a_kill_9_right_after(tmp_path, scene_name
                 for k in (1, 2):
                     ws.send(json.dumps({"op": "create", "object": f"{client}.{k}",
                                         "type": "Box", "id": k}))
-                    while (answer := json.loads(ws.recv(timeout=10)))["op"] != "ok":
+                    while json.loads(ws.recv(timeout=10))["op"] != "ok":
                         pass
                     time.sleep(0.2 if k == 1 else 0)
                 crash_server(server)  # within a millisecond of the second ok

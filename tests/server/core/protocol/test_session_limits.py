@@ -224,7 +224,7 @@ def test_a_failed_tick_keeps_its_changes_for_the_next(scene, session, monkeypatc
 
 def test_failed_sensing_still_sends_the_frame(scene, session, monkeypatch):
     send(session, create("c1.m", "MotorZ"))
-    monkeypatch.setattr(scene, "watched_readings", lambda: math.sqrt(-1))
+    monkeypatch.setattr(scene.watches, "ids", lambda: math.sqrt(-1))
     added, frame = scene.tick(1 / 60)
     assert added["nodes"][0]["id"] == "c1.m" and frame["op"] == "frame"
     assert scene.failures == 1

@@ -4,12 +4,15 @@ import math
 
 import pytest
 
-from server.core.kit import math3d
 from server.core.model.motor import MotorZ
 from server.core.model.parts import Ball, Box, EdgedFinger, EdgedPalm
 from server.core.model.sensor import Sensor
 from server.core.model.robot import Robot
 from server.errors import DuplicateId, OutOfRange
+
+
+def frame_of(messages):
+    return next(m for m in messages if m["op"] == "frame")
 
 
 def test_ids_are_unique_and_never_reused(scene):
@@ -104,66 +107,6 @@ def test_snapshot_lists_parents_before_children_and_encodes_infinity(scene):
     assert ids == ["r", "m", "m/s0"]
     motor = snapshot["nodes"][1]
     assert (motor["min"], motor["max"]) == ("-Infinity", "Infinity")
-
-
-def test_camera_changes_are_reported(scene):
-    scene.set_camera_position((1, 2, 3))
-    [frame] = scene.tick(0.1)
-    assert frame["camera"] == {"position": [1, 2, 3], "target": [0, 1, 0]}
-
-
-def frame_of(messages):
-    return next(m for m in messages if m["op"] == "frame")
-
-
-def contacts_of(messages):
-    return frame_of(messages).get("contacts")
-
-
-def test_contacts_begin_and_end_once_each_tick_they_change(scene):
-    finger = EdgedFinger(scene, "f")
-    finger.set_position((0, 1, 0))
-    box = Box(scene, "b", 1, 0.1, 0.1)
-    box.set_position((0, 1.5, 0))
-    assert contacts_of(scene.tick(0.1)) == {"begin": [["b", "f"]], "end": []}
-    assert contacts_of(scene.tick(0.1)) is None  # still touching: no news
-    assert scene.snapshot()["contacts"] == [["b", "f"]]
-    box.set_position((0, -0.01, 0))  # off the finger, onto the ground
-    assert contacts_of(scene.tick(0.1)) == {"begin": [["b", "ground"]], "end": [["b", "f"]]}
-    assert scene.snapshot()["contacts"] == [["b", "ground"]]
-
-
-def test_deleted_or_hidden_parts_end_their_contacts(scene):
-    robot = Robot(scene, "r")
-    finger = EdgedFinger(scene, "f")
-    robot.attach_chain(finger)
-    robot.set_position((0, -0.5, 0))
-    box = Box(scene, "b", 0.5, 0.5, 0.5)
-    box.set_position((0, 0, 0))
-    assert contacts_of(scene.tick(0.1))["begin"] == [["b", "f"], ["b", "ground"],
-                                                    ["f", "ground"]]
-    robot.set_position()  # taken out of the scene
-    assert contacts_of(scene.tick(0.1)) == {"begin": [], "end": [["b", "f"], ["f", "ground"]]}
-    scene.delete(box)
-    assert contacts_of(scene.tick(0.1)) == {"begin": [], "end": [["b", "ground"]]}
-
-
-def test_frames_carry_readings_of_watched_and_laser_sensors(scene):
-    from server.core.model.sensor import Sensor
-    watched, laser, quiet = Sensor(scene, "w"), Sensor(scene, "l", True, True), Sensor(scene, "q")
-    for sensor, x in ((watched, 0), (laser, 1), (quiet, 2)):
-        sensor.set_position((x, 2, 0))
-        sensor.set_rotation(math.pi, 0, 0)
-    watched.watch(client="c1")
-    frame = frame_of(scene.tick(0.1))
-    assert set(frame["sensors"]) == {"w", "l"}
-    assert frame["sensors"]["w"] == {"distance": pytest.approx(2.0), "touch": 0.0,
-                                     "position": [0, 2, 0], "objects": []}
-    watched.set_rotation(0, 0, 0)
-    assert frame_of(scene.tick(0.1))["sensors"]["w"]["distance"] == "Infinity"
-    scene.delete(laser)
-    assert set(frame_of(scene.tick(0.1))["sensors"]) == {"w"}
-    assert scene.watches.ids() == ["w"]
 
 
 @pytest.mark.parametrize("make", [

@@ -1,0 +1,34 @@
+"""What a tick observes besides the changes made to it: contacts that began and ended,
+the readings of watched sensors, and the limits that held that work back."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from ..model.node import Node
+from ..model.readings import Reading
+from ..model.watches import Watches
+from . import frames
+from .bodies import SceneBodies
+
+
+def observe(bodies: SceneBodies, watches: Watches, nodes: Mapping[str, Node]) -> dict[str, Any]:
+    """This tick's frame fields ``contacts``, ``sensors`` and ``limited`` (those that apply)."""
+    out: dict[str, Any] = {}
+    began, ended = bodies.contacts.update(bodies.overlaps())
+    if began or ended:
+        out["contacts"] = {"begin": [list(p) for p in began], "end": [list(p) for p in ended]}
+    readings = watched_readings(bodies, watches, nodes)
+    if readings:
+        out["sensors"] = {i: reading.wire() for i, reading in readings.items()}
+    tracker = bodies.tracker
+    out.update(frames.held_back(contactTests=tracker.deferred, contactPairs=tracker.unrecorded))
+    return out
+
+
+def watched_readings(bodies: SceneBodies, watches: Watches,
+                     nodes: Mapping[str, Node]) -> dict[str, Reading]:
+    """Readings of every watched sensor (frames carry them); forgets deleted ones."""
+    ids = watches.ids()
+    watches.forget(i for i in ids if i not in nodes)
+    return bodies.read([nodes[i] for i in ids if i in nodes], exact=False)
