@@ -15,7 +15,7 @@ from .core.kit.limits import DEFAULT, Limits
 from .demo import DEMOS
 from .web.access import AccessPolicy
 from .web.app import create_app
-from .web.guard import ConnectionCount, guarded_protocol
+from .web.connection_limits import ConnectionCount, guarded_protocol
 
 WS_MAX_BYTES = 16 << 20  # beyond the protocol's 1 MiB: those get an answer, not a hang-up
 PING_SECONDS = 20.0  # a WebSocket whose peer does not answer a ping this long is closed

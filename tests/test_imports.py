@@ -94,7 +94,7 @@ def test_the_core_does_no_io():
 
 def test_the_python_client_has_no_import_circle():
     graph = import_graph(ROOT / "clients" / "python" / "virtual_prosthetics")
-    assert "virtual_prosthetics.scene" in graph["virtual_prosthetics.objects"]
+    assert "virtual_prosthetics.session" in graph["virtual_prosthetics.objects"]
     assert circle(graph) is None, " -> ".join(circle(graph) or [])
 
 

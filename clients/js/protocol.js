@@ -5,7 +5,7 @@
 
 import { encode } from './codec.js';
 import { ProtocolError, ServerError } from './errors.js';
-import { SERVER_OPS } from './messages.js';
+import { SERVER_OPS } from './wire_messages.js';
 
 export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):

@@ -5,7 +5,7 @@ Its folders are its layers, lowest first; each imports only the layers before it
 
 - ``kit``: 3D math, the undo journal, limits, rates, ids, the number codec;
 - ``physics``: PyBullet bodies, contacts, rays, hulls, collision envelopes, mesh files;
-- ``model``: nodes, parts, motors, robots, sensors and their readings, hands, mesh parts,
+- ``model``: nodes, parts, motors, robots, sensors and their readings, hands, GLTF parts,
   page meshes, the part figures; a node knows its scene only as ``model.node.World``;
 - ``scene``: one scene: its nodes, undo, change feed and frames, bodies, clock;
 - ``protocol``: messages, the API table, arguments, operations, ownership, sessions,

@@ -21,7 +21,7 @@ from ..errors import Forbidden, InternalError, LimitExceeded, LookupFailure, Too
 from . import assets, heap, rest, socket
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed
 from .cors import PageOrigins
-from .guard import LoopErrorLog
+from .connection_limits import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .pages import mount_pages
 from .state_dir import StateDir

@@ -14,7 +14,7 @@ from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
 from ..core.physics.assets import BUNDLED_DIR, BUNDLED_URL
-from .modules import ModuleFiles
+from .bare_imports import ModuleFiles
 
 log = logging.getLogger(__name__)
 

@@ -27,7 +27,7 @@ def test_the_server_takes_the_client_messages_of_the_schema():
 def test_every_side_knows_the_server_messages_of_the_schema():
     ops = schema_ops("serverMessage")
     assert set(protocol.SERVER_OPS) == ops
-    assert set(json.loads(js_constant("messages.js", r"SERVER_OPS = Object\.freeze\((\[.*?\])\)")
+    assert set(json.loads(js_constant("wire_messages.js", r"SERVER_OPS = Object\.freeze\((\[.*?\])\)")
                           .replace("'", '"'))) == ops
 
 

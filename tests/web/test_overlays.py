@@ -61,7 +61,7 @@ def test_every_part_type_is_drawn_and_overlays_add_slots_and_envelopes(
 
 
 def test_parts_in_contact_glow_in_the_touch_colour(browser, pages, server, scene_name):
-    with vp.Scene(server.ws, scene=scene_name) as client:
+    with vp.Session(server.ws, scene=scene_name) as client:
         box = vp.Box(0.5, 0.5, 0.5, "white", scene=client)
         box.set_position(0, 1, 0)
         client.sync()
@@ -77,7 +77,7 @@ def test_parts_in_contact_glow_in_the_touch_colour(browser, pages, server, scene
 
 
 def test_a_laser_reaches_what_its_sensor_senses(browser, pages, server, scene_name):
-    with vp.Scene(server.ws, scene=scene_name) as client:
+    with vp.Session(server.ws, scene=scene_name) as client:
         sensor = vp.Sensor(True, "lime", scene=client)
         sensor.set_position(0, 2, 0)
         sensor.set_rotation(math.pi, 0, 0)

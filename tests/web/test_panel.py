@@ -55,7 +55,7 @@ def test_a_controller_moves_motors_and_every_viewer_follows(browser, pages, serv
 
 
 def test_a_robot_without_addgui_has_no_panel(browser, pages, server, scene_name):
-    with vp.Scene(server.ws, scene=scene_name) as client:
+    with vp.Session(server.ws, scene=scene_name) as client:
         robot = vp.Robot(scene=client)
         robot.attach_chain(vp.MotorZ(scene=client))
         client.sync()
@@ -68,7 +68,7 @@ def test_a_robot_without_addgui_has_no_panel(browser, pages, server, scene_name)
 
 def test_a_controller_page_cannot_steer_a_robot_not_shared(browser, pages, server, scene_name):
     """Its panel is read-only, as a viewer's is, until the owner shares the robot."""
-    with vp.Scene(server.ws, scene=scene_name) as client:
+    with vp.Session(server.ws, scene=scene_name) as client:
         robot = vp.Robot(scene=client)
         robot.attach_chain(vp.MotorZ(-1, 1, scene=client))
         robot.add_gui("Mine")

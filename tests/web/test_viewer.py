@@ -84,7 +84,7 @@ def test_viewers_come_back_after_a_server_restart(browser, pages):
     own = start_server("--no-demo")
     try:
         page = open_viewer(browser, pages, own, "scene=default")
-        client = vp.Scene(own.ws)
+        client = vp.Session(own.ws)
         robot = vp.Robot(scene=client)
         robot.attach_chain(vp.MotorZ(scene=client), vp.Box(scene=client))
         robot.add_gui("Before")

@@ -17,30 +17,34 @@ from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm
                       RoundPalm, SceneMesh, Slot)
 from .robots import AnthroHand, EdgedHand, RoundHand, Robot
 from .runtime import connect, get_time, run, set_animation
-from .scene import Scene, current_scene
 from .sensor import Sensor
+from .session import Session, current_session
 from .uploads import upload_asset
+
+# The names of 0.x, when a session was called a scene: scripts that use them keep working.
+Scene = Session
+current_scene = current_session
 
 
 def set_camera_position(*position: float) -> None:
     """Manual ``setCameraPosition(x, y, z)``: every viewer's camera moves there."""
-    current_scene().set_camera_position(*position)
+    current_session().set_camera_position(*position)
 
 
 def set_transforms(transforms: dict[Any, list[float]]) -> None:
-    """Place many objects in one request (see :meth:`Scene.set_transforms`)."""
-    current_scene().set_transforms(transforms)
+    """Place many objects in one request (see :meth:`Session.set_transforms`)."""
+    current_session().set_transforms(transforms)
 
 
 def set_camera_target(*target: float) -> None:
     """Manual ``setCameraTarget(x, y, z)``: every viewer's camera turns towards it."""
-    current_scene().set_camera_target(*target)
+    current_session().set_camera_target(*target)
 
 
 __all__ = [
     "AnthroHand", "AnthroPalm", "AnthroThumb", "GLTFPart", "RoundFinger", "RoundHand",
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
-    "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Sensor",
-    "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "get_time", "run",
+    "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor",
+    "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset",
 ]

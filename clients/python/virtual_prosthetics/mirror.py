@@ -19,7 +19,7 @@ class Mirror:
     queued in ``events`` until the client's own thread takes them, so that callbacks never
     run on the thread that reads the socket.
 
-    Not thread-safe on its own: the :class:`~virtual_prosthetics.scene.Scene` holds a
+    Not thread-safe on its own: the :class:`~virtual_prosthetics.session.Session` holds a
     lock around every use.
     """
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import Any, Callable, ClassVar
 
 from .errors import VPError
-from .scene import Scene, current_scene
+from .session import Session, current_session
 
 
 class Node:
@@ -17,18 +17,18 @@ class Node:
 
     _type: ClassVar[str] = ""
     id: str
-    _scene: Scene
+    _scene: Session
 
     @classmethod
-    def stand_in(cls, scene: Scene, node_id: str) -> Node:
+    def stand_in(cls, scene: Session, node_id: str) -> Node:
         """An object of this class for an id this client did not make (a hand's parts,
         another client's objects): no creation is sent."""
         obj = cls.__new__(cls)
         obj._scene, obj.id = scene, node_id
         return obj
 
-    def _create(self, scene: Scene | None, *args: Any) -> None:
-        self._scene = scene if scene is not None else current_scene()
+    def _create(self, scene: Session | None, *args: Any) -> None:
+        self._scene = scene if scene is not None else current_session()
         self.id = self._scene.new_id()
         self._scene.create(self, self._type, args)
 
@@ -89,7 +89,7 @@ class Slot(Posed):
 
     _type = "Slot"
 
-    def __init__(self, *position: Any, scene: Scene | None = None) -> None:
+    def __init__(self, *position: Any, scene: Session | None = None) -> None:
         self._create(scene, *position)
 
 
@@ -98,7 +98,7 @@ class Part(Shown):
 
     _type = "Part"
 
-    def __init__(self, *, scene: Scene | None = None) -> None:
+    def __init__(self, *, scene: Session | None = None) -> None:
         self._create(scene)
 
     def add_slot(self, *position: Any) -> Slot:
@@ -131,7 +131,7 @@ class Motor(Part):
     _type = "Motor"
 
     def __init__(self, axis: str, min: float | None = None, max: float | None = None,
-                 default: float | None = None, *, scene: Scene | None = None) -> None:
+                 default: float | None = None, *, scene: Session | None = None) -> None:
         self._create(scene, axis, min, max, default)
 
     def set_name(self, name: str) -> Motor:
@@ -156,7 +156,7 @@ class Motor(Part):
 class _AxisMotor(Motor):
     def __init__(self, min: float | None = None, max: float | None = None,
                  default: float | None = None, width: float | None = None,
-                 height: float | None = None, *, scene: Scene | None = None) -> None:
+                 height: float | None = None, *, scene: Session | None = None) -> None:
         self._create(scene, min, max, default, width, height)
 
 
@@ -184,7 +184,7 @@ class Ball(Part):
     _type = "Ball"
 
     def __init__(self, radius: float | None = None, color: str | int | None = None, *,
-                 scene: Scene | None = None) -> None:
+                 scene: Session | None = None) -> None:
         self._create(scene, radius, color)
 
 
@@ -195,7 +195,7 @@ class Box(Part):
 
     def __init__(self, sizex: float | None = None, sizey: float | None = None,
                  sizez: float | None = None, color: str | int | None = None, *,
-                 scene: Scene | None = None) -> None:
+                 scene: Session | None = None) -> None:
         self._create(scene, sizex, sizey, sizez, color)
 
 
@@ -207,7 +207,7 @@ class SceneMesh(Part):
     _type = "SceneMesh"
 
     def __init__(self, geometry: dict[str, Any], color: str | int | None = None, *,
-                 scene: Scene | None = None) -> None:
+                 scene: Session | None = None) -> None:
         self._create(scene, geometry, color)
 
     def set_color(self, color: str | int) -> None:
@@ -221,7 +221,7 @@ class EdgedFinger(Part):
     _type = "EdgedFinger"
 
     def __init__(self, length: float | None = None, width: float | None = None,
-                 thickness: float | None = None, *, scene: Scene | None = None) -> None:
+                 thickness: float | None = None, *, scene: Session | None = None) -> None:
         self._create(scene, length, width, thickness)
 
 
@@ -238,7 +238,7 @@ class EdgedPalm(Part):
 
     def __init__(self, left: bool | None = None, length: float | None = None,
                  width: float | None = None, thickness: float | None = None, *,
-                 scene: Scene | None = None) -> None:
+                 scene: Session | None = None) -> None:
         self._create(scene, left, length, width, thickness)
 
 
@@ -256,7 +256,7 @@ class GLTFPart(Part):
 
     def __init__(self, filename: str, length: float | None = None, *,
                  callback: Callable[[GLTFPart], Any] | None = None,
-                 scene: Scene | None = None) -> None:
+                 scene: Session | None = None) -> None:
         self._create(scene, filename, length)
         self._ready(callback)
 
@@ -281,7 +281,7 @@ class _HandedPart(GLTFPart):
 
     def __init__(self, left: bool, filename: str, length: float | None = None, *,
                  callback: Callable[[GLTFPart], Any] | None = None,
-                 scene: Scene | None = None) -> None:
+                 scene: Session | None = None) -> None:
         self._create(scene, left, filename, length)
         self._ready(callback)
 

@@ -6,7 +6,7 @@ from typing import Any
 
 from . import objects
 from .objects import Node, Part, Shown
-from .scene import Scene
+from .session import Session
 
 
 class Robot(Shown):
@@ -18,7 +18,7 @@ class Robot(Shown):
 
     _type = "Robot"
 
-    def __init__(self, *, scene: Scene | None = None) -> None:
+    def __init__(self, *, scene: Session | None = None) -> None:
         self._create(scene)
 
     def attach_chain(self, *parts: Part) -> Part | None:
@@ -99,7 +99,7 @@ class Robot(Shown):
 class Hand(Robot):
     """The hands' finger control (thumb 0, index 1, middle 2, ring 3, little 4)."""
 
-    def __init__(self, is_left: bool = True, *, scene: Scene | None = None) -> None:
+    def __init__(self, is_left: bool = True, *, scene: Session | None = None) -> None:
         self._create(scene, is_left)
 
     def flex_finger(self, index: int, angle: float | None) -> None:

@@ -8,11 +8,11 @@ import time
 from typing import Callable
 
 from . import objects
-from . import scene as scenes
+from . import session as sessions
 from .errors import ConnectionLost
 from .objects import Node
 from .robots import AnthroHand, EdgedHand, Robot, RoundHand
-from .scene import Scene, current_scene, set_current_scene
+from .session import Session, current_session, set_current_session
 from .sensor import Sensor
 
 # The class of every type (a scene makes objects of them for ids this client did not make).
@@ -21,16 +21,16 @@ CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
     objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
     objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
     objects.AnthroThumb, objects.SceneMesh, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
-scenes.CLASSES.update(CLASSES, Node=Node)
+sessions.CLASSES.update(CLASSES, Node=Node)
 
 
 def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
-            role: str = "controller", token: str | None = None, keep: bool = False) -> Scene:
+            role: str = "controller", token: str | None = None, keep: bool = False) -> Session:
     """Connect to a scene of a server and make it the current scene; ``token`` (default:
     the ``VP_TOKEN`` environment variable) when the server asks for one; ``keep``: what
     this script makes stays in the scene after it ends."""
-    opened = Scene(url, scene, role, token=token, keep=keep)
-    set_current_scene(opened)
+    opened = Session(url, scene, role, token=token, keep=keep)
+    set_current_session(opened)
     return opened
 
 
@@ -38,7 +38,7 @@ def set_animation(func: Callable[..., None], fps: float = 30) -> None:
     """Manual ``setAnimation(func, fps=30)``: ``func(time, dtime)`` runs ``fps`` times a second."""
     if fps <= 0:
         raise ValueError(f"fps must be positive, got {fps}")
-    current_scene().animation = (func, fps)
+    current_session().animation = (func, fps)
 
 
 def _arity(func: Callable[..., None]) -> int:
@@ -58,7 +58,7 @@ def run(seconds: float | None = None) -> None:
     Before every step the contact callbacks that are due run (``begin_contact`` and
     ``end_contact`` of this client's parts). Without an animation, ``run`` only does that.
     """
-    scene = current_scene()
+    scene = current_session()
     func, fps = scene.animation or (None, 30.0)
     arity, period = _arity(func) if func else 0, 1.0 / fps
     last, elapsed = scene.get_time(), 0.0
@@ -80,4 +80,4 @@ def run(seconds: float | None = None) -> None:
 
 def get_time() -> float:
     """Manual ``getTime()``: the current scene's server time."""
-    return current_scene().get_time()
+    return current_session().get_time()

@@ -6,7 +6,7 @@ from typing import Any
 
 from .codec import from_wire
 from .objects import Node, Part
-from .scene import Scene
+from .session import Session
 
 
 class Sensor(Part):
@@ -21,7 +21,7 @@ class Sensor(Part):
     _type = "Sensor"
 
     def __init__(self, visible: bool | None = None, laser_color: Any = None, *,
-                 scene: Scene | None = None) -> None:
+                 scene: Session | None = None) -> None:
         self._watched = False
         self._create(scene, visible, laser_color)
 

@@ -8,12 +8,12 @@ import urllib.request
 from pathlib import Path
 
 from .errors import ConnectionLost, ServerError
-from .scene import Scene, current_scene
+from .session import Session, current_session
 
 UPLOAD_TIMEOUT = 60.0
 
 
-def upload_asset(source: str | Path | bytes, scene: Scene | None = None) -> str:
+def upload_asset(source: str | Path | bytes, scene: Session | None = None) -> str:
     """Upload a GLB (or a glTF with embedded buffers) to the server of ``scene`` (the
     current one by default); the name to give ``GLTFPart``, the same for the same bytes.
 
@@ -21,7 +21,7 @@ def upload_asset(source: str | Path | bytes, scene: Scene | None = None) -> str:
     many triangles: :class:`ServerError` says which (``too_large``, ``bad_asset``…).
     """
     data = source if isinstance(source, bytes) else Path(source).read_bytes()
-    scene = scene or current_scene()
+    scene = scene or current_session()
     base = scene.url
     http = "https" + base[3:] if base.startswith("wss") else "http" + base[2:]
     headers = {"Content-Type": "application/octet-stream",

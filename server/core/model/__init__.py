@@ -1,1 +1,1 @@
-"""What a scene is made of: nodes, parts, motors, robots, sensors, hands, mesh parts, page meshes, their figures and readings. Knows its scene only as the World protocol (node.py); imports physics and the kit."""
+"""What a scene is made of: nodes, parts, motors, robots, sensors, hands, GLTF parts (shaped by mesh files), page meshes, their figures and readings. Knows its scene only as the World protocol (node.py); imports physics and the kit."""

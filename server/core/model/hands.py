@@ -6,7 +6,7 @@ from typing import Any
 
 from ...errors import OutOfRange
 from . import part_figures
-from .mesh_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
+from .gltf_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from .motor import Motor, MotorX, MotorY, MotorZ
 from .node import Node, World
 from .parts import EdgedFinger, EdgedPalm, EdgedTip

@@ -38,7 +38,7 @@ _NAME = re.compile(r"[A-Za-z0-9_-]+(?:\.[A-Za-z0-9_-]+)*\.(?:glb|gltf)")
 
 
 @dataclass(frozen=True, eq=False)  # compared and hashed by identity: one per file read
-class Mesh:
+class MeshFile:
     """A file's triangles in the file's own frame, ready for rays and envelopes."""
 
     url: str
@@ -122,7 +122,7 @@ class AssetLibrary:
         """Names of the files that come with the server."""
         return sorted(p.name for p in self.bundled.glob("*.gl*"))
 
-    def mesh(self, filename: str) -> Mesh:
+    def mesh(self, filename: str) -> MeshFile:
         """The mesh of a file (read once per process)."""
         path, url = self.locate(filename)
         return _read_mesh(str(path), url, path.stat().st_mtime_ns, self.limits)
@@ -169,8 +169,8 @@ def _load(source: Any, kind: str | None = None) -> tuple[np.ndarray, np.ndarray]
 
 
 @lru_cache(maxsize=64)
-def _read_mesh(path: str, url: str, version: int, limits: Limits) -> Mesh:
+def _read_mesh(path: str, url: str, version: int, limits: Limits) -> MeshFile:
     data = Path(path).read_bytes()  # checked again: a file may have been put there by hand
     kind, _ = _check_mesh(data, limits)
     faces, vertices = _load(io.BytesIO(data), kind)
-    return Mesh(url, vertices, faces)
+    return MeshFile(url, vertices, faces)

@@ -20,7 +20,7 @@ import numpy as np
 
 from ...errors import BadAsset
 from ..kit.math3d import Vec3
-from .assets import Mesh
+from .assets import MeshFile
 from .hulls import convex_hull, solid
 
 ENVELOPE_POINTS = 64
@@ -67,7 +67,7 @@ def _unit(v: Sequence[float]) -> np.ndarray:
     return v / np.linalg.norm(v)
 
 
-def envelope(mesh: Mesh, offset: Vec3, mirror: bool, cuts: Sequence[Plane] = (),
+def envelope(mesh: MeshFile, offset: Vec3, mirror: bool, cuts: Sequence[Plane] = (),
              count: int = ENVELOPE_POINTS) -> tuple[Vec3, ...]:
     """About ``count`` points of the hull of the mesh (moved by ``offset``, mirrored in X
     when ``mirror``) within the ``cuts``, in the part's frame.
@@ -91,7 +91,7 @@ def _mirrored(v: Vec3) -> Vec3:
 
 
 @lru_cache(maxsize=256)
-def _envelope(mesh: Mesh, offset: Vec3, cuts: tuple[Plane, ...], count: int) -> tuple[Vec3, ...]:
+def _envelope(mesh: MeshFile, offset: Vec3, cuts: tuple[Plane, ...], count: int) -> tuple[Vec3, ...]:
     corners, planes = _mesh_hull(mesh)
     shift = np.array(offset)
     planes = np.hstack([planes[:, :3], planes[:, 3:] - planes[:, :3] @ shift[:, None]])
@@ -159,7 +159,7 @@ def _nearest(corners: np.ndarray, point: np.ndarray) -> int:
 
 
 @lru_cache(maxsize=64)
-def _mesh_hull(mesh: Mesh) -> tuple[np.ndarray, np.ndarray]:
+def _mesh_hull(mesh: MeshFile) -> tuple[np.ndarray, np.ndarray]:
     """The corners and face planes (n·p + d ≤ 0 inside) of a mesh's hull, file frame."""
     outline = convex_hull(mesh.vertices)
     return outline.points[outline.vertices], outline.equations

@@ -1,12 +1,14 @@
 """Typed definitions of the wire messages, written from ``protocol/schema/protocol.json``:
 ``python -m server.core.protocol.message_types`` writes the server's
-(``server/core/kit/wire_messages.py``) and the Python client's
-(``clients/python/virtual_prosthetics/wire_messages.py``). The schema stays the one source;
-tests fail when a written file and the schema differ.
+(``server/core/kit/wire_messages.py``), the Python client's
+(``clients/python/virtual_prosthetics/wire_messages.py``) and the JavaScript client's
+(``clients/js/wire_messages.js``, JSDoc typedefs and the op lists). The schema stays the one
+source; tests fail when a written file and the schema differ.
 """
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +17,7 @@ from .messages import schema
 ROOT = Path(__file__).resolve().parents[3]
 TARGETS = [ROOT / "server" / "core" / "kit" / "wire_messages.py",
            ROOT / "clients" / "python" / "virtual_prosthetics" / "wire_messages.py"]
+JS_TARGET = ROOT / "clients" / "js" / "wire_messages.js"
 PLAIN = {"string": "str", "integer": "int", "number": "float", "boolean": "bool", "null": "None"}
 HEADER = '''"""One typed definition per wire message. Written by
 ``python -m server.core.protocol.message_types`` from protocol/schema/protocol.json; do
@@ -78,8 +81,62 @@ def render() -> str:
     return "\n\n\n".join(parts + ["\n".join(tables)]) + "\n"
 
 
-if __name__ == "__main__":
+JS_PLAIN = {"string": "string", "integer": "number", "number": "number", "boolean": "boolean",
+            "null": "null"}
+JS_HEADER = """// One typed definition (a JSDoc typedef) per wire message, and the op lists. Written by
+// `python -m server.core.protocol.message_types` from protocol/schema/protocol.json; do
+// not edit (a test fails when the two differ). Messages stay plain objects: messages.js
+// makes the ones a client sends, protocol.js checks the ops of those a server sends."""
+
+
+def js_type(spec: Any, defs: dict[str, Any]) -> str:
+    """The JSDoc type of a JSON Schema value (what the schema leaves open is ``*``)."""
+    if not isinstance(spec, dict):
+        return "*"
+    if "$ref" in spec:
+        name = spec["$ref"].removeprefix("#/$defs/")
+        return js_type(defs[name], defs) if "/" not in name else "*"
+    if "const" in spec:
+        return repr(spec["const"]) if isinstance(spec["const"], str) else "*"
+    if "enum" in spec:
+        return "string" if all(isinstance(v, str) for v in spec["enum"]) else "*"
+    if "oneOf" in spec:
+        return "(" + "|".join(dict.fromkeys(js_type(s, defs) for s in spec["oneOf"])) + ")"
+    kind = spec.get("type")
+    if kind == "array":
+        return f"Array<{js_type(spec.get('items'), defs)}>"
+    if kind == "object":
+        return f"Object<string, {js_type(spec.get('additionalProperties'), defs)}>"
+    return JS_PLAIN.get(kind, "*") if isinstance(kind, str) else "*"
+
+
+def js_definition(op: str, defs: dict[str, Any]) -> str:
+    spec = defs[op]
+    lines = ["/**", f" * @typedef {{object}} {class_name(op)}"]
+    for key, value in spec["properties"].items():
+        name = key if key in spec["required"] else f"[{key}]"
+        lines.append(f" * @property {{{js_type(value, defs)}}} {name}")
+    return "\n".join(lines + [" */"])
+
+
+def render_js() -> str:
+    """The text of the JavaScript client's definitions."""
+    defs = schema()["$defs"]
+    parts, tables = [JS_HEADER], []
+    for side, table in (("clientMessage", "CLIENT_OPS"), ("serverMessage", "SERVER_OPS")):
+        ops = defs[side]["properties"]["op"]["enum"]
+        parts += [js_definition(op, defs) for op in ops]
+        tables.append(f"export const {table} = Object.freeze({json.dumps(ops)});")
+    return "\n\n".join(parts + ["\n".join(tables)]) + "\n"
+
+
+def written() -> dict[Path, str]:
+    """Every written file and the text it should hold."""
     text = render()
-    for target in TARGETS:
+    return {**{target: text for target in TARGETS}, JS_TARGET: render_js()}
+
+
+if __name__ == "__main__":
+    for target, text in written().items():
         target.write_text(text)
         print(f"wrote {target}")

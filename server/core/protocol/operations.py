@@ -7,7 +7,7 @@ from typing import Any, Callable
 from ...errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
 from ..kit.numbers import encode_numbers
 from ..model.hands import AnthroHand, EdgedHand, RoundHand
-from ..model.mesh_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
+from ..model.gltf_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from ..model.motor import Motor, MotorX, MotorY, MotorZ
 from ..model.node import Node, Slot
 from ..model.page_meshes import SceneMesh

@@ -21,7 +21,7 @@ from typing import Any, Callable
 from ...errors import BadJSON, BadMessage, Forbidden, UnknownAsset, WrongType
 from ..kit.ids import owner_of
 from ..kit.numbers import encode_numbers
-from ..model.mesh_parts import GLTFPart
+from ..model.gltf_parts import GLTFPart
 from ..model.motor import Motor
 from ..model.node import Node, Slot
 from ..model.page_meshes import SceneMesh

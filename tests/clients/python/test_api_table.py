@@ -91,10 +91,3 @@ def test_every_changing_method_returns_what_the_table_says(scene):
             checked.append(f"{type_name}.{name}")
     scene.sync()  # the server took every call
     assert "EdgedHand.setRotation" in checked and "Motor.flip" in checked
-
-
-def test_a_hand_is_built_by_chained_calls_as_in_1_0(scene):
-    hand = vp.EdgedHand(True).set_position(-2, 0.5, 0).set_rotation(-1, -1, 0)
-    assert isinstance(hand, vp.EdgedHand)
-    scene.sync()
-    assert hand.get_position() == [-2, 0.5, 0]

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import threading
 
+import pytest
+
 import virtual_prosthetics as vp
 from tests.conftest import RunningServer, crash_server, start_server, stop_server
 
@@ -35,3 +37,18 @@ def test_run_lasts_its_seconds_of_scene_time_across_a_server_restart(tmp_path, s
     assert min(times[10:]) < 1 < max(times), "the restarted clock was seen"
     assert all(dt >= 0 for _, dt in steps)
     assert 7.9 < sum(dt for _, dt in steps) < 8.1
+
+
+def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
+    from ...conftest import eventually, start_server, stop_server
+    own = start_server("--no-demo", "--limit", "leaveGraceSeconds=1")  # the client tries 1 s
+    try:
+        # scenes start from a fork server a fresh server is still warming (slow under load)
+        eventually(lambda: [s["state"] for s in own.get("/api/scenes")] == ["running"], 60)
+        vp.connect(own.ws, scene=scene_name)
+        vp.set_animation(lambda t: None)
+        stop_server(own)
+        with pytest.raises(vp.ConnectionLost):
+            vp.run(30)
+    finally:
+        stop_server(own)

@@ -47,7 +47,7 @@ def test_sense_objects_gives_own_objects_other_clients_ids_and_ground(server, sc
     sensor = vp.Sensor().attach_to_slot(finger)
     box = vp.Box(1, 0.1, 0.1)
     box.set_position(0, 0.5, 0)
-    with vp.Scene(server.ws, scene=scene_name) as other:
+    with vp.Session(server.ws, scene=scene_name) as other:
         theirs = vp.Ball(0.2, scene=other)
         theirs.set_position(0, 0.3, 0)
         other.sync()

@@ -87,7 +87,7 @@ def test_rest_changes_need_the_control_token(locked):
 
 
 def test_the_python_client_controls_with_the_token_and_the_log_never_shows_it(locked):
-    with vp.Scene(locked.ws, scene="tokened", token=CONTROL) as scene:
+    with vp.Session(locked.ws, scene="tokened", token=CONTROL) as scene:
         robot = vp.Robot(scene=scene)
         scene.sync()
         robots = locked.get(f"/api/scenes/tokened/robots?token={VIEW}")

@@ -14,7 +14,7 @@ import trimesh
 
 import virtual_prosthetics as vp
 from tests.conftest import eventually, start_server, stop_server
-from tests.server.core.physics.gltf_fuzz import glb_parts, pack_glb, peak_megabytes
+from tests.features.fuzz.gltf_files import glb_parts, pack_glb, peak_megabytes
 
 SMALL = ["--limit", "assetBytes=200000", "--limit", "assetTriangles=5000", "--limit", "assets=3"]
 

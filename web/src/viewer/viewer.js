@@ -5,7 +5,7 @@
 import * as THREE from 'three';
 import { callMessage } from '/client/messages.js';
 import { dispatch, makeHandlers } from './handlers.js';
-import { installHook } from './hook.js';
+import { installInspection } from './inspection.js';
 import { Lasers } from './lasers.js';
 import { Logo } from './logo.js';
 import { Motion } from './motion.js';
@@ -51,7 +51,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		tree, stage, motion,
 		overlays: new Overlays(tree, options),
 		lasers: new Lasers(tree, stage.scene),
-		hook: installHook(stage, tree, motion),
+		hook: installInspection(stage, tree, motion),
 		status: new StatusLine(status, options.scene, watchLink, () => stage.pictures),
 	};
 	const logo = new Logo(stage.scene);

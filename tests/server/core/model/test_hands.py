@@ -1,11 +1,14 @@
-"""The edged hand: its chains, motor order and finger control."""
+"""The three hands: their chains, motor names and order, and what each finger method moves."""
 
 import math
 
 import pytest
 
-from server.core.model.hands import EdgedHand
+from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
 from server.errors import OutOfRange
+
+FINGERS = ["Thumb", "Index finger", "Middle finger", "Ring finger", "Little finger"]
+FLEX = ["proximal", "middle", "distal"]
 
 
 def test_edged_hand_has_twenty_motors_in_finger_order(scene):
@@ -84,3 +87,49 @@ def test_a_finger_flexed_into_its_palm_touches_it_and_stops_on_unflexing(scene):
     assert scene.bodies.overlaps().pairs == frozenset()
     hand.flex_finger(0, 1.5)
     assert scene.bodies.touching(palm) == [hand.get_parts()[3].id]  # the thumb's base
+
+
+def test_round_hand_has_the_specs_twenty_named_motors(scene):
+    hand = RoundHand(scene, "h", True)
+    names = [m.name for m in hand.get_motors()]
+    assert names == [n for finger in FINGERS for n in [finger, *FLEX]]
+    types = [m.type_name for m in hand.get_motors()][0::4]
+    assert types == ["MotorY", "MotorX", "MotorX", "MotorX", "MotorX"]
+
+
+def test_anthro_hand_has_the_specs_twenty_two_named_motors(scene):
+    hand = AnthroHand(scene, "h", True)
+    names = [m.name for m in hand.get_motors()]
+    assert names == ["Palm", "Thumb", "twist", *FLEX] + [
+        n for finger in FINGERS[1:] for n in [finger, *FLEX]]
+    assert [m.type_name for m in hand.get_motors()][:6] == [
+        "MotorZ", "MotorX", "MotorY", "MotorZ", "MotorZ", "MotorZ"]
+
+
+@pytest.mark.parametrize("kind, spread, flex", [
+    (RoundHand, lambda i: 4 * i, lambda i: [4 * i + 1, 4 * i + 2, 4 * i + 3]),
+    (AnthroHand, lambda i: 1 if i == 0 else 4 * i + 2, lambda i: [4 * i + 3, 4 * i + 4, 4 * i + 5]),
+])
+def test_each_method_moves_exactly_the_motors_the_spec_names(scene, kind, spread, flex):
+    for finger in range(5):
+        hand = kind(scene, f"h{finger}")
+        before = hand.get_angles()
+        hand.flex_finger(finger, 0.3)
+        moved = [i for i, (a, b) in enumerate(zip(before, hand.get_angles())) if a != b]
+        assert moved == flex(finger) and all(hand.get_angles()[i] == -0.3 for i in moved)
+        before = hand.get_angles()
+        hand.spread_finger(finger, -0.1)  # within every spread motor's range (thumb: 0…π/2)
+        moved = [i for i, (a, b) in enumerate(zip(before, hand.get_angles())) if a != b]
+        assert moved == [spread(finger)]
+
+
+@pytest.mark.parametrize("kind, thumb", [(RoundHand, lambda a: -3 * a), (AnthroHand, lambda a: 0.5 - 2 * a)])
+def test_spread_fingers_includes_the_thumb_as_the_spec_says(scene, kind, thumb):
+    hand = kind(scene, "h")
+    motors = hand.get_motors()
+    hand.spread_fingers(0.2, True)
+    thumb_motor = motors[hand.spread_index(0)]
+    expected = max(thumb_motor.min, min(thumb_motor.max, -thumb(0.2)))
+    assert thumb_motor.get_angle() == pytest.approx(expected)
+    assert [motors[hand.spread_index(i)].get_angle() for i in range(1, 5)] == pytest.approx(
+        [-0.2, -0.06, 0.06, 0.2])

@@ -180,7 +180,7 @@ def test_a_sphere_stretched_one_way_becomes_an_ellipsoid(scene):
 
 
 def test_a_mesh_part_is_stretched_for_rays(scene):
-    from server.core.model.mesh_parts import RoundFinger
+    from server.core.model.gltf_parts import RoundFinger
     finger = RoundFinger(scene, "f", "round-finger-8.glb")
     finger.set_rotation(math.pi / 2, 0, 0)  # lying along +Z, its top towards +Y
     sensor = down_sensor(scene, 3.0, x=0.0)

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from server.core.model.hands import RoundHand
-from server.core.model.mesh_parts import RoundFinger
+from server.core.model.gltf_parts import RoundFinger
 from server.core.model.motor import MotorX
 from server.core.model.parts import Ball, Box, EdgedFinger
 from server.core.model.sensor import Sensor

@@ -5,13 +5,13 @@ import pytest
 import trimesh
 from scipy.spatial import ConvexHull
 
-from server.core.physics.assets import AssetLibrary, Mesh
+from server.core.physics.assets import AssetLibrary, MeshFile
 from server.core.physics.envelopes import envelope, half_space, pyramid
 
 
-def box_mesh(size=(1.0, 2.0, 1.0)) -> Mesh:
+def box_mesh(size=(1.0, 2.0, 1.0)) -> MeshFile:
     box = trimesh.creation.box(extents=size)
-    return Mesh("box", np.asarray(box.vertices, float), np.asarray(box.faces))
+    return MeshFile("box", np.asarray(box.vertices, float), np.asarray(box.faces))
 
 
 def test_without_cuts_a_box_is_its_eight_corners():
@@ -40,7 +40,7 @@ def test_cuts_that_would_leave_nothing_leave_the_whole_hull():
 
 
 @pytest.fixture(scope="module")
-def finger() -> Mesh:
+def finger() -> MeshFile:
     return AssetLibrary().mesh("round-finger-8.glb")
 
 

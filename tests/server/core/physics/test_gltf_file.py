@@ -13,7 +13,7 @@ from server.core.physics.gltf_file import MAX_ITEMS, inspect
 from server.core.kit.limits import DEFAULT
 from server.errors import BadAsset, LimitExceeded
 from tests.conftest import run_program
-from tests.server.core.physics.gltf_fuzz import glb_parts, pack_glb
+from tests.features.fuzz.gltf_files import glb_parts, pack_glb
 
 
 @pytest.fixture(scope="module")
@@ -111,7 +111,7 @@ def test_deeply_nested_json_is_refused_as_not_gltf():
 
 
 def test_ten_thousand_fuzzed_uploads_are_each_taken_or_refused_in_bounded_memory():
-    outcome = run_program("tests.server.core.physics.gltf_fuzz", "--cases", "10000")
+    outcome = run_program("tests.features.fuzz.gltf_files", "--cases", "10000")
     assert outcome["crashes"] == [] and outcome["cases"] == 10_000
     assert outcome["taken"] > 1000 and outcome["refused"] > 5000  # both paths exercised
     assert outcome["peakMegabytes"] < 400  # one 20 M-triangle load alone takes gigabytes

@@ -1,6 +1,5 @@
 """The scene: ids, transactions, the change feed, ticks, contacts and readings in frames."""
 
-import math
 
 import pytest
 

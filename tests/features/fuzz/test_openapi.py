@@ -16,7 +16,7 @@ from schemathesis.checks import positive_data_acceptance
 from hypothesis import HealthCheck, given, settings
 from websockets.sync.client import connect
 
-from .ws_requests import request_all
+from tests.server.web.ws_requests import request_all
 
 EXAMPLES = 60  # per operation
 

@@ -1,4 +1,5 @@
-"""A connection to one scene of a server, with its mirror and its objects."""
+"""A session: one connection to one scene of a server, with its mirror and its objects
+(the JavaScript client's ``Session``)."""
 
 from __future__ import annotations
 
@@ -16,11 +17,11 @@ from .wire_messages import Call, Create, Delete
 
 T = TypeVar("T")
 SCENE_ID = "scene"
-_current: Scene | None = None
+_current: Session | None = None
 
 
 class SceneObject(Protocol):
-    """What the scene needs of an object of this client (objects.py defines them)."""
+    """What the session needs of an object of this client (objects.py defines them)."""
 
     id: str
 
@@ -28,7 +29,7 @@ class SceneObject(Protocol):
 class ObjectClass(Protocol):
     """A class of objects (objects.py): it makes one for an id this client did not make."""
 
-    def stand_in(self, scene: Scene, node_id: str) -> SceneObject: ...
+    def stand_in(self, session: Session, node_id: str) -> SceneObject: ...
 
 
 # The class of every type, by type name: filled by runtime.py, which holds the table, so
@@ -36,17 +37,17 @@ class ObjectClass(Protocol):
 CLASSES: dict[str, ObjectClass] = {}
 
 
-def current_scene() -> Scene:
-    """The scene new objects go to: the last one :func:`connect` opened."""
+def current_session() -> Session:
+    """The session new objects go to: the last one :func:`connect` opened."""
     if _current is None:
         raise VPError("not connected: call virtual_prosthetics.connect() first")
     return _current
 
 
-def set_current_scene(scene: Scene) -> None:
-    """Make ``scene`` the one new objects go to."""
+def set_current_session(session: Session) -> None:
+    """Make ``session`` the one new objects go to."""
     global _current
-    _current = scene
+    _current = session
 
 
 def trim(args: tuple[Any, ...]) -> list[Any]:
@@ -57,7 +58,7 @@ def trim(args: tuple[Any, ...]) -> list[Any]:
     return [encode_arg(a) for a in items]
 
 
-class Scene:
+class Session:
     """One scene on a server, seen and driven through a WebSocket.
 
     Writes are sent at once and return; reads come from the mirror after every earlier
@@ -223,7 +224,7 @@ class Scene:
         if _current is self:
             _current = None
 
-    def __enter__(self) -> Scene:
+    def __enter__(self) -> Session:
         return self
 
     def __exit__(self, *exc: Any) -> None:

@@ -1,4 +1,4 @@
-"""Parts shaped by mesh files: GLTFPart and the round and anthropomorphic hand parts.
+"""GLTF parts: parts shaped by mesh files (GLTFPart and the round and anthropomorphic hand parts).
 
 The server reads the file (for rays and for the envelope); viewers load the same file
 from its URL and draw it. A right palm or thumb is the left mesh mirrored in X.
@@ -11,7 +11,7 @@ from typing import Any
 from ...errors import LimitExceeded
 from ..kit.math3d import Vec3, euler_to_quat, rotate
 from ..kit.numbers import Finite
-from ..physics.assets import Mesh
+from ..physics.assets import MeshFile
 from ..physics.envelopes import Plane, envelope, half_space, pyramid
 from . import part_figures
 from .node import World
@@ -32,7 +32,7 @@ class GLTFPart(Part):
     left = True
 
     def __init__(self, scene: World, node_id: str, filename: str, length: float = 0.0) -> None:
-        self.mesh: Mesh = scene.assets.mesh(filename)  # refused before the node exists
+        self.mesh: MeshFile = scene.assets.mesh(filename)  # refused before the node exists
         super().__init__(scene, node_id)
         self.filename, self.length = filename, length
         self.recolors: tuple[tuple[Color, Color, float], ...] = ()

@@ -48,7 +48,7 @@ def wait_until_saved(server: RunningServer, scene: str) -> None:
         time.sleep(0.05)
 
 
-def build_lab(url: str, scene: str) -> vp.Scene:
+def build_lab(url: str, scene: str) -> vp.Session:
     """A hand with a recoloured mesh part, a part of an uploaded mesh on it, and more."""
     connection = vp.connect(url, scene=scene)
     name = vp.upload_asset(glb())
@@ -295,7 +295,7 @@ def test_ten_thousand_fuzzed_documents_each_through_import_and_state_files():
     """Through REST import each is a 200 or a structured 4xx, never a 500 or a dropped
     connection, the server's memory bounded and its health ok after; as files a scene's
     process restores each (document and journal) or sets it aside, never fails."""
-    fuzz = "tests.server.web.document_fuzz"
+    fuzz = "tests.features.fuzz.documents"
     with ThreadPoolExecutor(2) as both:  # a core each
         posted, files = both.map(lambda where: run_program(fuzz, where, "--cases", "10000"),
                                  ["rest", "files"])

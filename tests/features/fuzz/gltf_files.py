@@ -7,7 +7,7 @@ goes through the whole upload path (:meth:`AssetLibrary.store`, then reading it 
 part would); it must be taken or refused with a VPError, nothing else.
 
 Run as a program it fuzzes in a process of its own and prints a JSON summary with that
-process's peak memory: ``python -m tests.server.core.physics.gltf_fuzz --cases 10000``.
+process's peak memory: ``python -m tests.features.fuzz.gltf_files --cases 10000``.
 """
 
 from __future__ import annotations

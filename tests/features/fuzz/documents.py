@@ -10,8 +10,8 @@ dropped connection. The file fuzzer restores them as a scene's process does at s
 Run as a program each prints a JSON summary with its process's peak memory (``rest``
 starts a server of its own unless given one, and adds that server's peak and health)::
 
-    python -m tests.server.web.document_fuzz files --cases 10000
-    python -m tests.server.web.document_fuzz rest [--url http://127.0.0.1:8000] --cases 10000
+    python -m tests.features.fuzz.documents files --cases 10000
+    python -m tests.features.fuzz.documents rest [--url http://127.0.0.1:8000] --cases 10000
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene, import_scene
 from server.web.scene_store import SceneStore
 from server.web.worker import SceneWorker
-from tests.server.core.physics.gltf_fuzz import peak_megabytes
+from tests.features.fuzz.gltf_files import peak_megabytes
 
 ODD = [None, True, -1, 0, 1e308, -1e308, 2 ** 64, 1.5, "", "x" * 300, "c1.1", "c2.1",
        "demo.1", "ground", "../../etc/passwd", [], [1], [0, 0, 0], [[1, 2], [3]], {},

@@ -1,9 +1,8 @@
-"""The Python client against a real server: the manual's Steps 2-5, written in Python."""
+"""The manual's objects from Python against a real server: Steps 2-5, slots and chains, GLTF parts."""
 
 from __future__ import annotations
 
 import math
-import time
 
 import pytest
 
@@ -92,28 +91,6 @@ def test_step5_three_diggers(server, scene, scene_name):
     assert robot_a.get_motors()[0] in robot_a.get_parts()
 
 
-def test_reads_see_this_clients_writes_at_once(scene):
-    motor = vp.MotorX(-1, 1, 0)
-    for value in (0.1, 0.2, 5, -5, None):
-        motor.set_angle(value)
-        expected = {0.1: 0.1, 0.2: 0.2, 5: 1, -5: -1, None: -1}[value]
-        assert motor.get_angle() == expected
-
-
-def test_errors_are_raised_as_server_errors(scene):
-    robot = vp.Robot()
-    robot.set_angles("fast")  # returns at once; the error comes with the next read
-    with pytest.raises(vp.ServerError) as caught:
-        robot.get_angles()
-    assert caught.value.code == "wrong_type" and "setAngles" in caught.value.message
-    finger = vp.EdgedFinger()
-    finger.attach_to_slot(finger)
-    with pytest.raises(vp.ServerError) as caught:
-        scene.sync()
-    assert caught.value.code == "cycle"
-    assert robot.get_angles() == []  # the connection carries on
-
-
 def test_a_missing_slot_index_attaches_to_the_parent_and_warns(server, scene, scene_name):
     palm = vp.EdgedPalm()
     ball = vp.Ball(0.2)
@@ -128,83 +105,38 @@ def test_a_missing_slot_index_attaches_to_the_parent_and_warns(server, scene, sc
     assert nodes[palm.id]["children"] == [f"{palm.id}/s{k}" for k in range(5)] + [ball.id, marker.id]
 
 
-def test_two_clients_share_a_scene_and_viewers_cannot_change_it(server, scene, scene_name):
-    hand = vp.EdgedHand(False)
-    hand.flex_finger(1, 0.3)
+def test_gltf_part_callback_runs_once_made_and_recolor_reaches_the_scene(server, scene, scene_name):
+    ready = []
+    part = vp.GLTFPart("../assets/gltf/round-palm.glb", 1.4,
+                       callback=lambda p: (ready.append(p), p.recolor([0, 0.21, 1], "red")))
+    assert ready == [part]
     scene.sync()
-    other = vp.Scene(server.ws, scene=scene_name, role="viewer")
-    try:
-        seen = other.proxy(hand.id)
-        assert isinstance(seen, vp.EdgedHand)
-        assert seen.get_angles() == hand.get_angles()
-        hand.spread_finger(2, 0.2)
-        deadline = time.monotonic() + 5
-        while seen.get_angles()[8] != pytest.approx(-0.2) and time.monotonic() < deadline:
-            time.sleep(0.01)
-        assert seen.get_angles()[8] == pytest.approx(-0.2)
-        seen.flex_fingers(1)
-        with pytest.raises(vp.ServerError) as caught:
-            other.sync()
-        assert caught.value.code == "forbidden"
-        assert hand.get_angles()[5] == pytest.approx(-0.3)
-    finally:
-        other.close()
+    node = next(n for n in server.nodes(scene_name)
+                if n["id"] == part.id)
+    assert node["geometry"]["url"] == "/assets/gltf/round-palm.glb"
+    assert node["recolors"] == [[[0.0, 0.21, 1.0], "red", 0.01]]
 
 
-def test_hand_parts_come_back_as_typed_objects(scene):
-    hand = vp.EdgedHand()
-    parts = hand.get_parts()
-    assert type(parts[0]) is vp.EdgedPalm
-    assert [type(m) for m in hand.get_motors()[:4]] == [vp.MotorX, vp.MotorZ, vp.MotorZ, vp.MotorZ]
-    slot = parts[0].add_slot(0, 3, 0)
-    assert isinstance(slot, vp.Slot)
-    ball = vp.Ball(0.2, "red")
-    ball.attach_to_slot(parts[0], slot)
-    assert ball in hand.get_parts()
+@pytest.mark.parametrize("filename", ["../../etc/passwd", "/etc/passwd", "round-palm.glb/..",
+                                      "http://example.com/x.glb", "..%2fetc%2fpasswd.glb",
+                                      "assets\\gltf\\round-palm.glb", "round-palm.glb\n"])
+def test_forbidden_filenames_are_refused_and_nothing_is_made(server, scene, scene_name, filename):
+    before = server.nodes(scene_name)
+    with pytest.raises(vp.ServerError) as caught:
+        vp.GLTFPart(filename, callback=lambda p: None)
+    assert caught.value.code in ("forbidden", "bad_message")
+    assert server.nodes(scene_name) == before
 
 
-def test_camera_and_time(server, scene, scene_name):
-    vp.set_camera_position(10, 2, 0)
-    vp.set_camera_target([0, 2, 0])
+def test_a_missing_mesh_file_is_an_unknown_asset(scene):
+    with pytest.raises(vp.ServerError) as caught:
+        vp.RoundFinger("no-such-finger.glb", callback=lambda p: None)
+    assert caught.value.code == "unknown_asset" and "round-palm.glb" in caught.value.message
+
+
+def test_round_hand_parts_are_the_manuals_classes(scene):
+    hand = vp.AnthroHand(False)
     scene.sync()
-    assert server.get(f"/api/scenes/{scene_name}")["camera"] == {
-        "position": [10, 2, 0], "target": [0, 2, 0]}
-    started, first = time.monotonic(), vp.get_time()
-    time.sleep(0.1)
-    later, elapsed = vp.get_time(), time.monotonic() - started
-    assert first < later and later - first == pytest.approx(elapsed, abs=0.1)
-
-
-def test_disconnect_removes_the_clients_robots(server, scene_name):
-    with vp.connect(server.ws, scene=scene_name):
-        vp.EdgedHand()
-        vp.current_scene().sync()
-        assert server.get(f"/api/scenes/{scene_name}")["robots"] == 1
-    deadline = time.monotonic() + 5
-    while server.get(f"/api/scenes/{scene_name}")["robots"] and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert server.get(f"/api/scenes/{scene_name}")["robots"] == 0
-
-
-def test_keep_leaves_a_scripts_robots_after_it_ends(server, scene_name):
-    with vp.connect(server.ws, scene=scene_name, keep=True):
-        vp.EdgedHand().share()
-        vp.current_scene().sync()
-    time.sleep(1.5)  # past the test server's grace period
-    [robot] = server.get(f"/api/scenes/{scene_name}/robots")
-    assert robot["type"] == "EdgedHand" and robot["shared"]
-
-
-def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
-    from ...conftest import eventually, start_server, stop_server
-    own = start_server("--no-demo", "--limit", "leaveGraceSeconds=1")  # the client tries 1 s
-    try:
-        # scenes start from a fork server a fresh server is still warming (slow under load)
-        eventually(lambda: [s["state"] for s in own.get("/api/scenes")] == ["running"], 60)
-        vp.connect(own.ws, scene=scene_name)
-        vp.set_animation(lambda t: None)
-        stop_server(own)
-        with pytest.raises(vp.ConnectionLost):
-            vp.run(30)
-    finally:
-        stop_server(own)
+    parts = [type(p) for p in hand.get_parts() if not isinstance(p, vp.Motor)]
+    assert parts[:3] == [vp.AnthroPalm, vp.AnthroThumb, vp.RoundFinger]
+    assert len(hand.get_motors()) == 22 and len(vp.RoundHand().get_motors()) == 20

@@ -9,7 +9,7 @@ function keep(log, entry) {
 	log.push(entry);
 }
 
-export function installHook(stage, tree, motion) {
+export function installInspection(stage, tree, motion) {
 	const hook = {
 		scene: stage.scene,    // the THREE.Scene
 		camera: stage.camera,

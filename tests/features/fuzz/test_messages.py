@@ -26,7 +26,7 @@ from virtual_prosthetics.mirror import Mirror
 from server.core.protocol.messages import check_server_message
 from tests.conftest import RunningServer, start_server, stop_server
 
-from .fuzz_messages import (GARBAGE, HOSTILE_CASES, Drawn, almost_valid, is_answerable,
+from .messages import (GARBAGE, HOSTILE_CASES, Drawn, almost_valid, is_answerable,
                             valid_op)
 
 EXAMPLES = 200

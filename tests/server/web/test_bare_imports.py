@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import httpx
 
-from server.web.modules import IMPORT_MAP, rewrite
+from server.web.bare_imports import IMPORT_MAP, rewrite
 
 
 def test_bare_imports_of_three_lil_gui_and_addons_are_resolved():
