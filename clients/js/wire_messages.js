@@ -44,7 +44,7 @@
 /**
  * @typedef {object} Hello
  * @property {'hello'} op
- * @property {*} protocol
+ * @property {1} protocol
  * @property {string} client
  * @property {string} role
  * @property {string} scene

@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, Callable
 
 from .messages import schema
 
@@ -18,7 +19,6 @@ ROOT = Path(__file__).resolve().parents[3]
 TARGETS = [ROOT / "server" / "core" / "kit" / "wire_messages.py",
            ROOT / "clients" / "python" / "virtual_prosthetics" / "wire_messages.py"]
 JS_TARGET = ROOT / "clients" / "js" / "wire_messages.js"
-PLAIN = {"string": "str", "integer": "int", "number": "float", "boolean": "bool", "null": "None"}
 HEADER = '''"""One typed definition per wire message. Written by
 ``python -m server.core.protocol.message_types`` from protocol/schema/protocol.json; do
 not edit (a test fails when the two differ).
@@ -33,25 +33,46 @@ from typing import Any, Literal, NotRequired, TypedDict
 '''
 
 
-def python_type(spec: Any, defs: dict[str, Any]) -> str:
-    """The Python type of a JSON Schema value (what the schema leaves open is ``Any``)."""
+@dataclass(frozen=True)
+class Notation:
+    """How one language writes the types of the schema's values."""
+
+    plain: dict[str, str]  # JSON Schema type -> the language's
+    open: str  # what the schema leaves open
+    literal: Callable[[str], str]
+    union: Callable[[list[str]], str]
+    array: str  # with {} for the item type
+    mapping: str  # with {} for the value type
+
+
+PYTHON = Notation({"string": "str", "integer": "int", "number": "float", "boolean": "bool",
+                   "null": "None"}, "Any", lambda value: f"Literal[{value!r}]",
+                  " | ".join, "list[{}]", "dict[str, {}]")
+JAVASCRIPT = Notation({"string": "string", "integer": "number", "number": "number",
+                       "boolean": "boolean", "null": "null"}, "*", repr,
+                      lambda kinds: "(" + "|".join(kinds) + ")", "Array<{}>", "Object<string, {}>")
+
+
+def type_of(spec: Any, defs: dict[str, Any], notation: Notation = PYTHON) -> str:
+    """The type of a JSON Schema value in a language's notation."""
     if not isinstance(spec, dict):
-        return "Any"
+        return notation.open
     if "$ref" in spec:
         name = spec["$ref"].removeprefix("#/$defs/")
-        return python_type(defs[name], defs) if "/" not in name else "Any"
+        return type_of(defs[name], defs, notation) if "/" not in name else notation.open
     if "const" in spec:
-        return f"Literal[{spec['const']!r}]"
+        return notation.literal(spec["const"])
     if "enum" in spec:
-        return "str" if all(isinstance(v, str) for v in spec["enum"]) else "Any"
+        strings = all(isinstance(v, str) for v in spec["enum"])
+        return notation.plain["string"] if strings else notation.open
     if "oneOf" in spec:
-        return " | ".join(dict.fromkeys(python_type(s, defs) for s in spec["oneOf"]))
+        return notation.union(list(dict.fromkeys(type_of(s, defs, notation) for s in spec["oneOf"])))
     kind = spec.get("type")
     if kind == "array":
-        return f"list[{python_type(spec.get('items'), defs)}]"
+        return notation.array.format(type_of(spec.get("items"), defs, notation))
     if kind == "object":
-        return f"dict[str, {python_type(spec.get('additionalProperties'), defs)}]"
-    return PLAIN.get(kind, "Any") if isinstance(kind, str) else "Any"
+        return notation.mapping.format(type_of(spec.get("additionalProperties"), defs, notation))
+    return notation.plain.get(kind, notation.open) if isinstance(kind, str) else notation.open
 
 
 def class_name(op: str) -> str:
@@ -62,7 +83,7 @@ def definition(op: str, defs: dict[str, Any]) -> str:
     spec = defs[op]
     lines = [f"class {class_name(op)}(TypedDict):"]
     for key, value in spec["properties"].items():
-        kind = python_type(value, defs)
+        kind = type_of(value, defs)
         lines.append(f"    {key}: {kind if key in spec['required'] else f'NotRequired[{kind}]'}")
     return "\n".join(lines)
 
@@ -81,33 +102,10 @@ def render() -> str:
     return "\n\n\n".join(parts + ["\n".join(tables)]) + "\n"
 
 
-JS_PLAIN = {"string": "string", "integer": "number", "number": "number", "boolean": "boolean",
-            "null": "null"}
 JS_HEADER = """// One typed definition (a JSDoc typedef) per wire message, and the op lists. Written by
 // `python -m server.core.protocol.message_types` from protocol/schema/protocol.json; do
 // not edit (a test fails when the two differ). Messages stay plain objects: messages.js
 // makes the ones a client sends, protocol.js checks the ops of those a server sends."""
-
-
-def js_type(spec: Any, defs: dict[str, Any]) -> str:
-    """The JSDoc type of a JSON Schema value (what the schema leaves open is ``*``)."""
-    if not isinstance(spec, dict):
-        return "*"
-    if "$ref" in spec:
-        name = spec["$ref"].removeprefix("#/$defs/")
-        return js_type(defs[name], defs) if "/" not in name else "*"
-    if "const" in spec:
-        return repr(spec["const"]) if isinstance(spec["const"], str) else "*"
-    if "enum" in spec:
-        return "string" if all(isinstance(v, str) for v in spec["enum"]) else "*"
-    if "oneOf" in spec:
-        return "(" + "|".join(dict.fromkeys(js_type(s, defs) for s in spec["oneOf"])) + ")"
-    kind = spec.get("type")
-    if kind == "array":
-        return f"Array<{js_type(spec.get('items'), defs)}>"
-    if kind == "object":
-        return f"Object<string, {js_type(spec.get('additionalProperties'), defs)}>"
-    return JS_PLAIN.get(kind, "*") if isinstance(kind, str) else "*"
 
 
 def js_definition(op: str, defs: dict[str, Any]) -> str:
@@ -115,7 +113,7 @@ def js_definition(op: str, defs: dict[str, Any]) -> str:
     lines = ["/**", f" * @typedef {{object}} {class_name(op)}"]
     for key, value in spec["properties"].items():
         name = key if key in spec["required"] else f"[{key}]"
-        lines.append(f" * @property {{{js_type(value, defs)}}} {name}")
+        lines.append(f" * @property {{{type_of(value, defs, JAVASCRIPT)}}} {name}")
     return "\n".join(lines + [" */"])
 
 
