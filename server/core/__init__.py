@@ -7,7 +7,8 @@ Its folders are its layers, lowest first; each imports only the layers before it
 - ``physics``: PyBullet bodies, contacts, rays, hulls, collision envelopes, mesh files;
 - ``model``: nodes, parts, motors, robots, sensors and their readings, hands, GLTF parts,
   page meshes, the part figures; a node knows its scene only as ``model.node.World``;
-- ``scene``: one scene: its nodes, undo, change feed and frames, bodies, clock;
+- ``scene``: one scene: its registry of nodes, change feed and frames, camera, bodies,
+  what a tick observes, and the Scene tying them to undo and the clock;
 - ``protocol``: messages, the API table, arguments, operations, ownership, sessions,
   reports, scene documents, the command log, generated client artefacts.
 """

@@ -1,1 +1,1 @@
-"""One scene: the registry of its nodes, undo, the change feed and frames, the bodies in its physics world, the clock. Imports the model, physics and the kit."""
+"""One scene: the registry of its nodes (ids, quotas), the change feed and the frames built from it, its camera, the bodies of its physical parts, what a tick observes (contacts, watched readings), and the Scene that ties them to the undo journal and the clock. Imports the model, physics and the kit."""
