@@ -1,8 +1,9 @@
 """The collision world: a narrow interface over one PyBullet ``DIRECT`` client.
 
-Kinematic mode, as in 1.0: bodies are placed from the transform tree and never stepped,
-so nothing falls or gets pushed. Part bodies have mass 1 (Bullet keeps the world boxes of
-moved non-static bodies current). Rays are not Bullet's: see :mod:`server.core.physics.raycast`.
+Every tree of parts is one multibody (:mod:`.articulation`): a tick places its base and
+sets all its joints in one call each, and reads its parts' poses from Bullet's forward
+kinematics in one call. Kinematic mode, as in 1.0: nothing is ever stepped, so nothing
+falls or gets pushed. Rays are not Bullet's: see :mod:`server.core.physics.raycast`.
 
 Contacts are those of the exact shapes: a pair is measured with ``getClosestPoints``
 (never through Bullet's contact manifolds, which keep points from earlier poses after a
@@ -16,7 +17,8 @@ from __future__ import annotations
 import ctypes
 import os
 import sys
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, Mapping
 
 
 def _quiet_import():  # type: ignore[no-untyped-def]
@@ -41,12 +43,12 @@ def _quiet_import():  # type: ignore[no-untyped-def]
 pybullet = _quiet_import()
 
 from ..kit.math3d import Pose, Vec3
+from .articulation import NO_POSE, Articulation, multibody_arguments
 from .geometry import solid_points
 from .hulls import HAIR
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"
-_BODY_MASS = 1.0
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
 TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
 # Bodies are in group 2 and collide with group 1 only: Bullet's broadphase then never
@@ -58,34 +60,46 @@ _BODY_GROUP, _BODY_MASK = 2, 1
 REBUILD_AFTER_REMOVALS = 10_000
 
 
-class PhysicsWorld:
-    """Collision bodies keyed by node id, plus the ground plane y = 0.
+@dataclass
+class _Built:
+    """A tree as built in PyBullet, with what a rebuild needs to make it again."""
 
-    Bodies of equal geometry share one collision shape.
+    tree: Articulation
+    body: int
+    base_pose: Pose
+    angles: dict[str, float]
+    joints: dict[str, int]       # motor id -> link index of its joint
+    part_links: list[int]        # link indices that carry parts, in tree.parts() order
+
+
+class PhysicsWorld:
+    """Trees of parts, one multibody each (:mod:`.articulation`), plus the ground plane y = 0.
+
+    Parts are addressed by their node ids whatever link of whatever tree carries them;
+    a lone part is a tree with only a base. Shapes of equal geometry share one collision shape.
     """
 
     def __init__(self) -> None:
         self._client: int | None = None
-        self._bodies: dict[str, int] = {}
-        self._placed: dict[str, tuple[dict[str, Any], Pose]] = {}
+        self._trees: dict[str, _Built] = {}
+        self._where: dict[str, tuple[int, int]] = {}  # part id -> (body, link); -1: the base
+        self._padding: dict[str, float] = {}
         self.removals = 0
         self.rebuilds = 0
         self._connect()
 
     def _connect(self) -> None:
         self._client = pybullet.connect(pybullet.DIRECT)
-        self._keys: dict[int, str] = {}
-        self._padding: dict[int, float] = {}
         self._shapes: dict[tuple, int] = {}
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, planeNormal=[0, 1, 0],
                                               physicsClientId=self._client)
         self._ground = pybullet.createMultiBody(0, plane, physicsClientId=self._client)
-        self._filter(self._ground)
-        self._keys[self._ground] = GROUND
-        self._padding[self._ground] = 0.0
+        self._filter(self._ground, -1)
+        self._where[GROUND] = (self._ground, -1)
+        self._padding[GROUND] = 0.0
 
-    def _filter(self, body: int) -> None:
-        pybullet.setCollisionFilterGroupMask(body, -1, _BODY_GROUP, _BODY_MASK,
+    def _filter(self, body: int, link: int) -> None:
+        pybullet.setCollisionFilterGroupMask(body, link, _BODY_GROUP, _BODY_MASK,
                                              physicsClientId=self._client)
 
     def close(self) -> None:
@@ -95,84 +109,153 @@ class PhysicsWorld:
             self._client = None
 
     def __contains__(self, key: str) -> bool:
-        return key in self._bodies
+        return key in self._where and key != GROUND
 
     def __len__(self) -> int:
-        return len(self._bodies)
+        return len(self._where) - 1
 
-    def add(self, key: str, geometry: dict[str, Any], pose: Pose) -> None:
-        """A new body for ``key`` shaped by a part geometry (sphere, box or convex)."""
-        body = pybullet.createMultiBody(_BODY_MASS, self._shape(geometry), basePosition=pose[0],
-                                        baseOrientation=pose[1], physicsClientId=self._client)
-        self._filter(body)
-        self._bodies[key] = body
-        self._keys[body] = key
-        self._padding[body] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
-        self._placed[key] = (geometry, pose)
+    # --- trees ---------------------------------------------------------------------------
 
-    def _shape(self, geometry: dict[str, Any]) -> int:
+    def tree(self, root: str) -> Articulation | None:
+        """The tree built for ``root`` (None: none is)."""
+        built = self._trees.get(root)
+        return None if built is None else built.tree
+
+    def add_tree(self, tree: Articulation, base_pose: Pose, angles: Mapping[str, float]) -> None:
+        """Build ``tree`` as one multibody, its base at ``base_pose``, its joints at ``angles``."""
+        client = self._client
+        arguments = multibody_arguments(tree, base_pose, self._shape, pybullet.JOINT_REVOLUTE,
+                                        pybullet.JOINT_FIXED)
+        body = pybullet.createMultiBody(physicsClientId=client, **arguments)
+        joints = {joint.motor: k for k, joint in tree.joints()}
+        links = [k for k, link in enumerate(tree.links) if link.part is not None]
+        built = _Built(tree, body, base_pose, {}, joints, links)
+        self._trees[tree.root] = built
+        for link in range(-1, len(tree.links)):
+            self._filter(body, link)
+        places = ([(tree.base_part, -1, tree.base_geometry)] if tree.base_part is not None else []) \
+            + [(tree.links[k].part, k, tree.links[k].geometry) for k in links]
+        for key, link, geometry in places:
+            self._where[key] = (body, link)
+            self._padding[key] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
+        self.turn(tree.root, angles)
+
+    def remove_tree(self, root: str) -> None:
+        """Take the tree of ``root`` out of the world."""
+        built = self._trees.pop(root)
+        for key in built.tree.parts():
+            del self._where[key], self._padding[key]
+        pybullet.removeBody(built.body, physicsClientId=self._client)
+        self.removals += 1
+
+    def move_base(self, root: str, pose: Pose) -> None:
+        """Place the base of the tree of ``root`` at a world pose."""
+        built = self._trees[root]
+        pybullet.resetBasePositionAndOrientation(built.body, pose[0], pose[1],
+                                                 physicsClientId=self._client)
+        built.base_pose = pose
+
+    def turn(self, root: str, angles: Mapping[str, float]) -> None:
+        """Set joints of the tree of ``root`` (by motor id) in one call; other motors are ignored."""
+        built = self._trees[root]
+        joints = [(built.joints[motor], angle) for motor, angle in angles.items()
+                  if motor in built.joints]
+        if joints:
+            pybullet.resetJointStatesMultiDof(built.body, [k for k, _ in joints],
+                                              [[angle] for _, angle in joints],
+                                              physicsClientId=self._client)
+            built.angles.update(angles)
+
+    def part_poses(self, root: str) -> tuple[list[str], list[Pose]]:
+        """The world pose of every part of the tree of ``root`` (Bullet's forward kinematics,
+        one call for all links)."""
+        built = self._trees[root]
+        keys, poses = built.tree.parts(), []
+        if built.tree.base_part is not None:
+            poses.append(built.base_pose)
+        if built.part_links:
+            states = pybullet.getLinkStates(built.body, built.part_links,
+                                            computeForwardKinematics=1,
+                                            physicsClientId=self._client)
+            poses += [(state[0], state[1]) for state in states]
+        return keys, poses
+
+    def _shape(self, geometry: dict[str, Any], frame: Pose = NO_POSE) -> int:
         arguments = shape_arguments(geometry)
+        if frame != NO_POSE:
+            arguments.update(collisionFramePosition=frame[0], collisionFrameOrientation=frame[1])
         key = tuple((name, tuple(map(tuple, v)) if name == "vertices" else
-                     tuple(v) if isinstance(v, list) else v) for name, v in arguments.items())
+                     tuple(v) if isinstance(v, (list, tuple)) else v)
+                    for name, v in arguments.items())
         shape = self._shapes.get(key)
         if shape is None:
             shape = self._shapes[key] = pybullet.createCollisionShape(
                 physicsClientId=self._client, **arguments)
         return shape
 
+    # --- lone parts ----------------------------------------------------------------------
+
+    def add(self, key: str, geometry: dict[str, Any], pose: Pose) -> None:
+        """A lone part: a tree of only a base shaped by a part geometry."""
+        self.add_tree(Articulation(key, key, geometry), pose, {})
+
     def remove(self, key: str) -> None:
-        """Take the body of ``key`` out of the world."""
-        body = self._bodies.pop(key)
-        del self._keys[body], self._padding[body], self._placed[key]
-        pybullet.removeBody(body, physicsClientId=self._client)
-        self.removals += 1
+        """Take the lone part ``key`` out of the world."""
+        self.remove_tree(key)
 
     def move(self, key: str, pose: Pose) -> None:
-        """Place the body of ``key`` at a world pose."""
-        self.move_many([key], [pose])
+        """Place the lone part ``key`` at a world pose."""
+        self.move_base(key, pose)
 
     def move_many(self, keys: list[str], poses: list[Pose]) -> None:
-        """Place the bodies of ``keys`` at their world poses."""
-        reset, client = pybullet.resetBasePositionAndOrientation, self._client
-        bodies, placed = self._bodies, self._placed
+        """Place the lone parts of ``keys`` at their world poses."""
         for key, pose in zip(keys, poses):
-            reset(bodies[key], pose[0], pose[1], physicsClientId=client)
-            placed[key] = (placed[key][0], pose)
+            self.move_base(key, pose)
+
+    # --- memory --------------------------------------------------------------------------
 
     def needs_rebuild(self) -> bool:
         """True when enough bodies were removed that a fresh client would free memory."""
         return self.removals >= REBUILD_AFTER_REMOVALS or \
-            len(self._shapes) > 2 * len(self._bodies) + REBUILD_AFTER_REMOVALS // 10
+            len(self._shapes) > 2 * len(self._where) + REBUILD_AFTER_REMOVALS // 10
 
     def rebuild(self) -> None:
-        """Move every body into a fresh PyBullet client and release the old one."""
-        placed = self._placed
+        """Move every tree into a fresh PyBullet client and release the old one."""
+        trees = list(self._trees.values())
         self.close()
-        self._bodies, self._placed = {}, {}
+        self._trees, self._where, self._padding = {}, {}, {}
         self._connect()
-        for key, (geometry, pose) in placed.items():
-            self.add(key, geometry, pose)
+        for built in trees:
+            self.add_tree(built.tree, built.base_pose, built.angles)
         self.removals = 0
         self.rebuilds += 1
 
+    # --- measures ------------------------------------------------------------------------
+
     def pose(self, key: str) -> Pose:
-        """The world pose PyBullet holds for ``key``."""
-        position, orientation = pybullet.getBasePositionAndOrientation(
-            self._bodies[key], physicsClientId=self._client)
+        """The world pose PyBullet holds for the part ``key``."""
+        body, link = self._where[key]
+        if link < 0:
+            position, orientation = pybullet.getBasePositionAndOrientation(
+                body, physicsClientId=self._client)
+        else:
+            position, orientation = pybullet.getLinkState(
+                body, link, computeForwardKinematics=1, physicsClientId=self._client)[:2]
         return tuple(position), tuple(orientation)
 
     def aabb(self, key: str) -> tuple[Vec3, Vec3]:
-        """The world box around the body of ``key`` (its shape's margin included)."""
-        low, high = pybullet.getAABB(self._bodies[key], physicsClientId=self._client)
+        """The world box around the part ``key`` (its shape's margin included)."""
+        body, link = self._where[key]
+        low, high = pybullet.getAABB(body, link, physicsClientId=self._client)
         return tuple(low), tuple(high)
 
     def aabbs(self, keys: list[str]) -> list[tuple[Vec3, Vec3]]:
-        """The world boxes of the bodies of ``keys`` (as :meth:`aabb`), in order."""
-        get, bodies, client = pybullet.getAABB, self._bodies, self._client
-        return [get(bodies[key], physicsClientId=client) for key in keys]
+        """The world boxes of the parts of ``keys`` (as :meth:`aabb`), in order."""
+        get, where, client = pybullet.getAABB, self._where, self._client
+        return [get(*where[key], physicsClientId=client) for key in keys]
 
     def touching(self, key_a: str, key_b: str) -> bool:
-        """True when the exact shapes of two bodies (or a body and the ground) touch.
+        """True when the exact shapes of two parts (or a part and the ground) touch.
 
         Convex shapes are padded by ``CONVEX_MARGIN``, which the distance is measured against.
         """
@@ -181,14 +264,14 @@ class PhysicsWorld:
     def touching_many(self, key: str, others: list[str]) -> list[bool]:
         """For each of ``others``: does it touch ``key`` (as :meth:`touching`)?"""
         closest, client, padding = pybullet.getClosestPoints, self._client, self._padding
-        bodies, ground, tolerance = self._bodies, self._ground, TOUCH_TOLERANCE
-        a = ground if key == GROUND else bodies[key]
+        where, tolerance = self._where, TOUCH_TOLERANCE
+        a, link_a = where[key]
         out = []
         for other in others:
-            b = ground if other == GROUND else bodies[other]
-            reach = tolerance - padding[a] - padding[b]
-            out.append(any(point[8] <= reach
-                           for point in closest(a, b, tolerance, physicsClientId=client)))
+            b, link_b = where[other]
+            reach = tolerance - padding[key] - padding[other]
+            out.append(any(point[8] <= reach for point in closest(
+                a, b, tolerance, link_a, link_b, physicsClientId=client)))
         return out
 
 

@@ -1,50 +1,56 @@
 """The physical side of a scene: bodies and ray shapes of its parts, contacts and sensing.
 
-Every physical part in the scene has a collision body (:mod:`server.core.physics.engine`) and a
-ray shape (:mod:`server.core.physics.raycast`) at its world pose. The scene marks what changed;
-:meth:`SceneBodies.sync` brings the bodies in step before anything is measured, moving all
-the parts that only moved in one batch (their world poses, one PyBullet call each, their
-boxes in one array operation). The scene's tree stays the one source of poses: PyBullet
-never moves anything by itself (kinematic mode, as 1.0).
+Every tree of nodes with a physical part in the scene is one multibody in the engine
+(:mod:`server.core.model.structure` compiles it; motors are its joints), and every
+physical part has a ray shape (:mod:`server.core.physics.raycast`) at its world pose. The
+scene says what changed: a tree's structure (built again, one call), a root's pose (its
+base is placed) or motors' angles (all of a tree's joints set in one call). :meth:`sync`
+brings the engine in step before anything is measured, and reads the parts' world poses
+from Bullet's forward kinematics, one call per tree. PyBullet never moves anything by
+itself (kinematic mode, as 1.0).
 """
 
 from __future__ import annotations
 
 import logging
-from typing import TYPE_CHECKING, Callable, Iterable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping
 
 from ..kit.limits import Limits
-from ..model.node import UNIT_SCALE, Node
+from ..model.node import Node
 from ..model.readings import Reading, read_sensors
+from ..model.structure import base_pose, structure_of
 from ..physics.assets import AssetLibrary
 from ..physics.contacts import ContactBook, ContactTracker, Overlaps
 from ..physics.engine import PhysicsWorld
-from ..physics.geometry import scaled
 from ..physics.raycast import RayTargets
 
 if TYPE_CHECKING:
-    from ..kit.math3d import Pose, Vec3
+    from ..physics.articulation import Articulation
 
 log = logging.getLogger(__name__)
 
 
 class SceneBodies:
-    """Collision bodies and ray shapes of the physical parts of one scene's nodes.
+    """Multibodies and ray shapes of the physical parts of one scene's nodes.
 
     Only parts that are :meth:`~server.core.model.node.Node.in_scene` have bodies (a robot
     taken out of the scene keeps its parts, without bodies).
     """
 
-    def __init__(self, nodes: Mapping[str, Node], limits: Limits, assets: AssetLibrary, name: str = "") -> None:
+    def __init__(self, nodes: Mapping[str, Node], limits: Limits, assets: AssetLibrary,
+                 name: str = "") -> None:
         self._nodes = nodes
         self._name = name
         self.physics = PhysicsWorld()
         self.rays = RayTargets(assets)
         self.tracker = ContactTracker(self.physics, limits.contact_tests, limits.contact_pairs)
         self.contacts = ContactBook()  # as announced by the last tick
-        self._dirty: set[str] = set()
-        self._scales: dict[str, Vec3] = {}  # world scales of bodies not at 1, 1, 1
-        self.failures = 0  # parts that could not be placed (a bug; logged)
+        self._restructured: set[str] = set()  # roots (then) whose trees are built again
+        self._based: set[str] = set()         # roots whose own pose changed
+        self._turned: set[str] = set()        # motors whose angles changed
+        self._motor_root: dict[str, str] = {}  # motor id -> root of the tree it is a joint of
+        self._ray_geometry: dict[str, dict[str, Any]] = {}
+        self.failures = 0  # trees that could not be built or placed (a bug; logged)
 
     def close(self) -> None:
         """Release the physics world."""
@@ -53,76 +59,139 @@ class SceneBodies:
     def __len__(self) -> int:
         return len(self.physics)
 
-    def mark(self, node_ids: Iterable[str]) -> None:
-        """These nodes were made, moved, deleted or shown: their bodies follow at the next sync."""
-        self._dirty.update(node_ids)
+    # --- what changed ----------------------------------------------------------------------
+
+    def restructure(self, root_ids: Iterable[str]) -> None:
+        """The trees of these roots changed shape (a node made, deleted, attached, scaled,
+        shown, flipped, or moved below its root): built again at the next sync."""
+        self._restructured.update(root_ids)
+
+    def rebased(self, root_id: str) -> None:
+        """A root moved: its base is placed at the next sync."""
+        self._based.add(root_id)
+
+    def turned(self, motor_ids: Iterable[str]) -> None:
+        """Motors turned: their joints are set at the next sync."""
+        self._turned.update(motor_ids)
 
     # --- keeping bodies in step ------------------------------------------------------------
 
     def sync(self) -> None:
-        """Create, move or remove the bodies and ray shapes of every marked part."""
-        if not self._dirty:
+        """Build, place and turn what changed; then read the moved parts' poses."""
+        if not (self._restructured or self._based or self._turned):
             return
-        moved: list[Node] = []
-        for node_id in self._dirty:
-            self._guarded(node_id, lambda i: self._place(i, moved))
-        self._dirty.clear()
-        if moved:
-            try:
-                self._move([node.id for node in moved], [node.world_pose() for node in moved])
-            except Exception:  # a bug: place them one by one, leaving out the failing ones
-                for node in moved:
-                    self._guarded(node.id, self._sync_body)
+        rebuilt = self._rebuild()
+        moved = self._turn(rebuilt) | self._place_bases(rebuilt)
+        for root_id in moved:
+            keys, poses = self.physics.part_poses(root_id)
+            self.rays.move_many(keys, poses)
+            self.tracker.placed(keys)
         if self.physics.needs_rebuild():
             self.physics.rebuild()
 
-    def _place(self, node_id: str, moved: list[Node]) -> None:
-        """Note a part that only moved (placed in one batch), or make or remove its body."""
-        node = self._nodes.get(node_id)
-        if node is not None and node_id in self.physics and self._only_moved(node):
-            moved.append(node)
-        else:
-            self._sync_body(node_id)
+    def _rebuild(self) -> set[str]:
+        """Build the marked trees again; the roots built."""
+        roots: set[str] = set()
+        for root_id in self._restructured:
+            node = self._nodes.get(root_id)
+            roots.add(root_id)
+            if node is not None and node.parent is not None:
+                roots.add(node.root().id)  # attached below another tree since
+        self._restructured.clear()
+        old: set[str] = set()
+        for root_id in roots:  # every old tree out first: a part may change trees
+            tree = self.physics.tree(root_id)
+            if tree is not None:
+                old.update(tree.parts())
+                self._forget_tree(root_id, tree)
+        new: set[str] = set()
+        for root_id in roots:
+            new.update(self._build(root_id))
+        for key in old - new:
+            self.tracker.removed(key)
+            self.rays.remove(key)
+            del self._ray_geometry[key]
+        return roots
 
-    def _only_moved(self, node: Node) -> bool:
-        """True when the part keeps its body and shape and only its pose may differ."""
-        return node.physical and node.in_scene() and \
-            self._scales.get(node.id, UNIT_SCALE) == node.world_scale()
+    def _forget_tree(self, root_id: str, tree: Articulation) -> None:
+        self.physics.remove_tree(root_id)
+        for _, joint in tree.joints():
+            self._motor_root.pop(joint.motor, None)
 
-    def _move(self, keys: list[str], poses: list[Pose]) -> None:
-        self.physics.move_many(keys, poses)
-        self.rays.move_many(keys, poses)
-        self.tracker.placed(keys)
-
-    def _guarded(self, node_id: str, work: Callable[[str], None]) -> None:
+    def _build(self, root_id: str) -> list[str]:
+        """Build the tree of a root (nothing for a node gone, attached or without parts)."""
+        node = self._nodes.get(root_id)
+        if node is None or node.parent is not None:
+            return []
         try:
-            work(node_id)
-        except Exception:  # a bug: this part is left out, the scene goes on
+            tree = structure_of(node)
+            if not tree.parts():
+                return []
+            angles = {joint.motor: self._nodes[joint.motor].angle for _, joint in tree.joints()}
+            self.physics.add_tree(tree, base_pose(node), angles)
+        except Exception:  # a bug: this tree is left out, the scene goes on
             self.failures += 1
-            log.exception("part %s of scene %s could not be placed", node_id, self._name)
-            self._forget(node_id)
+            log.exception("the parts of %s in scene %s could not be placed", root_id, self._name)
+            return []
+        self._motor_root.update(dict.fromkeys(angles, root_id))
+        keys, poses = self.physics.part_poses(root_id)
+        geometries = {tree.base_part: tree.base_geometry,
+                      **{link.part: link.geometry for link in tree.links}}
+        for key, pose in zip(keys, poses):
+            geometry = geometries[key]
+            if self._ray_geometry.get(key) != geometry:
+                if key in self._ray_geometry:
+                    self.rays.remove(key)
+                self.rays.add(key, geometry, pose)
+                self._ray_geometry[key] = geometry
+            else:
+                self.rays.move(key, pose)
+        self.tracker.placed(keys)
+        return keys
 
-    def _sync_body(self, node_id: str) -> None:
-        """Make the part's body and shape afresh (or only remove them when it is gone)."""
-        self._forget(node_id)
-        node = self._nodes.get(node_id)
-        if node is None or not node.physical or not node.in_scene():
-            return
-        geometry, pose, scale = node.geometry(), node.world_pose(), node.world_scale()
-        if scale != UNIT_SCALE:
-            geometry = scaled(geometry, scale)
-            self._scales[node_id] = scale
-        self.rays.add(node_id, geometry, pose)
-        self.physics.add(node_id, geometry, pose)
-        self.tracker.placed([node_id])
+    def _guarded(self, root_id: str, work: Callable[[], None]) -> bool:
+        """Do ``work`` for a tree; if it fails (a bug) the tree is left out, the scene goes on."""
+        try:
+            work()
+            return True
+        except Exception:
+            self.failures += 1
+            log.exception("the parts of %s in scene %s could not be placed", root_id, self._name)
+            tree = self.physics.tree(root_id)
+            if tree is not None:
+                self._forget_tree(root_id, tree)
+                for key in tree.parts():
+                    self.tracker.removed(key)
+                    self.rays.remove(key)
+                    del self._ray_geometry[key]
+            return False
 
-    def _forget(self, node_id: str) -> None:
-        self._scales.pop(node_id, None)
-        if node_id in self.physics:
-            self.physics.remove(node_id)
-            self.tracker.removed(node_id)
-        if node_id in self.rays:
-            self.rays.remove(node_id)
+    def _turn(self, rebuilt: set[str]) -> set[str]:
+        """Set the joints of the turned motors, a call per tree; the roots turned."""
+        by_root: dict[str, dict[str, float]] = {}
+        for motor_id in self._turned:
+            motor = self._nodes.get(motor_id)
+            root_id = self._motor_root.get(motor_id)
+            if motor is None:
+                continue
+            if motor.parent is None:  # a lone motor: its turn is its base's pose
+                self._based.add(motor_id)
+            elif root_id is not None and root_id not in rebuilt:
+                by_root.setdefault(root_id, {})[motor_id] = motor.angle
+        self._turned.clear()
+        return {root_id for root_id, angles in by_root.items()
+                if self._guarded(root_id, lambda: self.physics.turn(root_id, angles))}
+
+    def _place_bases(self, rebuilt: set[str]) -> set[str]:
+        """Place the bases of the moved roots; the roots placed."""
+        placed = set()
+        for root_id in self._based:
+            node = self._nodes.get(root_id)
+            if root_id not in rebuilt and node is not None and self.physics.tree(root_id) and \
+                    self._guarded(root_id, lambda: self.physics.move_base(root_id, base_pose(node))):
+                placed.add(root_id)
+        self._based.clear()
+        return placed
 
     # --- contacts and sensors --------------------------------------------------------------
 

@@ -75,11 +75,11 @@ class Scene:
         self.registry.admit(node)
         self.journal.record(lambda: self._drop(node))
         self.feed.born(node.id)
-        self.bodies.mark((node.id,))
+        self.bodies.restructure((node.id,))
 
     def _drop(self, node: Node) -> None:
         self.registry.drop(node)
-        self.bodies.mark((node.id,))
+        self.bodies.restructure((node.id,))
 
     def get(self, node_id: str) -> Node:
         """The node with this id, or :class:`UnknownObject`."""
@@ -109,7 +109,7 @@ class Scene:
 
     def _revive(self, node: Node) -> None:
         self.registry.revive(node)
-        self.bodies.mark((node.id,))
+        self.bodies.restructure((node.id,))
 
     def in_order_made(self) -> list[Node]:
         """Every node in the order it was made (``nodes`` is not, once a deletion was undone)."""
@@ -124,10 +124,12 @@ class Scene:
     def node_changed(self, node: Node, field: str) -> None:
         """Called by nodes after every change of their state (and of its undoing)."""
         self.feed.changed(node.id, field)
-        if field in _POSE_FIELDS or field == "parent":
+        if field in _POSE_FIELDS or field in ("parent", "visible"):
             self._moved(node)
-        if field == "visible":
-            self.bodies.mark(n.id for n in node.walk())
+            if field in ("position", "quaternion") and node.parent is None:
+                self.bodies.rebased(node.id)
+            elif field != "parent":  # reparented() names both trees
+                self.bodies.restructure((node.root().id,))
 
     def turn(self, turns: list[tuple[Motor, float | None]]) -> None:
         """Motors to angles, as ``setAngle`` takes them (None and NaN ignored, the rest
@@ -142,6 +144,7 @@ class Scene:
         for motor, angle in turns:
             motor.angle = angle
         self.feed.turned(motor.id for motor, _ in turns)
+        self.bodies.turned(motor.id for motor, _ in turns)
         self._moved(*(motor for motor, _ in turns))
 
     def reparented(self, node: Node, old_parent: Node | None) -> None:
@@ -152,11 +155,14 @@ class Scene:
         if robots and not any(n.is_motor for n in node.walk()):
             robots = []  # no motor moved: the robots' motor orders stand
         self.feed.regrouped([parent.id for parent in parents], robots)
+        self.bodies.restructure({node.root().id, *(parent.root().id for parent in parents)})
         self.node_changed(node, "parent")
 
     def _moved(self, *nodes: Node) -> None:
-        self.bodies.mark([changed.id for node in nodes for changed in node.invalidate()
-                          if changed.physical])
+        """Forget the world poses (Python's, for reads) cached below these nodes."""
+        for node in nodes:
+            for _ in node.invalidate():
+                pass
 
     def warn(self, message: str) -> None:
         """Tell whoever made the current request something that did not fail but may surprise."""

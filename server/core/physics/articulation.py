@@ -1,0 +1,103 @@
+"""A tree of parts compiled for the engine: one PyBullet multibody per tree.
+
+The one structure that kinematic ticks, a dynamic mode and a URDF export all read:
+*links* carry the physical parts, *joints* are the motors (revolute, about one axis of
+the joint frame, within limits), and every slot, sensor or bare node between them folds
+into the fixed transforms (``origin``: a link's joint frame in its parent link's frame;
+``shape``: where the part sits in its own link's frame). A link carries no part only where
+two joints meet with no part between them.
+
+PyBullet's conventions, measured (tests/server/core/physics/test_articulation.py): a
+link's ``linkPositions``/``linkOrientations`` are its joint frame in the parent's *link*
+frame; a link's collision shape sits in its link frame (so the part's offset goes into the
+shape's frame); ``getLinkStates`` reports the link's *inertial* frame first, so the part's
+offset is also the inertial frame and the part's world pose is read without composing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
+
+NO_POSE: Pose = (ORIGIN, IDENTITY)
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A motor as a revolute joint: ``angle`` turns the link about ``axis``."""
+
+    motor: str   # the motor's node id
+    axis: Vec3   # a unit axis of the joint frame, negated for a flipped motor
+    lower: float
+    upper: float
+
+
+@dataclass(frozen=True)
+class Link:
+    """One link: its place below its parent, its joint, and the part it carries."""
+
+    parent: int             # the parent link's index; -1 is the base
+    origin: Pose            # the joint frame in the parent link's frame
+    joint: Joint | None     # None: fixed to its parent
+    part: str | None        # the physical part's id; None between two joints
+    shape: Pose = NO_POSE   # the part's frame in this link's frame
+    geometry: dict[str, Any] | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class Articulation:
+    """A tree compiled: its base (the tree's root, perhaps a part itself) and its links.
+
+    The base's pose and the joints' angles are state, not structure: a tick sets them
+    without building the multibody again.
+    """
+
+    root: str
+    base_part: str | None = None
+    base_geometry: dict[str, Any] | None = field(default=None, compare=False)
+    links: tuple[Link, ...] = ()
+
+    def parts(self) -> list[str]:
+        """Every physical part's id, the base's first."""
+        mine = [self.base_part] if self.base_part is not None else []
+        return mine + [link.part for link in self.links if link.part is not None]
+
+    def joints(self) -> list[tuple[int, Joint]]:
+        """(link index, joint) of every joint, in link order."""
+        return [(k, link.joint) for k, link in enumerate(self.links) if link.joint is not None]
+
+
+# --- PyBullet ----------------------------------------------------------------------------
+
+LINK_MASS = 1.0          # a part's link (kinematic: only needed so Bullet tests it)
+BETWEEN_MASS = 1e-3      # a link where two joints meet, carrying nothing
+
+
+def multibody_arguments(tree: Articulation, base_pose: Pose,
+                        shape_of: Callable[[dict[str, Any], Pose], int],
+                        revolute: int, fixed: int) -> dict[str, Any]:
+    """``createMultiBody`` arguments for ``tree`` at ``base_pose``.
+
+    ``shape_of(geometry, frame)`` gives a collision shape placed at ``frame`` in its link;
+    ``revolute`` and ``fixed`` are PyBullet's joint type constants.
+    """
+    links = tree.links
+    base_shape = -1 if tree.base_geometry is None else shape_of(tree.base_geometry, NO_POSE)
+    return {
+        "baseMass": 0.0, "baseCollisionShapeIndex": base_shape,
+        "basePosition": base_pose[0], "baseOrientation": base_pose[1],
+        "linkMasses": [LINK_MASS if link.part is not None else BETWEEN_MASS for link in links],
+        "linkCollisionShapeIndices": [-1 if link.geometry is None else
+                                      shape_of(link.geometry, link.shape) for link in links],
+        "linkVisualShapeIndices": [-1] * len(links),
+        "linkPositions": [link.origin[0] for link in links],
+        "linkOrientations": [link.origin[1] for link in links],
+        "linkInertialFramePositions": [link.shape[0] for link in links],
+        "linkInertialFrameOrientations": [link.shape[1] for link in links],
+        "linkParentIndices": [link.parent + 1 for link in links],  # PyBullet: 0 is the base
+        "linkJointTypes": [fixed if link.joint is None else revolute for link in links],
+        "linkJointAxis": [(0.0, 0.0, 1.0) if link.joint is None else link.joint.axis
+                          for link in links],
+    }
