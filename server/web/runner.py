@@ -15,6 +15,7 @@ import multiprocessing
 import queue
 import sys
 import threading
+import time
 from typing import Any, Callable
 
 from ..core.kit.limits import Limits
@@ -54,6 +55,7 @@ class SceneRunner:
         self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
         self._replies: dict[int, asyncio.Future[Any]] = {}
         self._numbers = itertools.count(1)
+        self.last_posted = 0.0  # when the last command was sent (monotonic)
         self.ended = False
         self.stopping = False  # asked to stop: however the process ends, it is no failure
         self._started = threading.Event()
@@ -90,6 +92,7 @@ class SceneRunner:
 
     def post(self, *command: Any) -> None:
         """Send a command; the scene applies commands in the order they were posted."""
+        self.last_posted = time.monotonic()
         self._commands.put(command)
 
     def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:

@@ -83,6 +83,7 @@ class SceneHub:
         self.stored = store is not None  # its scene is kept on disk (and comes back from it)
         self.failed = False  # its process ended without being asked to
         self.heard = time.monotonic()  # when its process last sent anything (frames: 60 a second)
+        self.asleep = False  # its process said it is idle (not ticking) and was sent nothing since
         self.figures: dict[str, Any] | None = None  # its last metrics, for when it is silent
         self.summary: dict[str, Any] | None = None  # its last counts, likewise
         self.saving: dict[str, Any] = {}  # what its process last said of its files
@@ -102,7 +103,11 @@ class SceneHub:
 
     @property
     def silent(self) -> float:
-        """Seconds since the scene's process last sent anything."""
+        """Seconds since the scene's process last sent anything it owed: an idle scene
+        (it said so, and was sent nothing since) owes nothing."""
+        if self.asleep:  # silent since it was last asked something, if it was
+            asked = self.runner.last_posted
+            return time.monotonic() - asked if asked > self.heard else 0.0
         return time.monotonic() - self.heard
 
     @property
@@ -147,6 +152,7 @@ class SceneHub:
         self.heard = time.monotonic()
         for event in events:
             kind = event[0]
+            self.asleep = kind == "idle"  # stopped ticking until it is sent a command
             if kind == "frame":
                 self.broadcast(event[1])
             elif kind == "answers":

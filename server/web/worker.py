@@ -114,6 +114,13 @@ class SceneWorker:
         period = 1.0 / self.tick_rate
         last = deadline = time.monotonic()
         while not self._stopping:
+            if self.idle():  # nobody to tell and nothing to do: wait for a command
+                self._events.append(("idle",))  # the server knows this silence is sleep
+                self._flush()
+                if not self._receive(None):
+                    return
+                deadline = time.monotonic()  # and tick at once: the clock catches up
+                continue
             now = time.monotonic()
             if now >= deadline:
                 self._tick(now - last)
@@ -128,6 +135,16 @@ class SceneWorker:
             elif not self._receive(deadline - now):
                 return
 
+    def idle(self) -> bool:
+        """True when a tick would have nothing to do or tell: no client connected or within
+        its grace period, no animation, nothing changed, queued or unsaved. The scene then
+        stops ticking; its next tick (before any command is served) advances its clock by
+        the whole time it waited, so the time it reads is right."""
+        saver = self.saver
+        return not (self._sessions or self._departed or self._commands or self._notices
+                    or self._resync or self._events or self._animator is not None
+                    or self.scene.feed.pending or saver.saved is False or saver.at_risk)
+
     def _serve(self, until: float) -> None:
         """Apply queued commands until ``until`` (at least one), then send what they made."""
         while self._commands:
@@ -138,8 +155,8 @@ class SceneWorker:
                 break
         self._flush()
 
-    def _receive(self, wait: float) -> bool:
-        """Wait up to ``wait`` seconds for commands, then take every one sent so far;
+    def _receive(self, wait: float | None) -> bool:
+        """Wait up to ``wait`` seconds (None: until one comes) for commands, then take every one sent so far;
         False once the server is gone. ``metrics`` is answered at once, ahead of a backlog
         of requests: a scene working through one is when its figures matter most."""
         try:

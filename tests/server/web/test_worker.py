@@ -95,3 +95,22 @@ def test_a_client_that_keeps_leaves_its_objects_for_good(worker):
                  ("leave", 1)])
     time.sleep(1.5)
     assert nodes_of(worker, 2) == ["c1.b"]
+
+
+def scene_clock(scene):
+    return {"time": scene.time, "seq": scene.seq}
+
+
+def test_a_scene_nobody_is_in_stops_ticking_and_its_clock_catches_up_when_asked(worker):
+    started = time.monotonic()
+    events_until(worker, "idle")  # says so, then sends nothing: no frames for nobody
+    assert not worker.poll(0.3)
+    worker.send([("read", 1, scene_clock, ())])
+    _, _, ok, body = events_until(worker, "reply")[0]
+    clock, elapsed = json.loads(body), time.monotonic() - started
+    assert ok and elapsed >= 0.3 and clock["time"] == pytest.approx(elapsed, abs=0.1)
+    assert clock["seq"] <= 5  # a tick or two, not 20 a third of a second
+    worker.send([("join", 2, "c2", "viewer")])
+    events_until(worker, "admit")
+    frames = events_until(worker, "frame", 5)  # someone is in: 60 ticks a second again
+    assert len(frames) == 5
