@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 
-from ..kit.math3d import Vec3
+from ..kit.math3d import Pose, Vec3
 from ..kit.numbers import wire_number
 from . import part_figures
 
@@ -39,11 +39,13 @@ class Reading:
 
 
 def read_sensors(targets: RayTargets, sensors: Sequence[Node],
-                 contacts_of: Callable[[Node], list[str]]) -> dict[str, Reading]:
-    """Readings of ``sensors`` (shapes already placed); ``contacts_of(sensor)`` lists ids."""
+                 contacts_of: Callable[[Node], list[str]],
+                 pose_of: Callable[[Node], Pose] | None = None) -> dict[str, Reading]:
+    """Readings of ``sensors`` (shapes already placed); ``contacts_of(sensor)`` lists ids,
+    ``pose_of(sensor)`` gives its world pose (by default the tree's)."""
     if not sensors:
         return {}
-    poses = [sensor.world_pose() for sensor in sensors]
+    poses = [sensor.world_pose() if pose_of is None else pose_of(sensor) for sensor in sensors]
     origins = np.array([position for position, _ in poses], dtype=float)
     # each sensor's +Y axis in the world: the second column of its rotation matrix
     directions = np.array([(2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x))

@@ -22,6 +22,7 @@ from typing import Any, Callable
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
 
 NO_POSE: Pose = (ORIGIN, IDENTITY)
+UNSCALED: Vec3 = (1.0, 1.0, 1.0)
 
 
 @dataclass(frozen=True)
@@ -44,6 +45,7 @@ class Link:
     part: str | None        # the physical part's id; None between two joints
     shape: Pose = NO_POSE   # the part's frame in this link's frame
     geometry: dict[str, Any] | None = field(default=None, compare=False)
+    scale: Vec3 = UNSCALED  # the part's world scale (its geometry is already stretched by it)
 
 
 @dataclass(frozen=True)
@@ -58,6 +60,12 @@ class Articulation:
     base_part: str | None = None
     base_geometry: dict[str, Any] | None = field(default=None, compare=False)
     links: tuple[Link, ...] = ()
+    base_scale: Vec3 = UNSCALED
+
+    def scales(self) -> list[Vec3]:
+        """The world scale of every physical part, in :meth:`parts` order."""
+        mine = [self.base_scale] if self.base_part is not None else []
+        return mine + [link.scale for link in self.links if link.part is not None]
 
     def parts(self) -> list[str]:
         """Every physical part's id, the base's first."""

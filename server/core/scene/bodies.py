@@ -16,7 +16,8 @@ import logging
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping
 
 from ..kit.limits import Limits
-from ..model.node import Node
+from ..kit import math3d
+from ..model.node import UNIT_SCALE, Node
 from ..model.readings import Reading, read_sensors
 from ..model.structure import base_pose, structure_of
 from ..physics.assets import AssetLibrary
@@ -25,6 +26,7 @@ from ..physics.engine import PhysicsWorld
 from ..physics.raycast import RayTargets
 
 if TYPE_CHECKING:
+    from ..kit.math3d import Pose, Vec3
     from ..physics.articulation import Articulation
 
 log = logging.getLogger(__name__)
@@ -50,6 +52,8 @@ class SceneBodies:
         self._turned: set[str] = set()        # motors whose angles changed
         self._motor_root: dict[str, str] = {}  # motor id -> root of the tree it is a joint of
         self._ray_geometry: dict[str, dict[str, Any]] = {}
+        self._poses: dict[str, Pose] = {}  # of every part, as Bullet placed it at the last sync
+        self._scales: dict[str, Vec3] = {}  # and its world scale
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
 
     def close(self) -> None:
@@ -86,6 +90,7 @@ class SceneBodies:
             keys, poses = self.physics.part_poses(root_id)
             self.rays.move_many(keys, poses)
             self.tracker.placed(keys)
+            self._place_nodes(root_id, keys, poses)
         if self.physics.needs_rebuild():
             self.physics.rebuild()
 
@@ -108,6 +113,7 @@ class SceneBodies:
         for root_id in roots:
             new.update(self._build(root_id))
         for key in old - new:
+            self._poses.pop(key, None)
             self.tracker.removed(key)
             self.rays.remove(key)
             del self._ray_geometry[key]
@@ -147,7 +153,31 @@ class SceneBodies:
             else:
                 self.rays.move(key, pose)
         self.tracker.placed(keys)
+        self._place_nodes(root_id, keys, poses)
         return keys
+
+    def _place_nodes(self, root_id: str, keys: list[str], poses: list[Pose]) -> None:
+        """Keep the poses Bullet found for the parts (sensors on them start from there)."""
+        self._poses.update(zip(keys, poses))
+        self._scales.update(zip(keys, self.physics.tree(root_id).scales()))
+
+    def world_pose(self, node: Node) -> Pose:
+        """A node's world pose: from its part's pose in Bullet when a part carries it
+        unscaled (a sensor on a fingertip: one or two local poses composed), else the
+        tree's own (:meth:`Node.world_pose`)."""
+        chain: list[Node] = []
+        host: Node | None = node
+        while host is not None and host.id not in self._poses:
+            if host.scale != UNIT_SCALE or host.is_motor:
+                return node.world_pose()
+            chain.append(host)
+            host = host.parent
+        if host is None or self._scales[host.id] != UNIT_SCALE:
+            return node.world_pose()
+        pose = self._poses[host.id]
+        for link in reversed(chain):
+            pose = math3d.compose(pose, link.local_pose())
+        return pose
 
     def _guarded(self, root_id: str, work: Callable[[], None]) -> bool:
         """Do ``work`` for a tree; if it fails (a bug) the tree is left out, the scene goes on."""
@@ -161,6 +191,7 @@ class SceneBodies:
             if tree is not None:
                 self._forget_tree(root_id, tree)
                 for key in tree.parts():
+                    self._poses.pop(key, None)
                     self.tracker.removed(key)
                     self.rays.remove(key)
                     del self._ray_geometry[key]
@@ -217,4 +248,4 @@ class SceneBodies:
         """Readings of ``sensors`` for the scene as it is now."""
         self.sync()
         return read_sensors(self.rays, sensors,
-                            lambda sensor: self.touching(sensor.host(), exact))
+                            lambda sensor: self.touching(sensor.host(), exact), self.world_pose)

@@ -82,3 +82,22 @@ def test_a_part_scaled_gets_a_shape_of_its_new_size(scene):
     [(key, after)] = scene.bodies.rays.first_hits((0, 5, 0), (0, -1, 0), [0], 10)
     assert (before, key, after) == (pytest.approx(2.5), "b", pytest.approx(1))
     assert "ground" in scene.bodies.touching(box)
+
+
+def test_a_sensor_on_a_part_is_placed_from_the_parts_pose_in_bullet(scene):
+    from server.core.model.sensor import Sensor
+    hand = EdgedHand(scene, "h", True)
+    hand.set_position((1, 2, 3))
+    tip = next(p for p in hand.get_parts() if p.type_name == "EdgedTip")
+    on_tip = Sensor(scene, "s")
+    on_tip.attach_to_slot(tip)
+    on_tip.set_rotation(0.3, 0, 0)
+    scene.tick(0.1)
+    hand.flex_fingers(0.6)
+    scene.bodies.sync()
+    (position, orientation), (want_p, want_q) = scene.bodies.world_pose(on_tip), on_tip.world_pose()
+    assert position == pytest.approx(want_p, abs=1e-12)
+    assert abs(sum(a * b for a, b in zip(orientation, want_q))) == pytest.approx(1, abs=1e-12)
+    tip.set_scale((1, 2, 1))  # a stretched part: the tree composes the whole way
+    scene.bodies.sync()
+    assert scene.bodies.world_pose(on_tip)[0] == pytest.approx(on_tip.world_pose()[0], abs=1e-12)
