@@ -93,8 +93,8 @@ def multibody_arguments(tree: Articulation, base_pose: Pose,
     """
     links = tree.links
     base_shape = -1 if tree.base_geometry is None else shape_of(tree.base_geometry, NO_POSE)
-    return {
-        "baseMass": 0.0, "baseCollisionShapeIndex": base_shape,
+    return {  # a base without a part is static; with one it must not be (Bullet skips static pairs)
+        "baseMass": 0.0 if base_shape < 0 else LINK_MASS, "baseCollisionShapeIndex": base_shape,
         "basePosition": base_pose[0], "baseOrientation": base_pose[1],
         "linkMasses": [LINK_MASS if link.part is not None else BETWEEN_MASS for link in links],
         "linkCollisionShapeIndices": [-1 if link.geometry is None else

@@ -1,12 +1,21 @@
 """Contacts: which pairs of physical parts (and the ground) touch, and how that changes.
 
 A pair is two ids in sorted order; the ground's id is ``"ground"``. The
-:class:`ContactTracker` keeps the touching pairs up to date as bodies move: only pairs
-with a moved body are measured, only when their boxes overlap, and at most
-``contact_tests`` of them per tick; moved bodies beyond that wait for the next tick
-(frames say how many under ``limited``). However crowded a scene is, a tick's work is
-bounded. The :class:`ContactBook` holds the pairs announced at the last tick, so clients
-see every change exactly once, in order.
+:class:`ContactTracker` keeps the touching pairs up to date as bodies move, two ways:
+
+- Bullet's own pair processing (``performCollisionDetection``, then the contact points)
+  measures every pair of parts it pairs, in C++, each tick;
+- a part in a crowd (and a part just made, until its neighbourhood is known) is left out
+  of Bullet's pairing with other parts (collision filters): its pairs are measured one by
+  one (``getClosestPoints``), only with parts whose boxes overlap its box, at most
+  ``contact_tests`` a tick; parts beyond that wait for the next tick (frames say how many
+  under ``limited``). A part with more than ``CROWD`` neighbours stays in the crowd, so a
+  pile of boxes never grows Bullet's pair cache with its square; one with fewer than half
+  that many goes back to Bullet.
+
+A pair that begins touching is confirmed by the exact measure before it counts. The
+:class:`ContactBook` holds the pairs announced at the last tick, so clients see every
+change exactly once, in order.
 """
 
 from __future__ import annotations
@@ -19,6 +28,7 @@ from .engine import GROUND, TOUCH_TOLERANCE, Vec3
 
 Pair = tuple[str, str]
 _BLOCK = 1024  # bodies whose candidates are found in one array operation (bounds memory)
+CROWD = 16  # more neighbours than this: a part's pairs are measured one by one
 
 
 class Bodies(Protocol):
@@ -27,6 +37,10 @@ class Bodies(Protocol):
     def aabbs(self, keys: list[str]) -> list[tuple[Vec3, Vec3]]: ...
 
     def touching_many(self, key: str, others: list[str]) -> list[bool]: ...
+
+    def detect(self) -> dict[Pair, float]: ...
+
+    def crowd(self, key: str, crowded: bool) -> None: ...
 
 
 def pair(a: str, b: str) -> Pair:
@@ -63,26 +77,42 @@ class ContactTracker:
         self._high = np.empty((0, 3))
         self._partners: dict[str, set[str]] = {}
         self._count = 0
-        self._dirty: dict[str, None] = {}  # moved bodies, in the order they moved
+        self._dirty: dict[str, None] = {}  # moved crowded bodies, in the order they moved
+        self._crowded: set[str] = set()  # measured one by one (Bodies.crowd)
+        self._stale: dict[str, None] = {}  # bodies whose boxes moved since last read
         self.unrecorded = 0  # touching pairs left out at the last update (max_pairs)
         self.tests = 0       # pair tests of the last update
         self._snapshot: Overlaps | None = Overlaps(())
 
     # --- bodies --------------------------------------------------------------------------
 
-    def placed(self, keys: list[str]) -> None:
-        """Bodies were added or moved: their contacts must be measured again."""
-        boxes = np.array(self._bodies.aabbs(keys), dtype=float).reshape(len(keys), 2, 3)
+    def placed(self, keys: list[str], made: bool = False) -> None:
+        """Bodies were added or moved (``made``: their bodies were made afresh, as every
+        new body is): their contacts must be measured again. A body made afresh starts in
+        the crowd, until its neighbourhood is measured."""
         new = [key for key in keys if key not in self._rows]
         for key in new:
             self._rows[key] = len(self._keys)
             self._keys.append(key)
         if new:
-            grown = np.empty((len(new), 3))
+            grown = np.zeros((len(new), 3))
             self._low, self._high = np.vstack([self._low, grown]), np.vstack([self._high, grown])
-        rows = [self._rows[key] for key in keys]
-        self._low[rows], self._high[rows] = boxes[:, 0], boxes[:, 1]
-        self._dirty.update(dict.fromkeys(keys))
+        self._stale.update(dict.fromkeys(keys))
+        self._crowded.update(keys if made else new)
+        self._dirty.update(dict.fromkeys(key for key in keys if key in self._crowded))
+
+    def made_again(self) -> None:
+        """Every body was made afresh (a new physics client): all start in the crowd."""
+        self.placed(list(self._keys), made=True)
+
+    def _read_boxes(self) -> None:
+        """Read the boxes of the bodies that moved since they were last read."""
+        if self._stale:
+            keys = list(self._stale)
+            boxes = np.array(self._bodies.aabbs(keys), dtype=float).reshape(len(keys), 2, 3)
+            rows = [self._rows[key] for key in keys]
+            self._low[rows], self._high[rows] = boxes[:, 0], boxes[:, 1]
+            self._stale.clear()
 
     def removed(self, key: str) -> None:
         """A body left the world: its pairs end now (nothing for a body never placed)."""
@@ -99,6 +129,8 @@ class ContactTracker:
         for other in list(self._partners.get(key, ())):
             self._set(key, other, False)
         self._dirty.pop(key, None)
+        self._stale.pop(key, None)
+        self._crowded.discard(key)
 
     # --- measuring -----------------------------------------------------------------------
 
@@ -108,8 +140,13 @@ class ContactTracker:
         return len(self._dirty)
 
     def update(self) -> None:
-        """Measure the pairs of moved bodies, in the order they moved, within the budget."""
+        """Measure what Bullet pairs, then the pairs of moved crowded bodies, in the order
+        they moved, within the budget."""
         self.tests = self.unrecorded = 0
+        self._from_bullet()
+        if not self._dirty:
+            return
+        self._read_boxes()
         while self._dirty and (self.tests == 0 or self.tests < self._budget):
             keys = list(self._dirty)[:_BLOCK]
             for key, candidates in zip(keys, self._candidates(keys)):
@@ -120,14 +157,51 @@ class ContactTracker:
                 del self._dirty[key]
                 self._measure(key, candidates, skip=set(waiting))
 
+    def _from_bullet(self) -> None:
+        """Take Bullet's pairs: those no longer found end, those found touching begin (once
+        the exact measure confirms them); parts with too many neighbours join the crowd."""
+        found, crowded = self._bodies.detect(), self._crowded
+        for a, others in list(self._partners.items()):
+            for b in list(others):
+                if a < b and (a, b) not in found and self._bullets(a, b):
+                    self._set(a, b, False)
+        neighbours: dict[str, int] = {}
+        rows = self._rows
+        for (a, b), excess in found.items():
+            if (a not in rows and a != GROUND) or (b not in rows and b != GROUND):
+                continue  # a body the tracker was told is gone
+            if GROUND not in (a, b):
+                neighbours[a] = neighbours.get(a, 0) + 1
+                neighbours[b] = neighbours.get(b, 0) + 1
+            touching = b in self._partners.get(a, ())
+            if excess > 0.0 and touching:
+                self._set(a, b, False)
+            elif excess <= 0.0 and not touching:
+                self.tests += 1
+                self._set(a, b, self._bodies.touching_many(a, [b])[0])
+        for key, count in neighbours.items():
+            if count > CROWD and key not in crowded:
+                crowded.add(key)
+                self._bodies.crowd(key, True)
+                self._dirty[key] = None
+
+    def _bullets(self, a: str, b: str) -> bool:
+        """True when Bullet measures the pair (the ground with anything; two parts when
+        neither is in the crowd)."""
+        return GROUND in (a, b) or (a not in self._crowded and b not in self._crowded)
+
     def settle(self, key: str) -> None:
         """Measure every pair of one body now (an exact read of its contacts)."""
         if key in self._rows:
+            self._read_boxes()
             [candidates] = self._candidates([key])
             self._dirty.pop(key, None)
             self._measure(key, candidates, skip=set())
 
     def _measure(self, key: str, candidates: list[str], skip: set[str]) -> None:
+        if key in self._crowded and len(candidates) * 2 < CROWD:  # few neighbours: to Bullet
+            self._crowded.discard(key)
+            self._bodies.crowd(key, False)
         near = set(candidates)
         for other in list(self._partners.get(key, ())):
             if other not in near and other not in skip:

@@ -5,16 +5,19 @@ sets all its joints in one call each, and reads its parts' poses from Bullet's f
 kinematics in one call. Kinematic mode, as in 1.0: nothing is ever stepped, so nothing
 falls or gets pushed. Rays are not Bullet's: see :mod:`server.core.physics.raycast`.
 
-Contacts are those of the exact shapes: a pair is measured with ``getClosestPoints``
-(never through Bullet's contact manifolds, which keep points from earlier poses after a
-body is teleported, and whose pair cache grows with the square of overlapping bodies),
-and the collision margin that pads convex hulls (``CONVEX_MARGIN``) is subtracted again.
-Which pairs to measure is decided by :mod:`server.core.physics.contacts`.
+Contacts are those of the exact shapes, the collision margin that pads convex hulls
+(``CONVEX_MARGIN``) subtracted again. :meth:`PhysicsWorld.detect` runs Bullet's own pair
+processing (broadphase and narrowphase in C++) over the parts it pairs; manifold points
+that drift beyond ``BREAKING_THRESHOLD`` are dropped, so a part placed elsewhere keeps no
+stale point, and a pair that begins is confirmed with ``getClosestPoints``
+(:meth:`PhysicsWorld.touching_many`), which also measures, one by one, the pairs of parts
+kept out of Bullet's pairing in a crowd. :mod:`server.core.physics.contacts` decides which.
 """
 
 from __future__ import annotations
 
 import ctypes
+import math
 import os
 import sys
 from dataclasses import dataclass
@@ -51,10 +54,17 @@ ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must 
 GROUND = "ground"
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
 TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
-# Bodies are in group 2 and collide with group 1 only: Bullet's broadphase then never
-# pairs two bodies (no pair cache, no manifolds, whatever overlaps). Contacts are tested
-# pair by pair instead.
-_BODY_GROUP, _BODY_MASK = 2, 1
+# Collision filter groups: the ground (1) meets every part; parts (2) meet the ground and
+# each other through Bullet's own broadphase and narrowphase; a part in a crowd (4) meets
+# only the ground there, so Bullet's pair cache never grows with the square of a pile:
+# its pairs with other parts are measured one by one, a budget a tick (contacts.py).
+_BODY_GROUP, _BODY_MASK = 2, 1 | 2
+_CROWD_GROUP, _CROWD_MASK = 4, 1
+# Parts of one tree meet each other too, neighbours included (spec: self-collision).
+_SELF_COLLISION = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_INCLUDE_PARENT
+# Manifold points that drift this far from where they were found are dropped (a part
+# placed elsewhere keeps no stale point beyond it); Bullet's default is 0.02.
+BREAKING_THRESHOLD = 0.0005
 # PyBullet keeps about 1 kB for every body ever removed and never frees a shape; a fresh
 # client after this many removals gives the memory back.
 REBUILD_AFTER_REMOVALS = 10_000
@@ -94,13 +104,20 @@ class PhysicsWorld:
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, planeNormal=[0, 1, 0],
                                               physicsClientId=self._client)
         self._ground = pybullet.createMultiBody(0, plane, physicsClientId=self._client)
-        self._filter(self._ground, -1)
+        pybullet.setCollisionFilterGroupMask(self._ground, -1, 1, -1, physicsClientId=self._client)
+        pybullet.setPhysicsEngineParameter(contactBreakingThreshold=BREAKING_THRESHOLD,
+                                           physicsClientId=self._client)
         self._where[GROUND] = (self._ground, -1)
+        self._key_at: dict[tuple[int, int], str] = {(self._ground, -1): GROUND}
         self._padding[GROUND] = 0.0
 
-    def _filter(self, body: int, link: int) -> None:
-        pybullet.setCollisionFilterGroupMask(body, link, _BODY_GROUP, _BODY_MASK,
-                                             physicsClientId=self._client)
+    def _filter(self, body: int, link: int, crowded: bool = False) -> None:
+        group, mask = (_CROWD_GROUP, _CROWD_MASK) if crowded else (_BODY_GROUP, _BODY_MASK)
+        pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=self._client)
+
+    def crowd(self, key: str, crowded: bool) -> None:
+        """Let Bullet pair the part ``key`` with other parts, or (in a crowd) only with the ground."""
+        self._filter(*self._where[key], crowded=crowded)
 
     def close(self) -> None:
         """Release the PyBullet client."""
@@ -126,17 +143,18 @@ class PhysicsWorld:
         client = self._client
         arguments = multibody_arguments(tree, base_pose, self._shape, pybullet.JOINT_REVOLUTE,
                                         pybullet.JOINT_FIXED)
-        body = pybullet.createMultiBody(physicsClientId=client, **arguments)
+        body = pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION, **arguments)
         joints = {joint.motor: k for k, joint in tree.joints()}
         links = [k for k, link in enumerate(tree.links) if link.part is not None]
         built = _Built(tree, body, base_pose, {}, joints, links)
         self._trees[tree.root] = built
         for link in range(-1, len(tree.links)):
-            self._filter(body, link)
+            self._filter(body, link, crowded=True)  # until its neighbourhood is known
         places = ([(tree.base_part, -1, tree.base_geometry)] if tree.base_part is not None else []) \
             + [(tree.links[k].part, k, tree.links[k].geometry) for k in links]
         for key, link, geometry in places:
             self._where[key] = (body, link)
+            self._key_at[body, link] = key
             self._padding[key] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
         self.turn(tree.root, angles)
 
@@ -144,7 +162,7 @@ class PhysicsWorld:
         """Take the tree of ``root`` out of the world."""
         built = self._trees.pop(root)
         for key in built.tree.parts():
-            del self._where[key], self._padding[key]
+            del self._key_at[self._where.pop(key)], self._padding[key]
         pybullet.removeBody(built.body, physicsClientId=self._client)
         self.removals += 1
 
@@ -223,7 +241,7 @@ class PhysicsWorld:
         """Move every tree into a fresh PyBullet client and release the old one."""
         trees = list(self._trees.values())
         self.close()
-        self._trees, self._where, self._padding = {}, {}, {}
+        self._trees, self._where, self._padding = {}, {}, {}  # every part crowded again
         self._connect()
         for built in trees:
             self.add_tree(built.tree, built.base_pose, built.angles)
@@ -253,6 +271,21 @@ class PhysicsWorld:
         """The world boxes of the parts of ``keys`` (as :meth:`aabb`), in order."""
         get, where, client = pybullet.getAABB, self._where, self._client
         return [get(*where[key], physicsClientId=client) for key in keys]
+
+    def detect(self) -> dict[tuple[str, str], float]:
+        """Bullet's own collision detection over the parts it pairs (all but those in a
+        crowd) and the ground: for each pair with contact points, by how much its nearest
+        point misses touching (≤ 0: touching, by the measure of :meth:`touching`)."""
+        client, padding, key_at = self._client, self._padding, self._key_at
+        pybullet.performCollisionDetection(physicsClientId=client)
+        found: dict[tuple[str, str], float] = {}
+        for point in pybullet.getContactPoints(physicsClientId=client):
+            a, b = key_at[point[1], point[3]], key_at[point[2], point[4]]
+            pair = (a, b) if a < b else (b, a)
+            excess = point[8] - TOUCH_TOLERANCE + padding[a] + padding[b]
+            if excess < found.get(pair, math.inf):
+                found[pair] = excess
+        return found
 
     def touching(self, key_a: str, key_b: str) -> bool:
         """True when the exact shapes of two parts (or a part and the ground) touch.

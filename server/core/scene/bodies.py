@@ -93,6 +93,7 @@ class SceneBodies:
             self._place_nodes(root_id, keys, poses)
         if self.physics.needs_rebuild():
             self.physics.rebuild()
+            self.tracker.made_again()
 
     def _rebuild(self) -> set[str]:
         """Build the marked trees again; the roots built."""
@@ -152,7 +153,7 @@ class SceneBodies:
                 self._ray_geometry[key] = geometry
             else:
                 self.rays.move(key, pose)
-        self.tracker.placed(keys)
+        self.tracker.placed(keys, made=True)
         self._place_nodes(root_id, keys, poses)
         return keys
 

@@ -105,3 +105,21 @@ def test_every_touching_pair_is_found_whatever_the_boxes_sizes(world, seed):
     expected = {pair(a, b) for i, a in enumerate(everything) for b in everything[i + 1:]
                 if a != GROUND and world.touching(a, b)}
     assert tracker.overlaps().pairs == expected and len(expected) > 30
+
+
+def test_a_pile_stays_out_of_bullets_pairing_and_a_part_that_leaves_it_goes_back(world):
+    tracker = ContactTracker(world, tests_per_update=2000, max_pairs=100_000)
+    for k in range(40):
+        place(world, tracker, f"b{k:02}", (0, 5, 0))
+    while tracker.deferred:
+        tracker.update()
+    assert len(tracker.overlaps().pairs) == 40 * 39 // 2
+    assert not world.detect()  # Bullet pairs none of them: no pair cache of 780
+    place(world, tracker, "b00", (10, 5, 0))  # alone now
+    tracker.update()
+    assert tracker.overlaps().of("b00") == [] and not world.detect()
+    place(world, tracker, "lone", (10.5, 5, 0))  # made next to it: both measured by Bullet
+    tracker.update()
+    tracker.update()
+    assert set(world.detect()) == {("b00", "lone")}
+    assert tracker.overlaps().of("b00") == ["lone"]
