@@ -6,7 +6,7 @@ A pair is two ids in sorted order; the ground's id is ``"ground"``. The
 - Bullet's own pair processing (``performCollisionDetection``, then the contact points)
   measures every pair of parts it pairs, in C++, each tick;
 - a part in a crowd (and a part just made, until its neighbourhood is known) is left out
-  of Bullet's pairing with other parts (collision filters): its pairs are measured one by
+  of Bullet's pairing (collision filters): its pairs, the ground's included, are measured one by
   one (``getClosestPoints``), only with parts whose boxes overlap its box, at most
   ``contact_tests`` a tick; parts beyond that wait for the next tick (frames say how many
   under ``limited``). A part with more than ``CROWD`` neighbours stays in the crowd, so a
@@ -186,9 +186,8 @@ class ContactTracker:
                 self._dirty[key] = None
 
     def _bullets(self, a: str, b: str) -> bool:
-        """True when Bullet measures the pair (the ground with anything; two parts when
-        neither is in the crowd)."""
-        return GROUND in (a, b) or (a not in self._crowded and b not in self._crowded)
+        """True when Bullet measures the pair: neither is in the crowd (the ground never is)."""
+        return a not in self._crowded and b not in self._crowded
 
     def settle(self, key: str) -> None:
         """Measure every pair of one body now (an exact read of its contacts)."""

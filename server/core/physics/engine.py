@@ -56,10 +56,10 @@ CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
 TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
 # Collision filter groups: the ground (1) meets every part; parts (2) meet the ground and
 # each other through Bullet's own broadphase and narrowphase; a part in a crowd (4) meets
-# only the ground there, so Bullet's pair cache never grows with the square of a pile:
-# its pairs with other parts are measured one by one, a budget a tick (contacts.py).
+# nothing there, so Bullet's pair cache never grows with the square of a pile: its pairs
+# are measured one by one, a budget a tick (contacts.py).
 _BODY_GROUP, _BODY_MASK = 2, 1 | 2
-_CROWD_GROUP, _CROWD_MASK = 4, 1
+_CROWD_GROUP, _CROWD_MASK = 4, 0
 # Parts of one tree meet each other too, neighbours included (spec: self-collision).
 _SELF_COLLISION = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_INCLUDE_PARENT
 # Manifold points that drift this far from where they were found are dropped (a part
@@ -116,7 +116,7 @@ class PhysicsWorld:
         pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=self._client)
 
     def crowd(self, key: str, crowded: bool) -> None:
-        """Let Bullet pair the part ``key`` with other parts, or (in a crowd) only with the ground."""
+        """Let Bullet pair the part ``key`` with the ground and other parts, or (in a crowd) with nothing."""
         self._filter(*self._where[key], crowded=crowded)
 
     def close(self) -> None:
