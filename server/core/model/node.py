@@ -35,6 +35,7 @@ class World(Protocol):
     bodies: Bodies
     nodes: Mapping[str, Node]
     tree_version: int  # counts the tree's changes (robots list their parts again)
+    pose_epoch: int  # counts changes of any pose: world poses cached before it are stale
 
     def register(self, node: Node) -> None: ...
 
@@ -72,6 +73,7 @@ class Node:
         self.visible = True  # drawn (a robot: in the scene, see Robot.set_position)
         self.kept = False  # stays when its owner leaves (keep)
         self._world: Pose | None = None
+        self._epoch = -1  # the scene's pose_epoch when _world was worked out
         self._world_scale: Vec3 = UNIT_SCALE
         self.serial = 0  # when it was made: the scene's count of nodes made until then
         scene.register(self)
@@ -186,20 +188,23 @@ class Node:
         return self.position, self.quaternion
 
     def world_pose(self) -> Pose:
-        """Pose in the scene, cached until this node or an ancestor changes.
+        """Pose in the scene, cached until any pose in the scene changes (reads are rare:
+        ticks take poses from the engine, so a change costs nothing here).
 
         A parent's scale stretches where its children sit, as in three.js; their own
         shapes take the product of the scales above (:meth:`world_scale`), which is
         three.js's picture whenever no non-uniform scale sits above a turned child.
         """
-        if self._world is None:
-            stale, node = [], self  # this node and its ancestors without a cached pose
-            while node is not None and node._world is None:
+        epoch = self.scene.pose_epoch
+        if self._epoch != epoch:
+            stale, node = [], self  # this node and its ancestors without a current pose
+            while node is not None and node._epoch != epoch:
                 stale.append(node)
                 node = node.parent
             for node in reversed(stale):
                 node._place_in_world()
-        return self._world
+                node._epoch = epoch
+        return self._world  # type: ignore[return-value]  # placed above
 
     def _place_in_world(self) -> None:
         local, parent = self.local_pose(), self.parent
@@ -217,21 +222,6 @@ class Node:
         """The product of this node's scale and its ancestors' (what its shape is stretched by)."""
         self.world_pose()
         return self._world_scale
-
-    def invalidate(self) -> Iterator[Node]:
-        """Drop the cached world poses of this subtree; yields the nodes that were clean.
-
-        A node without a cached pose never has a descendant with one, so the walk stops
-        at nodes that are already invalid.
-        """
-        stack = [self]
-        while stack:
-            node = stack.pop()
-            if node._world is None and node is not self:
-                continue
-            node._world = None
-            yield node
-            stack.extend(node.children)
 
     def set_position(self, position: Vec3) -> None:
         """Manual ``setPosition``: the position relative to the parent."""

@@ -26,10 +26,11 @@ A method marked ``client`` is handed the calling client's id (``watch`` is per c
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Mapping
 
 from ..kit.math3d import ORIGIN
 from ..model import part_figures
@@ -221,7 +222,8 @@ def lineage(type_name: str) -> list[TypeSpec]:
     return chain
 
 
-def methods_of(type_name: str) -> dict[str, Method]:
+@functools.cache  # the table never changes: a request's lookup is one dict access
+def methods_of(type_name: str) -> Mapping[str, Method]:
     """Every method callable on an object of ``type_name``, inherited ones included."""
     found: dict[str, Method] = {}
     for spec in lineage(type_name):

@@ -56,6 +56,7 @@ class Scene:
         self.time = 0.0
         self.seq = 0
         self.tree_version = 0
+        self.pose_epoch = 0  # counts pose changes (Node.world_pose caches by it)
         self.revision = 0  # ticks that sent changes: a document of the scene is out of date
         self.failures = 0  # ticks whose contacts or sensing failed (a bug; logged)
 
@@ -125,7 +126,7 @@ class Scene:
         """Called by nodes after every change of their state (and of its undoing)."""
         self.feed.changed(node.id, field)
         if field in _POSE_FIELDS or field in ("parent", "visible"):
-            self._moved(node)
+            self._moved()
             if field in ("position", "quaternion") and node.parent is None:
                 self.bodies.rebased(node.id)
             elif field != "parent":  # reparented() names both trees
@@ -145,7 +146,7 @@ class Scene:
             motor.angle = angle
         self.feed.turned(motor.id for motor, _ in turns)
         self.bodies.turned(motor.id for motor, _ in turns)
-        self._moved(*(motor for motor, _ in turns))
+        self._moved()
 
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
@@ -158,11 +159,9 @@ class Scene:
         self.bodies.restructure({node.root().id, *(parent.root().id for parent in parents)})
         self.node_changed(node, "parent")
 
-    def _moved(self, *nodes: Node) -> None:
-        """Forget the world poses (Python's, for reads) cached below these nodes."""
-        for node in nodes:
-            for _ in node.invalidate():
-                pass
+    def _moved(self) -> None:
+        """Poses changed: every world pose cached for reads is stale."""
+        self.pose_epoch += 1
 
     def warn(self, message: str) -> None:
         """Tell whoever made the current request something that did not fail but may surprise."""
