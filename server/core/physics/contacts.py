@@ -49,18 +49,20 @@ def pair(a: str, b: str) -> Pair:
 
 
 class Overlaps:
-    """Pairs touching at one moment, indexed by id."""
+    """Pairs touching at one moment, indexed by id (the index made when first asked)."""
 
     def __init__(self, pairs: Iterable[Pair]) -> None:
         self.pairs = frozenset(pairs)
-        partners: dict[str, list[str]] = {}
-        for a, b in sorted(self.pairs):
-            partners.setdefault(a, []).append(b)
-            partners.setdefault(b, []).append(a)
-        self._partners = {node_id: sorted(others) for node_id, others in partners.items()}
+        self._partners: dict[str, list[str]] | None = None
 
     def of(self, node_id: str) -> list[str]:
         """What ``node_id`` touches, sorted."""
+        if self._partners is None:
+            partners: dict[str, list[str]] = {}
+            for a, b in self.pairs:
+                partners.setdefault(a, []).append(b)
+                partners.setdefault(b, []).append(a)
+            self._partners = {node_id: sorted(others) for node_id, others in partners.items()}
         return self._partners.get(node_id, [])
 
 
@@ -76,7 +78,7 @@ class ContactTracker:
         self._low = np.empty((0, 3))
         self._high = np.empty((0, 3))
         self._partners: dict[str, set[str]] = {}
-        self._count = 0
+        self._pairs: set[Pair] = set()  # the same pairs, as sorted tuples
         self._dirty: dict[str, None] = {}  # moved crowded bodies, in the order they moved
         self._crowded: set[str] = set()  # measured one by one (Bodies.crowd)
         self._stale: dict[str, None] = {}  # bodies whose boxes moved since last read
@@ -257,25 +259,24 @@ class ContactTracker:
         if touching == (b in partners.get(a, ())):
             return
         if touching:
-            if self._count >= self._max_pairs:
+            if len(self._pairs) >= self._max_pairs:
                 self.unrecorded += 1
                 return
             partners.setdefault(a, set()).add(b)
             partners.setdefault(b, set()).add(a)
-            self._count += 1
+            self._pairs.add(pair(a, b))
         else:
             for x, y in ((a, b), (b, a)):
                 partners[x].discard(y)
                 if not partners[x]:
                     del partners[x]
-            self._count -= 1
+            self._pairs.discard(pair(a, b))
         self._snapshot = None
 
     def overlaps(self) -> Overlaps:
         """The pairs touching as far as measured."""
         if self._snapshot is None:
-            self._snapshot = Overlaps(pair(a, b) for a, others in self._partners.items()
-                                      for b in others if a < b)
+            self._snapshot = Overlaps(self._pairs)
         return self._snapshot
 
 
