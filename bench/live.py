@@ -64,13 +64,18 @@ def scene_metrics(running: RunningServer, scene: str) -> dict[str, Any]:
 
 
 def tick_outside(running: RunningServer, count: int, seconds: float) -> dict[str, Any]:
-    """hands-``count`` driven at 60 Hz: the server's own tick figures and its tick rate."""
+    """hands-``count`` driven at 60 Hz: the server's own tick figures, its tick rate, and
+    the CPU of the whole server (web process and scene process; no other scene ticks)."""
     scene = f"hands{count}"
     with driving(running, scene, "hands", count, seconds):
-        time.sleep(seconds * 0.9)
+        time.sleep(seconds * 0.3)  # the driver's first steps, and the scene's first frames
+        cpu_before, started = server_cpu_seconds(running, scene), time.monotonic()
+        time.sleep(seconds * 0.6)
+        cores = (server_cpu_seconds(running, scene) - cpu_before) / (time.monotonic() - started)
         metrics = scene_metrics(running, scene)
     return {"hands": count, "tick_ms_p50": metrics["tickMsP50"], "tick_ms_p95": metrics["tickMsP95"],
-            "ticks_per_second": metrics["ticksPerSecond"], "cpu_percent": metrics["cpuPercent"]}
+            "ticks_per_second": metrics["ticksPerSecond"], "cpu_percent": metrics["cpuPercent"],
+            "server_cores": cores}
 
 
 def latency(running: RunningServer, rounds: int) -> dict[str, Any]:

@@ -115,6 +115,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "viewers200_late_pct": max(row["late_pct"] for row in most),
         "frame_bytes_two_hands": found["frames"]["frame_bytes"].median,
         "max_hands_60hz": found["max_hands"]["max_hands"],
+        "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],
         "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),
         "chaos_faults": found["chaos"]["faults"],
         "chaos_changes_lost": found["chaos"]["lost"],
