@@ -16,12 +16,12 @@ Pose = tuple[Vec3, Quat]
 IDENTITY: Quat = (0.0, 0.0, 0.0, 1.0)
 ORIGIN: Vec3 = (0.0, 0.0, 0.0)
 EULER_ORDERS: tuple[str, ...] = ("XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX")
-_AXES: dict[str, Vec3] = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
+AXES: dict[str, Vec3] = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
 
 
 def axis_angle(axis: str, angle: float) -> Quat:
     """Rotation by ``angle`` radians about the named principal axis 'x', 'y' or 'z'."""
-    ax, ay, az = _AXES[axis.lower()]
+    ax, ay, az = AXES[axis.lower()]
     s = math.sin(angle / 2)
     return (ax * s, ay * s, az * s, math.cos(angle / 2))
 

@@ -102,7 +102,7 @@ def _stops(motor: Node) -> list[Node]:
 
 
 def _axis(name: str, flipped: bool) -> Vec3:
-    unit = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}[name.lower()]
+    unit = math3d.AXES[name.lower()]
     return tuple(-v for v in unit) if flipped else unit
 
 

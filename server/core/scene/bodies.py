@@ -113,12 +113,16 @@ class SceneBodies:
         new: set[str] = set()
         for root_id in roots:
             new.update(self._build(root_id))
-        for key in old - new:
+        self._forget_parts(old - new)
+        return roots
+
+    def _forget_parts(self, keys: Iterable[str]) -> None:
+        """Parts without a body any more: their contacts end, their ray shapes go."""
+        for key in keys:
             self._poses.pop(key, None)
             self.tracker.removed(key)
             self.rays.remove(key)
             del self._ray_geometry[key]
-        return roots
 
     def _forget_tree(self, root_id: str, tree: Articulation) -> None:
         self.physics.remove_tree(root_id)
@@ -191,11 +195,7 @@ class SceneBodies:
             tree = self.physics.tree(root_id)
             if tree is not None:
                 self._forget_tree(root_id, tree)
-                for key in tree.parts():
-                    self._poses.pop(key, None)
-                    self.tracker.removed(key)
-                    self.rays.remove(key)
-                    del self._ray_geometry[key]
+                self._forget_parts(tree.parts())
             return False
 
     def _turn(self, rebuilt: set[str]) -> set[str]:
