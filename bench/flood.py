@@ -44,7 +44,7 @@ with connect(sys.argv[1], max_size=None) as ws:
 print(json.dumps(arrivals))
 """
 IDLE_SECONDS = 3
-UNLIMITED = ("--limit", "opsPerSecond=10000000", "--limit", "bytesPerSecond=1000000000")
+UNLIMITED = ("--limit", "bytesPerSecond=1000000000")
 
 
 def tree_pss_mb(pid: int) -> float:

@@ -27,7 +27,7 @@ from .drive import build, drain
 from .stats import figure
 
 ROOT = Path(__file__).resolve().parents[1]
-LIMITS = ("--limit", "opsPerSecond=100000000", "--limit", "bytesPerSecond=1000000000",
+LIMITS = ("--limit", "bytesPerSecond=1000000000",
           "--limit", "connectionsPerAddress=2000", "--limit", "connections=2000")
 NICE = ("nice", "-n", "10")
 

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from .core.kit.limits import DEFAULT as DEFAULT_LIMITS
 from .core.kit.wire_messages import Error as ErrorMessage
 
 MAX_MESSAGE = 500
@@ -60,6 +61,9 @@ def show(value: Any) -> str:
     return type(value).__name__
 
 
+_CONFIGURABLE = frozenset(DEFAULT_LIMITS.wire())
+
+
 def _cut(text: str, limit: int) -> str:
     return text if len(text) <= limit else text[:limit - 3] + "..."
 
@@ -70,6 +74,11 @@ class VPError(Exception):
     code = "error"
 
     def __init__(self, message: str, **details: Any) -> None:
+        limit = details.get("limit")
+        if limit in _CONFIGURABLE and "flag" not in details:
+            # every refusal by a limit says how the server's operator changes it
+            details["flag"] = f"--limit {limit}=N"
+            message = f"{message} (limit {limit}; vp-server --limit {limit}=N changes it)"
         super().__init__(message)
         self.message = message
         self.details = {k: v for k, v in details.items() if v is not None}
@@ -185,7 +194,9 @@ class Forbidden(VPError):
 
 
 class LimitExceeded(VPError):
-    """A limit of :mod:`server.core.kit.limits` was reached: ``details.limit`` names it."""
+    """A limit of :mod:`server.core.kit.limits` was reached: ``details.limit`` names it,
+    ``details.value`` is its value and ``details.flag`` the server option that changes it
+    (``too_large`` carries the same details for ``messageBytes``)."""
 
     code = "limit_exceeded"
 

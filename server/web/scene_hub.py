@@ -25,7 +25,9 @@ from .scene_store import SceneStore
 from .worker import SceneSetup
 
 log = logging.getLogger(__name__)
-INFLIGHT_BYTES = 4 << 20  # text a connection may have waiting on its scene's process
+INFLIGHT_BYTES = 64 << 10  # text of a connection its scene has not applied yet, past which
+# the server stops reading the connection (TCP slows the client): about 700 calls, 50 ms of
+# the scene's work, so no other client waits longer than that behind a flooding one
 REPLACED = 4001  # close code: the same client connected again; clients do not reconnect
 SILENT_SECONDS = 3.0  # a scene that sent nothing this long (60 frames a second) is unresponsive
 _numbers = itertools.count(1)

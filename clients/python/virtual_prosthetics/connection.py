@@ -6,10 +6,11 @@ and lets the caller's thread wait for the reader's.
 
 from __future__ import annotations
 
+import contextlib
 import threading
 import time
 import warnings
-from typing import Any
+from typing import Any, Iterator
 from urllib.parse import parse_qsl, urlencode, urlsplit, urlunsplit
 
 from websockets.exceptions import ConnectionClosed, InvalidHandshake
@@ -21,6 +22,8 @@ from .protocol import Handler, ProtocolCore, Request
 ANSWER_TIMEOUT = 30.0
 RETRY_FIRST, RETRY_MAX = 0.1, 1.0  # seconds between attempts to connect again
 REPLACED = 4001  # close code: this client connected again elsewhere (no coming back here)
+TEXT_BYTES = 512 * 1024  # gathered requests per text at most (as the JS client): well under
+TEXT_MESSAGES = 1_000    # the server's messageBytes (1 MiB) and messagesPerText (10 000)
 
 
 class Connection:
@@ -41,6 +44,8 @@ class Connection:
         self.core = ProtocolCore(on_message, on_changes)
         self._lock = threading.Condition()
         self._reader = threading.Thread(target=self._read, name="vp-reader", daemon=True)
+        self._gathering = 0  # depth of gathering(): requests then wait in _held
+        self._held: list[dict[str, Any]] = []
 
     @property
     def closed(self) -> str | None:
@@ -53,14 +58,39 @@ class Connection:
 
     def close(self) -> None:
         """Close the WebSocket (the server then deletes what this client made)."""
+        if self._held and self.closed is None:
+            self.flush()
         self._closing = True
         self._ws.close()
         self._reader.join(timeout=5)
 
+    @contextlib.contextmanager
+    def gathering(self) -> Iterator[None]:
+        """Requests sent inside that nobody waits for leave together, as one text, when it
+        ends (or earlier, with the first request someone waits for): an animation step's
+        setters reach the server as one message, as the JS client sends a task's."""
+        self._gathering += 1
+        try:
+            yield
+        finally:
+            self._gathering -= 1
+            if not self._gathering and self._held and self.closed is None:
+                self.flush()
+
+    def flush(self) -> None:
+        """Send the requests :meth:`gathering` holds."""
+        held, self._held = self._held, []
+        if held:
+            self._send(held, False)
+
     def send(self, message: dict[str, Any], wait: bool = False) -> Any:
         """Send a request; with ``wait``, block for its answer and return the result."""
         self.raise_deferred()
-        request = self._send(message, wait)
+        if self._gathering and not wait:
+            self._held.append(message)
+            return None
+        held, self._held = self._held, []
+        request = self._send([*held, message], wait)
         if not wait:
             return None
         with self._lock:
@@ -82,28 +112,34 @@ class Connection:
             raise error
         return result
 
-    def _send(self, message: dict[str, Any], wait: bool) -> Request:
-        """Send a request, waiting out a reconnection: a request the loss kept from going
-        goes again, with a new id, on the new connection."""
+    def _send(self, messages: list[dict[str, Any]], wait: bool) -> Request:
+        """Send requests in as few texts as fit, waiting out a reconnection: requests the
+        loss kept from going go again, with new ids, on the new connection. The last
+        one's request (``wait``: its answer is kept)."""
         for attempt in range(2):
             with self._lock:
                 self._lock.wait_for(lambda: not self._reconnecting, self.core.grace + 10)
                 self._check_open()
-                request, generation = self.core.request(message, wait), self._generation
+                last = len(messages) - 1
+                requests = [self.core.request(m, wait and k == last) for k, m in enumerate(messages)]
+                generation = self._generation
             try:
-                self._ws.send(request.text)
-                return request
+                for text in _texts(requests):
+                    self._ws.send(text)
+                return requests[-1]
             except ConnectionClosed as error:
                 with self._lock:  # the reader finds the loss too and connects again
                     self._lock.wait_for(lambda: self._generation != generation or
                                         bool(self.closed), self.core.grace + 10)
-                    self.core.interrupted.discard(request.id)
+                    self.core.interrupted.difference_update(r.id for r in requests)
                     if self._generation == generation or attempt:
                         raise ConnectionLost(f"connection closed: {error}") from None
         raise AssertionError("unreachable")
 
     def settle(self, timeout: float = ANSWER_TIMEOUT) -> None:
         """Wait until every request sent so far is answered; raise a kept error."""
+        if self._held:
+            self.flush()
         with self._lock:
             if not self._lock.wait_for(lambda: not self.core.unanswered or self.closed, timeout):
                 raise Timeout(f"{len(self.core.unanswered)} requests unanswered after {timeout} s")
@@ -180,6 +216,25 @@ class Connection:
                 self._lock.notify_all()
             return True
         return False
+
+
+def _texts(requests: list[Request]) -> Iterator[str]:
+    """The requests' texts joined into JSON arrays of at most TEXT_MESSAGES requests and
+    about TEXT_BYTES (a lone request as it is)."""
+    group: list[str] = []
+    size = 0
+    for request in requests:
+        if group and (size + len(request.text) > TEXT_BYTES or len(group) >= TEXT_MESSAGES):
+            yield _joined(group)
+            group, size = [], 0
+        group.append(request.text)
+        size += len(request.text) + 1
+    if group:
+        yield _joined(group)
+
+
+def _joined(texts: list[str]) -> str:
+    return texts[0] if len(texts) == 1 else f"[{','.join(texts)}]"
 
 
 def _with_query(url: str, **params: str) -> str:

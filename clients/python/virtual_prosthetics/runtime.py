@@ -57,6 +57,8 @@ def run(seconds: float | None = None) -> None:
 
     Before every step the contact callbacks that are due run (``begin_contact`` and
     ``end_contact`` of this client's parts). Without an animation, ``run`` only does that.
+    What a step sends reaches the server as one message (a read in the step sends what
+    came before it first).
     """
     scene = current_session()
     func, fps = scene.animation or (None, 30.0)
@@ -71,7 +73,8 @@ def run(seconds: float | None = None) -> None:
         step = max(0.0, now - last)  # a server restarted from its state folder counts from 0
         elapsed += step
         if func is not None:
-            func(*(now, step)[:arity])
+            with scene.connection.gathering():  # the step's setters leave as one message
+                func(*(now, step)[:arity])
         last = now
         next_wake = max(next_wake + period, time.monotonic())
         time.sleep(max(0.0, next_wake - time.monotonic()))

@@ -26,7 +26,6 @@ class Limits:
     messages_per_text: int = 10_000       # request objects in one array
     batch_ops: int = 10_000               # operations in one batch
     # one connection
-    ops_per_second: int = 2_000           # requests (each batch op counts) per second
     bytes_per_second: int = 16 << 20      # text received per second
     outbox_bytes: int = 32 << 20          # waiting to be sent; past it the connection closes
     # one client in a scene

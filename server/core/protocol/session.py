@@ -40,7 +40,6 @@ class Session:
         # told of every request that changed the scene, once it is applied (the journal)
         self.on_change: Callable[[Session, dict[str, Any]], None] | None = None
         now = time.monotonic()
-        self._ops = TokenBucket(scene.limits.ops_per_second, now)
         self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
         self._own_id = re.compile(rf"{re.escape(client_id)}\.[A-Za-z0-9_.:-]+")
 
@@ -57,8 +56,11 @@ class Session:
     def receive(self, text: str | bytes, now: float | None = None) -> list[dict[str, Any]]:
         """Apply every message in one WebSocket text message; the answers, in order.
 
-        ``now`` (monotonic seconds) keeps the connection's rates; a text over a rate is
+        ``now`` (monotonic seconds) keeps the connection's byte rate (``bytesPerSecond``,
+        against floods of text that fails before it does anything); a text over it is
         answered with ``limit_exceeded`` for each request in it, and nothing is applied.
+        Requests are not counted: a client sending faster than its scene applies is slowed
+        by the web layer, which stops reading its socket (server.web.socket).
         """
         return [answer for answer, _ in self.receive_encoded(text, now)]
 
@@ -70,24 +72,18 @@ class Session:
             messages = decode(text, self.scene.limits)
         except VPError as error:
             return [_encoded(error.to_wire())]
-        refusal = self._over_rate(text, messages, now)
+        refusal = self._over_rate(text, now)
         if refusal is not None:
             return [_encoded(refusal.to_wire(request_id(m), _op_name(m))) for m in messages]
         answers = (self._handle(message) for message in messages)
         return [answer for answer in answers if answer is not None]
 
-    def _over_rate(self, text: str | bytes, messages: list[Any], now: float) -> VPError | None:
+    def _over_rate(self, text: str | bytes, now: float) -> VPError | None:
         limits = self.scene.limits
         if not self._bytes.take(byte_size(text), now):
             return LimitExceeded(f"more than {limits.bytes_per_second} bytes a second from "
                                  f"this connection; slow down", limit="bytesPerSecond",
                                  value=limits.bytes_per_second)
-        ops = sum(len(m["ops"]) if isinstance(m, dict) and isinstance(m.get("ops"), list) else 1
-                  for m in messages)
-        if not self._ops.take(ops, now):
-            return LimitExceeded(f"more than {limits.ops_per_second} operations a second from "
-                                 f"this connection; slow down", limit="opsPerSecond",
-                                 value=limits.ops_per_second)
         return None
 
     def handle(self, message: Any) -> dict[str, Any] | None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import threading
 
 import pytest
@@ -52,3 +53,27 @@ def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
             vp.run(30)
     finally:
         stop_server(own)
+
+
+def test_an_animation_step_reaches_the_server_as_one_message_and_none_is_refused(scene):
+    """The issue's probe: 100 cheap calls a step at 60 steps a second (6 000 calls a
+    second) once died after a second with ``limit_exceeded``; now the step's calls leave
+    as one text and every one is applied."""
+    motors = [vp.MotorZ(-1, 1) for _ in range(100)]
+    scene.sync()
+    texts: list[str] = []
+    send = scene.connection._ws.send
+    scene.connection._ws.send = lambda text: (texts.append(text), send(text))[1]
+    last: list[float] = []
+
+    def step(t: float) -> None:
+        last[:] = [min(0.9, t / 10 + k / 1000) for k in range(len(motors))]
+        for motor, angle in zip(motors, last):
+            motor.set_angle(angle)
+
+    vp.set_animation(step, 60)
+    vp.run(2)
+    assert len(texts) >= 100 and all(len(json.loads(text)) == 100 for text in texts[:-1])
+    assert [motor.get_angle() for motor in motors] == pytest.approx(last)
+    seen = json.loads(texts[-2])
+    assert [m["method"] for m in seen] == ["setAngle"] * 100 and len({m["id"] for m in seen}) == 100

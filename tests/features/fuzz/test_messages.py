@@ -32,7 +32,7 @@ from .messages import (GARBAGE, HOSTILE_CASES, Drawn, almost_valid, is_answerabl
 EXAMPLES = 200
 MESSAGES_PER_EXAMPLE = 50
 SCENE = "fuzz"
-LIMITS = ("--limit", "opsPerSecond=100000000", "--limit", "bytesPerSecond=1000000000",
+LIMITS = ("--limit", "bytesPerSecond=1000000000",
           "--limit", "sceneBodies=300", "--limit", "clientObjects=3000",
           "--limit", "leaveGraceSeconds=1")
 KINDS = ["valid"] * 9 + ["valid batch"] * 2 + ["almost valid"] * 6 + ["garbage"] * 3

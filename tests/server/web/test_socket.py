@@ -1,6 +1,7 @@
 """The /ws endpoint with real connections: many clients, roles, frames, bad input."""
 
 import json
+import threading
 import time
 
 import pytest
@@ -263,3 +264,38 @@ def test_a_python_client_replaced_elsewhere_does_not_fight_back(server, scene_na
             thief.send(json.dumps({"op": "ping", "id": 1}))
             while json.loads(thief.recv(timeout=10))["op"] != "ok":
                 pass  # the newer connection is still the client's
+
+
+def test_a_client_sending_faster_than_its_scene_applies_is_slowed_not_refused(server, scene_name):
+    """The issue's probe: 100 setAngle calls a step, as fast as the socket takes them.
+    Every one is applied (none refused), and another client's request does not wait
+    behind the backlog: the server stops reading the flooder's socket instead."""
+    flooder, hello, _ = open_client(server, scene_name)
+    me, steps, per_step = hello["client"], 120, 100
+    with flooder:
+        request_all(flooder, [{"op": "create", "object": f"{me}.m", "type": "MotorZ",
+                               "args": [-1, 1]}])
+        answered: list[str] = []
+
+        def read_answers() -> None:
+            while len(answered) < steps * per_step:
+                message = json.loads(flooder.recv(timeout=60))
+                if message["op"] in ("ok", "error") and message.get("id", 0) < 10 ** 6:
+                    answered.append(message["op"] if message["op"] == "ok" else message["code"])
+
+        reader = threading.Thread(target=read_answers)
+        reader.start()
+        bystander, _, _ = open_client(server, scene_name, "viewer")
+        with bystander:
+            sender = threading.Thread(target=lambda: [flooder.send(json.dumps([
+                {"op": "call", "id": step * per_step + k + 1, "object": f"{me}.m",
+                 "method": "setAngle", "args": [k / per_step]} for k in range(per_step)]))
+                for step in range(steps)])
+            sender.start()
+            eventually(lambda: answered)  # the flood is being applied
+            request_all(bystander, [{"op": "ping"}])
+            backlog_then = steps * per_step - len(answered)
+            sender.join(60)
+            reader.join(60)
+    assert answered == ["ok"] * (steps * per_step)
+    assert backlog_then > 0  # the bystander was answered before the flood was done

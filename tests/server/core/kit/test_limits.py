@@ -12,8 +12,8 @@ def test_wire_names_are_camel_case_integers():
 
 
 def test_assignments_change_copies():
-    limits = DEFAULT.with_values(["sceneBodies=10", "ops_per_second=5"])
-    assert (limits.scene_bodies, limits.ops_per_second) == (10, 5)
+    limits = DEFAULT.with_values(["sceneBodies=10", "bytes_per_second=5"])
+    assert (limits.scene_bodies, limits.bytes_per_second) == (10, 5)
     assert DEFAULT.scene_bodies == 2_000
     for bad in ("nothing=1", "sceneBodies=0", "sceneBodies=x", "sceneBodies"):
         with pytest.raises(ValueError, match="expected NAME=N"):

@@ -42,7 +42,8 @@ def test_one_mesh_placed_by_a_thousand_nodes_is_refused_before_it_is_loaded(sphe
     with pytest.raises(LimitExceeded) as refused:
         inspect(bomb, DEFAULT)
     assert "20480000 triangles" in refused.value.message
-    assert refused.value.details == {"limit": "assetTriangles", "value": 200_000}
+    assert refused.value.details == {"limit": "assetTriangles", "value": 200_000,
+                                     "flag": "--limit assetTriangles=N"}
 
 
 def test_placements_through_children_count_too(sphere):

@@ -54,7 +54,7 @@ def test_a_batch_longer_than_its_limit_is_refused_whole():
         three = [{"op": "create", "object": f"c1.{k}", "type": "Box"} for k in (1, 2, 3)]
         with pytest.raises(LimitExceeded) as caught:
             ops.apply({"op": "batch", "ops": three})
-        assert caught.value.details == {"limit": "batchOps", "value": 2}
+        assert caught.value.details == {"limit": "batchOps", "value": 2, "flag": "--limit batchOps=N"}
         assert not scene.nodes
     finally:
         scene.close()
