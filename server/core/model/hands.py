@@ -31,6 +31,7 @@ class Hand(Robot):
         self.is_left = is_left
         self._parts_made = 0
         self._built: list[Motor] = []
+        self._present: tuple[int, list[Motor | None]] | None = None  # (tree version, motors)
 
     def constructor_args(self) -> list[Any]:
         return [self.is_left]
@@ -56,8 +57,14 @@ class Hand(Robot):
         self._built = list(self.get_motors())
 
     def _motor(self, index: int) -> Motor | None:
-        motor = self._built[index]
-        return motor if motor.id in self.scene.nodes and motor.root() is self else None
+        """The hand's motor of this index, None when it was deleted or detached (looked
+        up again only when the scene's tree changed: every move of a node changes it)."""
+        version = self.scene.tree_version
+        if self._present is None or self._present[0] != version:
+            nodes = self.scene.nodes
+            self._present = (version, [motor if motor.id in nodes and motor.root() is self
+                                       else None for motor in self._built])
+        return self._present[1][index]
 
     @staticmethod
     def _check_finger(index: int) -> None:

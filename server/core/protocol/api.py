@@ -27,6 +27,7 @@ A method marked ``client`` is handed the calling client's id (``watch`` is per c
 from __future__ import annotations
 
 import functools
+import functools
 import math
 import re
 from dataclasses import dataclass, field
@@ -69,7 +70,7 @@ class Method:
     # "owner" nobody else, "steer" anyone (motor angles), "attach" anyone, with their own parts
     access: str = "owner"
 
-    @property
+    @functools.cached_property
     def python(self) -> str:
         """The method's name in Python (the server core and the Python client)."""
         return snake(self.name)

@@ -94,13 +94,38 @@ def check_client_message(message: Any) -> dict[str, Any]:
     if op not in CLIENT_OPS:
         raise UnknownOp(f"unknown op {show(op)}; the ops are {', '.join(CLIENT_OPS)}")
     try:
-        if op == "call" and _numbers_only(message.get("args")):
-            validator(op)({**message, "args": []})  # the rest as the schema says
-        else:
-            validator(op)(message)
+        if not _passes_in_parts(message, op):
+            validator(op)(message)  # the whole message: the schema's own error if any
     except fastjsonschema.JsonSchemaValueException as error:
         raise _schema_refusal(error, op, "message") from None
     return message
+
+
+def _passes_in_parts(message: dict[str, Any], op: str) -> bool:
+    """True when the message is valid, checked by parts that are cheaper than the whole;
+    False when that could not tell (the caller then checks it whole).
+
+    Each shortcut accepts exactly what its definition does: a call's numbers-only ``args``
+    are each an ``arg`` as they stand (the compiled check builds an error path per item);
+    a batch's operations past the first, each a create, call or delete without an id, are
+    its ``batchOp`` definition's branch for that op (whose compiled form tries every branch
+    by raising an exception: three quarters of a batch's check)."""
+    try:
+        if op == "call" and _numbers_only(message.get("args")):
+            validator(op)({**message, "args": []})
+            return True
+        if op != "batch" or type(ops := message.get("ops")) is not list or \
+                not 1 < len(ops) <= _max_batch():
+            return False
+        for inner in ops[1:]:
+            if type(inner) is not dict or inner.get("op") not in _BATCH_OPS or "id" in inner:
+                return False
+            if not _passes_in_parts(inner, inner["op"]):
+                validator(inner["op"])(inner)
+        validator(op)({**message, "ops": ops[:1]})
+        return True
+    except fastjsonschema.JsonSchemaValueException:
+        return False
 
 
 def check_document(document: Any) -> None:
@@ -134,6 +159,14 @@ def _numbers_only(args: Any) -> bool:
 @cache
 def _max_args() -> int:
     return schema()["$defs"]["args"]["maxItems"]
+
+
+@cache
+def _max_batch() -> int:
+    return schema()["$defs"]["batch"]["properties"]["ops"]["maxItems"]
+
+
+_BATCH_OPS = ("create", "call", "delete")
 
 
 def check_server_message(message: dict[str, Any]) -> None:

@@ -133,3 +133,28 @@ def test_spread_fingers_includes_the_thumb_as_the_spec_says(scene, kind, thumb):
     assert thumb_motor.get_angle() == pytest.approx(expected)
     assert [motors[hand.spread_index(i)].get_angle() for i in range(1, 5)] == pytest.approx(
         [-0.2, -0.06, 0.06, 0.2])
+
+
+def test_finger_methods_leave_alone_motors_the_hand_no_longer_has(scene):
+    """A finger taken off (attached to another robot, or deleted) no longer follows the
+    hand's finger methods; when taking it off is undone, it follows again."""
+    from server.core.model.robot import Robot
+
+    hand, other = EdgedHand(scene, "h"), Robot(scene, "o")
+    motors = hand.get_motors()
+    hand.flex_fingers(0.3)
+    with pytest.raises(RuntimeError), scene.journal.transaction():
+        other.attach_chain(motors[8])  # the middle finger, then undone
+        hand.flex_fingers(0.4)
+        raise RuntimeError
+    hand.flex_fingers(0.5)
+    assert [m.angle for m in motors[9:12]] == [pytest.approx(-0.5)] * 3
+    with scene.journal.transaction():
+        other.attach_chain(motors[8])
+    hand.flex_fingers(0.6)
+    assert [m.angle for m in motors[9:12]] == [pytest.approx(-0.5)] * 3  # left alone
+    assert motors[5].angle == pytest.approx(-0.6)
+    with scene.journal.transaction():
+        scene.delete(motors[12])  # the ring finger
+    hand.flex_fingers(0.7)
+    assert motors[1].angle == pytest.approx(-0.7) and motors[13].angle == pytest.approx(-0.6)

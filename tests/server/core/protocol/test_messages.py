@@ -68,3 +68,41 @@ def test_calls_with_plain_numbers_are_judged_as_the_schema_judges_them(message):
     else:
         with pytest.raises(expected):
             check_client_message(message)
+
+
+def _batch_variants():
+    call = {"op": "call", "object": "c1.h", "method": "flexFingers", "args": [0.5]}
+    create = {"op": "create", "object": "c1.b", "type": "Box", "args": [{"ref": "c1.h"}, 1]}
+    delete = {"op": "delete", "object": "c1.b"}
+    good = [call, create, delete, {**call, "args": ["NaN", None]}]
+    bad = [{**call, "id": 3}, {**call, "op": "ping"}, {**call, "extra": 1}, {**create, "type": 5},
+           {**delete, "object": "no spaces allowed"}, {**call, "args": [True, {"ref": 1}]},
+           {"op": "batch", "ops": [call]}, [call], "call", {**create, "args": [[1] * 3]}]
+    yield {"op": "batch", "id": 1, "ops": good}
+    yield {"op": "batch", "ops": [call] * 10_001}
+    yield {"op": "batch", "ops": [call]}
+    yield {"op": "batch", "id": 1, "ops": good, "extra": True}
+    yield {"op": "batch", "id": -5, "ops": good}
+    for position in (0, 1, 3):
+        for wrong in bad:
+            ops = list(good)
+            ops.insert(position, wrong)
+            yield {"op": "batch", "id": 2, "ops": ops}
+
+
+@pytest.mark.parametrize("message", list(_batch_variants()))
+def test_batches_are_judged_as_the_schema_judges_them_with_the_same_complaint(message):
+    """A batch's operations are checked one by one through their own definitions (the
+    compiled ``batchOp`` is slow): what passes, what fails and what the refusal says must
+    be exactly what checking the whole batch against the schema gives."""
+    try:
+        validator("batch")(message)
+        expected = None
+    except fastjsonschema.JsonSchemaValueException as error:
+        expected = messages._schema_refusal(error, "batch", "message").message
+    if expected is None:
+        assert check_client_message(message) is message
+    else:
+        with pytest.raises(BadMessage) as refused:
+            check_client_message(message)
+        assert refused.value.message == expected
