@@ -91,21 +91,22 @@ def latency(running: RunningServer, rounds: int) -> dict[str, Any]:
                         "args": [{"ref": motor}, {"ref": f"{me}.f"}]}])
         threading.Thread(target=drain, args=(setter,), daemon=True).start()
         with connect(f"{running.ws}/ws?scene={scene}&role=viewer", max_size=None) as watcher:
-            times = [_one_change(setter, watcher, motor, k) for k in range(rounds)]
+            times = [_one_change(setter, watcher, f"{me}.r", motor, k) for k in range(rounds)]
     period_ms = 1000 / 60
     result = figure(times)
     p99 = sorted(times)[max(0, math.ceil(0.99 * len(times)) - 1)]
     return {"rounds": rounds, "ms": result, "p99_ms": p99, "p99_in_periods": p99 / period_ms}
 
 
-def _one_change(setter: Any, watcher: Any, motor: str, k: int) -> float:
+def _one_change(setter: Any, watcher: Any, robot: str, motor: str, k: int) -> float:
+    """A frame sends all of a robot's angles: ``motor`` is ``robot``'s first."""
     angle = 0.001 * (k % 1000) + 0.0005
     time.sleep(random.uniform(0, 1 / 60))  # not in step with the ticks: any phase of one
     sent = time.monotonic()
     setter.send(json.dumps({"op": "call", "object": motor, "method": "setAngle", "args": [angle]}))
     while time.monotonic() < sent + 10:
         message = json.loads(watcher.recv(timeout=10))
-        if message["op"] == "frame" and message.get("angles", {}).get(motor) == angle:
+        if message["op"] == "frame" and message.get("angles", {}).get(robot, [None])[0] == angle:
             return (time.monotonic() - sent) * 1000
     raise TimeoutError(f"no frame carried angle {angle} of {motor} within 10 s")
 

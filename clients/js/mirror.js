@@ -10,6 +10,7 @@
 // never flickers back in between.
 
 import { fromWire } from './codec.js';
+import { eachAngle } from './pose.js';
 
 export class Mirror {
 	// wants(id): whether someone listens to contact changes of node `id` (only those
@@ -63,7 +64,7 @@ export class Mirror {
 	applyChanges(changes) {
 		this.add(changes.added ?? []);
 		for (const [id, fields] of Object.entries(changes.updates ?? {})) this.change(id, fields);
-		for (const [id, angle] of Object.entries(changes.angles ?? {})) this.change(id, { angle });
+		for (const [id, angle] of eachAngle(changes.angles, (robot) => this.nodes.get(robot)?.motors)) this.change(id, { angle });
 		for (const [id, pose] of Object.entries(changes.poses ?? {})) {
 			this.change(id, { position: pose.slice(0, 3), quaternion: pose.slice(3) });
 		}

@@ -22,3 +22,17 @@ export function baseRotation(out, shown, { axis, angle, flipped }) {
 	out.copy(shown);
 	return axis ? out.multiply(motorTurn(axis, angle, flipped).invert()) : out;
 }
+
+// A change set's `angles` as [motor id, angle] pairs: a robot's come as one array in the
+// order of its `motors` (`motorsOf(robotId)`, read after the same change set's updates),
+// a motor that is no robot's by its own id.
+export function* eachAngle(angles, motorsOf) {
+	for (const [id, value] of Object.entries(angles ?? {})) {
+		if (!Array.isArray(value)) {
+			yield [id, value];
+			continue;
+		}
+		const motors = motorsOf(id) ?? [];
+		for (let k = 0; k < value.length && k < motors.length; k++) yield [motors[k], value[k]];
+	}
+}

@@ -253,7 +253,7 @@ async def _scene_metrics(hub: SceneHub) -> dict[str, Any]:
     if stats is not None:
         hub.figures = stats
     return {"tickRate": hub.tick_rate, **(hub.figures or {}), "state": hub.state,
-            "silentSeconds": round(hub.silent, 3), "pid": hub.runner.pid,
+            "silentSeconds": round(hub.silent, 3), "asleep": hub.asleep, "pid": hub.runner.pid,
             "clients": len(hub.connections),
             "queued": sum(len(c.outbox) for c in hub.connections),
             "queuedBytes": sum(c.outbox.bytes for c in hub.connections),

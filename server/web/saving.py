@@ -73,8 +73,11 @@ class SceneSaver:
 
     @property
     def saved(self) -> bool | None:
-        """Whether the document holds every change (None: the scene is not kept)."""
-        return None if self.store is None else self._saved[0] == self.scene.revision
+        """Whether the document holds every change (None: the scene is not kept); not
+        while a change waits for its tick (the revision counts ticks that sent changes)."""
+        if self.store is None:
+            return None
+        return self._saved[0] == self.scene.revision and not self.scene.feed.pending
 
     def restored(self) -> None:
         """The scene was just made from its document: the document is up to date."""

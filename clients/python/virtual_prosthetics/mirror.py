@@ -63,7 +63,7 @@ class Mirror:
         for node_id, fields in changes.get("updates", {}).items():
             if node_id in self.nodes:
                 self.nodes[node_id].update(fields)
-        for node_id, angle in changes.get("angles", {}).items():
+        for node_id, angle in self._each_angle(changes.get("angles", {})):
             if node_id in self.nodes:
                 self.nodes[node_id]["angle"] = angle
         for node_id, pose in changes.get("poses", {}).items():
@@ -72,6 +72,15 @@ class Mirror:
         if "camera" in changes:
             self.camera = changes["camera"]
         self._remove(changes.get("removed", ()))
+
+    def _each_angle(self, angles: dict[str, Any]) -> Iterator[tuple[str, float]]:
+        """``(motor id, angle)`` of a change set's ``angles``: a robot's come as one array
+        in the order of its ``motors`` (updated before this), a lone motor's by its id."""
+        for node_id, value in angles.items():
+            if isinstance(value, list):
+                yield from zip(self.nodes.get(node_id, {}).get("motors", ()), value)
+            else:
+                yield node_id, value
 
     def _contacts(self, changes: dict[str, list[list[str]]] | None) -> None:
         if not changes:

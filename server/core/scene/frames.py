@@ -1,8 +1,9 @@
 """A tick's messages, and two frames folded into one for a connection that cannot keep up:
 the one module that knows a frame's whole shape.
 
-A frame has ``op``, ``seq`` and ``time``, and what changed in its tick: ``angles`` and
-``poses`` (node id -> value), ``updates`` (node id -> fields), ``sensors`` (watched sensor id
+A frame has ``op``, ``seq`` and ``time``, and what changed in its tick: ``angles`` (a
+robot's angles as one array in the order of its ``motors``, by the robot's id; a motor
+that is no robot's, by its own id), ``poses`` (node id -> value), ``updates`` (node id -> fields), ``sensors`` (watched sensor id
 -> reading), ``contacts`` (``begin``/``end`` lists of pairs, events), ``camera`` and
 ``limited`` (limit name -> how much work it held back in the tick). New nodes travel before
 it in ``added``, removed ones after it in ``removed``.
@@ -36,7 +37,7 @@ def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet,
     born = changes.born
     out: dict[str, Any] = {
         "added": [encode_numbers(nodes[i].describe()) for i in born if i in nodes],
-        "angles": {i: nodes[i].angle for i in changes.angles if i in nodes and i not in born},
+        "angles": _angles(nodes, changes),
         "poses": {i: [*nodes[i].position, *nodes[i].quaternion] for i in changes.poses
                   if i in nodes and i not in born},
         "updates": {i: {f: _field(nodes[i], f) for f in sorted(fields)}
@@ -46,6 +47,27 @@ def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet,
     if changes.camera:
         out["camera"] = camera
     return {k: v for k, v in out.items() if v}
+
+
+def _angles(nodes: Mapping[str, Node], changes: ChangeSet) -> dict[str, Any]:
+    """The ``angles`` of a change set: every robot with a turned motor, or whose motor list
+    changed, as the array of all its angles (so a merged frame's newest array always
+    matches the newest list); other motors one by one. A motor that left a robot is noted
+    as turned (Scene.reparented), so the frame that changes the list sends it too."""
+    born, out, robots = changes.born, {}, {}
+    for i in changes.angles:
+        if i in nodes and i not in born:
+            root = nodes[i].root()
+            if root.lists_motors:
+                robots[root.id] = root
+            else:
+                out[i] = nodes[i].angle
+    for i, fields in changes.updates.items():
+        if "motors" in fields and i in nodes and i not in born:
+            robots[i] = nodes[i]
+    for i, robot in robots.items():
+        out[i] = [motor.angle for motor in robot.get_motors()]  # type: ignore[attr-defined]
+    return out
 
 
 def _field(node: Node, field: str) -> Any:

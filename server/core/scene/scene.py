@@ -153,9 +153,11 @@ class Scene:
         self.tree_version += 1
         parents = [parent for parent in (old_parent, node.parent) if parent is not None]
         robots = [root.id for root in (parent.root() for parent in parents) if root.lists_motors]
-        if robots and not any(n.is_motor for n in node.walk()):
+        motors = [n.id for n in node.walk() if n.is_motor]
+        if not motors:
             robots = []  # no motor moved: the robots' motor orders stand
         self.feed.regrouped([parent.id for parent in parents], robots)
+        self.feed.turned(motors)  # their angles go where they went (frames._angles)
         self.bodies.restructure({node.root().id, *(parent.root().id for parent in parents)})
         self.node_changed(node, "parent")
 

@@ -58,6 +58,17 @@ def test_a_change_is_journaled_when_committed_and_folded_in_the_document_when_sa
     assert restored(tmp_path) == ["c3.1"] and told == []
 
 
+def test_a_change_not_ticked_yet_is_not_called_saved(kept):
+    """Metrics said "saved" between a change and its tick (the document's revision counts
+    ticks): a client that waited for it could see it before the document held the change."""
+    scene, saver, session, _ = kept
+    assert saver.saved
+    create(session, "1")
+    assert saver.saved is False
+    scene.tick(0.01)
+    assert saver.saved is False and saver.save() and saver.saved
+
+
 def test_a_folder_that_cannot_be_written_keeps_changes_in_the_open_journal(kept, tmp_path):
     scene, saver, session, told = kept
     create(session, "1")

@@ -1,5 +1,7 @@
 // What the viewer does with each server message: a map from op to handler.
 
+import { eachAngle } from '/client/pose.js';
+
 const QUIET_FRAME = new Set(['op', 'seq', 'time', 'sensors']);  // readings: see lasers
 
 export function makeHandlers(view) {
@@ -35,7 +37,7 @@ export function makeHandlers(view) {
 			const now = performance.now() / 1000;
 			for (const [id, fields] of Object.entries(message.updates ?? {})) tree.update(id, fields);
 			for (const [id, pose] of Object.entries(message.poses ?? {})) motion.pose(id, pose, now);
-			for (const [id, angle] of Object.entries(message.angles ?? {})) {
+			for (const [id, angle] of eachAngle(message.angles, (robot) => tree.objects.get(robot)?.userData.node.motors)) {
 				motion.angle(id, angle, now);
 				hook.angleTimes.set(id, performance.timeOrigin + performance.now());
 			}

@@ -55,7 +55,7 @@ def test_set_angles_turns_all_motors_at_once_and_undoes_them_together(scene):
     assert robot.get_angles() == [0.0, 0.0, 0.0] and finger.world_pose() == tip_before
     robot.set_angles(0.5, 0, 0.25)
     frame = frame_of(scene.tick(0.1))
-    assert frame["angles"] == {"m0": 0.5, "m2": 0.25}  # m1 did not change
+    assert frame["angles"] == {"r": [0.5, 0.0, 0.25]}  # all the robot's, in motor order
     assert scene.bodies.physics.pose("f")[0] == pytest.approx(finger.world_pose()[0])
 
 
@@ -71,7 +71,7 @@ def test_tick_reports_added_frame_removed_in_order(scene):
     motor.set_angle(0.3)
     robot.set_position((1, 0, 0))
     [frame] = scene.tick(0.5)
-    assert frame["angles"] == {"m": 0.3}
+    assert frame["angles"] == {"r": [0.3]}
     assert frame["poses"] == {"r": [1, 0, 0, 0, 0, 0, 1]}
     scene.delete(motor)
     frame, removed = scene.tick(0.5)

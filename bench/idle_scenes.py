@@ -1,0 +1,97 @@
+"""What scenes nobody uses cost: memory, CPU, and how fast the server still answers.
+
+A server with ``count`` scenes that clients opened and left (each scene's process then
+stops ticking and waits): the proportional memory (PSS) of the scene processes, the CPU
+of the whole server (every process) over a few seconds, and how long a new client waits
+for its ``hello`` on a fresh scene and on a running one. These figures set the default
+``scenes`` limit (server/core/kit/limits.py).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+from websockets.sync.client import connect
+
+from tests.conftest import RunningServer, eventually, start_server, stop_server
+
+from .stats import figure
+
+CLOCK_TICKS = 100  # USER_HZ on Linux
+
+
+def descendants(pid: int) -> list[int]:
+    """Every process below ``pid`` (scene processes are the forkserver's children)."""
+    parents: dict[int, list[int]] = {}
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue  # gone meanwhile
+        parents.setdefault(int(fields[1]), []).append(int(stat.parent.name))
+    found, level = [], [pid]
+    while level:
+        level = [child for parent in level for child in parents.get(parent, [])]
+        found += level
+    return found
+
+
+def cpu_seconds(pids: list[int]) -> float:
+    """User and system CPU seconds of these processes."""
+    total = 0
+    for pid in pids:
+        try:
+            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        total += int(fields[11]) + int(fields[12])
+    return total / CLOCK_TICKS
+
+
+def pss_mb(pid: int) -> float:
+    """Proportional set size: private memory plus a share of what is shared (forked)."""
+    for line in Path(f"/proc/{pid}/smaps_rollup").read_text().splitlines():
+        if line.startswith("Pss:"):
+            return int(line.split()[1]) / 1024
+    return 0.0
+
+
+def hello_ms(running: RunningServer, scene: str) -> float:
+    """From connecting to the ``hello`` of a scene (started for it if it is new)."""
+    started = time.perf_counter()
+    with connect(f"{running.ws}/ws?scene={scene}", open_timeout=60) as ws:
+        assert json.loads(ws.recv(timeout=60))["op"] == "hello"
+        elapsed = (time.perf_counter() - started) * 1000
+    return elapsed
+
+
+def measure(count: int, seconds: float) -> dict[str, Any]:
+    """Open ``count`` scenes, leave them, and measure the server once they all sleep."""
+    running = start_server("--no-demo", "--limit", f"scenes={count + 20}",
+                           "--limit", "leaveGraceSeconds=1")
+    try:
+        opened = [hello_ms(running, f"idle{k}") for k in range(count)]
+        eventually(lambda: _asleep(running) >= count, timeout=120)
+        processes = descendants(running.process.pid)
+        scene_pids = [m["pid"] for m in running.get("/api/metrics")["scenes"].values()]
+        memory = [pss_mb(pid) for pid in scene_pids]
+        before = cpu_seconds([running.process.pid, *processes])
+        time.sleep(seconds)
+        cpu = cpu_seconds([running.process.pid, *processes]) - before
+        fresh = [hello_ms(running, f"fresh{k}") for k in range(10)]
+        again = [hello_ms(running, f"idle{k}") for k in range(10)]
+        return {"scenes": count, "open_hello_ms": figure(opened),
+                "scene_pss_mb": figure(memory), "scenes_pss_mb": sum(memory),
+                "server_cpu_pct": 100 * cpu / seconds,
+                "hello_new_scene_ms": figure(fresh), "hello_idle_scene_ms": figure(again)}
+    finally:
+        stop_server(running)
+
+
+def _asleep(running: RunningServer) -> int:
+    """Scenes whose process said it stopped ticking (silent without owing anything)."""
+    scenes = running.get("/api/metrics")["scenes"].values()
+    return sum(1 for m in scenes if m.get("clients") == 0 and m.get("asleep"))
