@@ -29,6 +29,8 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
     "max_hands_60hz": ("≥ 100", lambda v: v >= 100),
     "server_cpu_hands10_pct": ("≤ 25 % of a core", lambda v: v <= 25),
     "two_scenes_fps_min": ("both at 60 Hz", lambda v: v >= AT_60_HZ),
+    "idle_scenes_server_cpu_pct": ("idle scenes cost memory only (≤ 1 % of a core)", lambda v: v <= 1),
+    "idle_scene_mb": ("≤ 70 MB (scene_capacity.SCENE_BYTES)", lambda v: v <= 70),
     "chaos_faults": ("≥ 200 faults injected", lambda v: v >= 200),
     "chaos_changes_lost": ("0 acknowledged changes lost", lambda v: v == 0),
     "chaos_bystander_gap_ms": ("< 100 ms between frames", lambda v: v < 100),
@@ -120,6 +122,13 @@ def figure_table(found: dict[str, Any]) -> list[str]:
     rows.append(f"| two scenes of hands-{two['hands']} driven at once: ticks/s | "
                 f"{' and '.join(f'{t:.1f}' for t in two['ticks_per_second'])} | tick p95 "
                 f"{' and '.join(_ms(t) for t in two['tick_ms_p95'])} | 60 Hz | |")
+    idle = found["idle_scenes"]
+    rows.append(f"| {idle['scenes']} idle scenes (opened and left): a new client's `hello`, fresh scene "
+                f"/ idle scene; whole server {idle['server_cpu_pct']:.1f} % of a core | "
+                f"{_ms(idle['hello_new_scene_ms'].median)} / {_ms(idle['hello_idle_scene_ms'].median)} | "
+                f"{_ms(idle['hello_new_scene_ms'].p95)} / {_ms(idle['hello_idle_scene_ms'].p95)} | "
+                f"memory of a scene's process (PSS): {idle['scene_pss_mb'].median:.0f} MB, all "
+                f"{idle['scenes_pss_mb'] / 1024:.1f} GB | |")
     return rows
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import chaos, core, live, scenes
+from . import chaos, core, idle_scenes, live, scenes
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -42,17 +42,18 @@ class Sizes:
     busy_hands: int
     document_rounds: int
     chaos_faults: int
+    idle_scenes: int
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
              requests=20_000, frames=300, hand_counts=(10, 20, 30, 40, 50, 60, 80, 100),
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
-             document_rounds=30, chaos_faults=30 * len(chaos.KINDS))
+             document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
-              document_rounds=2, chaos_faults=len(chaos.KINDS))
+              document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3)
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -90,6 +91,8 @@ def measure(sizes: Sizes) -> dict[str, Any]:
             found[name] = _timed(name, step)
     found["chaos"] = _timed("chaos", lambda: chaos.run(sizes.chaos_faults,
                                                       quick=sizes is QUICK))
+    found["idle_scenes"] = _timed("idle scenes", lambda: idle_scenes.measure(
+        sizes.idle_scenes, sizes.outside_seconds))
     return found
 
 
@@ -117,6 +120,8 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "max_hands_60hz": found["max_hands"]["max_hands"],
         "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],
         "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),
+        "idle_scenes_server_cpu_pct": found["idle_scenes"]["server_cpu_pct"],
+        "idle_scene_mb": found["idle_scenes"]["scene_pss_mb"].median,
         "chaos_faults": found["chaos"]["faults"],
         "chaos_changes_lost": found["chaos"]["lost"],
         "chaos_bystander_gap_ms": found["chaos"]["worst_gap_ms"],

@@ -16,6 +16,7 @@ from .demo import DEMOS
 from .web.access import AccessPolicy
 from .web.app import create_app
 from .web.connection_limits import ConnectionCount, guarded_protocol
+from .web.scene_capacity import machine_memory, scenes_held
 
 WS_MAX_BYTES = 16 << 20  # beyond the protocol's 1 MiB: those get an answer, not a hang-up
 PING_SECONDS = 20.0  # a WebSocket whose peer does not answer a ping this long is closed
@@ -32,7 +33,7 @@ def main(argv: list[str] | None = None) -> None:
     if args.view_token and not args.token:
         parser.error("a view token without a control token would leave controlling open")
     try:
-        limits = DEFAULT.with_values(args.limit)
+        limits = _defaults().with_values(args.limit)
     except ValueError as error:
         parser.error(str(error))
     logging.basicConfig(level=args.log_level.upper())
@@ -55,10 +56,15 @@ def main(argv: list[str] | None = None) -> None:
         sys.exit(UNSAVED)
 
 
+def _defaults() -> Limits:
+    """The limits by default on this machine: as many scenes as its memory holds."""
+    return DEFAULT.with_values([f"scenes={scenes_held(machine_memory())}"])
+
+
 def _raise_file_limit(limits: Limits) -> None:
     """Open files enough for every allowed connection, or a warning that there are not."""
     soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
-    wanted = limits.connections + 256  # scenes, logs, the listening socket
+    wanted = limits.connections + 2 * limits.scenes + 256  # scenes' pipes, logs, the socket
     if soft < wanted:
         new = wanted if hard == resource.RLIM_INFINITY else min(wanted, hard)
         resource.setrlimit(resource.RLIMIT_NOFILE, (new, hard))
@@ -82,7 +88,7 @@ def _parser() -> argparse.ArgumentParser:
                         help="scene ticks (frames) per second")
     parser.add_argument("--limit", action="append", default=[], metavar="NAME=N",
                         help=f"change a limit (repeatable); the limits and defaults: "
-                             f"{', '.join(f'{k}={v}' for k, v in DEFAULT.wire().items())}")
+                             f"{', '.join(f'{k}={v}' for k, v in _defaults().wire().items())}")
     parser.add_argument("--ping-seconds", type=float, default=PING_SECONDS,
                         help="ping WebSockets this often; close those that stay silent as long")
     parser.add_argument("--assets-dir", type=Path, default=None, metavar="DIR",

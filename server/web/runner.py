@@ -32,7 +32,8 @@ PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecesso
 
 CONTEXT = multiprocessing.get_context("forkserver")
 # Mesh reading too: loaded once in the fork server, a scene's first hand costs no import.
-CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial", "scipy.optimize"])
+CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial", "scipy.optimize",
+                                "server.web.forkserver_heap"])  # last: freezes what they loaded
 sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 

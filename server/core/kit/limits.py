@@ -43,7 +43,8 @@ class Limits:
     shape_triangles: int = 20_000         # triangles of a triangle mesh
     transforms_per_call: int = 10_000     # objects one setTransforms places
     # the server
-    scenes: int = 100
+    scenes: int = 100                     # vp-server's default: what the machine's memory
+                                          # holds (server/web/scene_capacity.py)
     scene_idle_seconds: int = 60          # a scene without clients is removed after this
     leave_grace_seconds: int = 10         # a client that left gets its objects back this long
     connections: int = 1_000
