@@ -75,6 +75,7 @@ class Node:
         self._world: Pose | None = None
         self._epoch = -1  # the scene's pose_epoch when _world was worked out
         self._world_scale: Vec3 = UNIT_SCALE
+        self._root: tuple[int, Node] | None = None  # (the scene's tree_version, root) of root()
         self.serial = 0  # when it was made: the scene's count of nodes made until then
         scene.register(self)
 
@@ -156,10 +157,15 @@ class Node:
         return height
 
     def root(self) -> Node:
-        """The topmost ancestor (the node itself when it has no parent)."""
+        """The topmost ancestor (the node itself when it has no parent); walked again only
+        after the tree changed (every change of a parent counts in ``tree_version``)."""
+        version, known = self.scene.tree_version, self._root
+        if known is not None and known[0] == version:
+            return known[1]
         node = self
         while node.parent is not None:
             node = node.parent
+        self._root = (version, node)
         return node
 
     def add_slot_node(self, slot: Slot) -> None:

@@ -20,6 +20,8 @@ change exactly once, in order.
 
 from __future__ import annotations
 
+from collections import Counter
+from itertools import chain
 from typing import Iterable, Protocol
 
 import numpy as np
@@ -160,29 +162,21 @@ class ContactTracker:
                 self._measure(key, candidates, skip=set(waiting))
 
     def _from_bullet(self) -> None:
-        """Take Bullet's pairs: those no longer found end, those found touching begin (once
-        the exact measure confirms them); parts with too many neighbours join the crowd."""
-        found, crowded = self._bodies.detect(), self._crowded
-        for a, others in list(self._partners.items()):
-            for b in list(others):
-                if a < b and (a, b) not in found and self._bullets(a, b):
-                    self._set(a, b, False)
-        neighbours: dict[str, int] = {}
-        rows = self._rows
-        for (a, b), excess in found.items():
-            if (a not in rows and a != GROUND) or (b not in rows and b != GROUND):
-                continue  # a body the tracker was told is gone
-            if GROUND not in (a, b):
-                neighbours[a] = neighbours.get(a, 0) + 1
-                neighbours[b] = neighbours.get(b, 0) + 1
-            touching = b in self._partners.get(a, ())
-            if excess > 0.0 and touching:
+        """Take Bullet's pairs: those no longer found touching end, those found touching
+        begin (once the exact measure confirms them); parts with too many neighbours join
+        the crowd. Set operations, not a loop over every pair: most pairs stay as they were."""
+        found, crowded, rows = self._bodies.detect(), self._crowded, self._rows
+        touching = {p for p, excess in found.items() if excess <= 0.0}
+        for a, b in self._pairs - touching:
+            if a not in crowded and b not in crowded:  # Bullet measures it, and found it apart
                 self._set(a, b, False)
-            elif excess <= 0.0 and not touching:
+        for a, b in sorted(touching - self._pairs):  # sorted: the same pairs kept at the limit
+            if (a in rows or a == GROUND) and (b in rows or b == GROUND):  # not a body gone
                 self.tests += 1
                 self._set(a, b, self._bodies.touching_many(a, [b])[0])
+        neighbours = Counter(chain.from_iterable(p for p in found if GROUND not in p))
         for key, count in neighbours.items():
-            if count > CROWD and key not in crowded:
+            if count > CROWD and key not in crowded and key in rows:
                 crowded.add(key)
                 self._bodies.crowd(key, True)
                 self._dirty[key] = None

@@ -21,7 +21,7 @@ import math
 import os
 import sys
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 
 def _quiet_import():  # type: ignore[no-untyped-def]
@@ -79,6 +79,7 @@ class _Built:
     base_pose: Pose
     angles: dict[str, float]
     joints: dict[str, int]       # motor id -> link index of its joint
+    joint_links: list[int]       # the same link indices, in that order
     part_links: list[int]        # link indices that carry parts, in tree.parts() order
 
 
@@ -146,7 +147,7 @@ class PhysicsWorld:
         body = pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION, **arguments)
         joints = {joint.motor: k for k, joint in tree.joints()}
         links = [k for k, link in enumerate(tree.links) if link.part is not None]
-        built = _Built(tree, body, base_pose, {}, joints, links)
+        built = _Built(tree, body, base_pose, {}, joints, list(joints.values()), links)
         self._trees[tree.root] = built
         for link in range(-1, len(tree.links)):
             self._filter(body, link, crowded=True)  # until its neighbourhood is known
@@ -156,7 +157,7 @@ class PhysicsWorld:
             self._where[key] = (body, link)
             self._key_at[body, link] = key
             self._padding[key] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
-        self.turn(tree.root, angles)
+        self.turn(tree.root, angles.__getitem__)
 
     def remove_tree(self, root: str) -> None:
         """Take the tree of ``root`` out of the world."""
@@ -173,16 +174,16 @@ class PhysicsWorld:
                                                  physicsClientId=self._client)
         built.base_pose = pose
 
-    def turn(self, root: str, angles: Mapping[str, float]) -> None:
-        """Set joints of the tree of ``root`` (by motor id) in one call; other motors are ignored."""
+    def turn(self, root: str, angle_of: Callable[[str], float]) -> None:
+        """Set every joint of the tree of ``root`` to ``angle_of(its motor id)`` in one call
+        (all of them: one list built, instead of picking the turned ones out)."""
         built = self._trees[root]
-        joints = [(built.joints[motor], angle) for motor, angle in angles.items()
-                  if motor in built.joints]
-        if joints:
-            pybullet.resetJointStatesMultiDof(built.body, [k for k, _ in joints],
-                                              [[angle] for _, angle in joints],
+        if built.joints:
+            angles = [angle_of(motor) for motor in built.joints]
+            pybullet.resetJointStatesMultiDof(built.body, built.joint_links,
+                                              [[angle] for angle in angles],
                                               physicsClientId=self._client)
-            built.angles.update(angles)
+            built.angles = dict(zip(built.joints, angles))
 
     def part_poses(self, root: str) -> tuple[list[str], list[Pose]]:
         """The world pose of every part of the tree of ``root`` (Bullet's forward kinematics,

@@ -199,20 +199,19 @@ class SceneBodies:
             return False
 
     def _turn(self, rebuilt: set[str]) -> set[str]:
-        """Set the joints of the turned motors, a call per tree; the roots turned."""
-        by_root: dict[str, dict[str, float]] = {}
-        for motor_id in self._turned:
-            motor = self._nodes.get(motor_id)
-            root_id = self._motor_root.get(motor_id)
-            if motor is None:
-                continue
-            if motor.parent is None:  # a lone motor: its turn is its base's pose
-                self._based.add(motor_id)
-            elif root_id is not None and root_id not in rebuilt:
-                by_root.setdefault(root_id, {})[motor_id] = motor.angle
+        """Set the joints of the trees with turned motors, a call per tree; the roots turned."""
+        motor_root, nodes = self._motor_root, self._nodes
+        roots = {motor_root.get(motor_id) for motor_id in self._turned}
+        if None in roots:  # motors that are no joint: gone, lone, or in a tree without parts
+            roots.discard(None)
+            for motor_id in self._turned:
+                motor = nodes.get(motor_id)
+                if motor_id not in motor_root and motor is not None and motor.parent is None:
+                    self._based.add(motor_id)  # a lone motor: its turn is its base's pose
         self._turned.clear()
-        return {root_id for root_id, angles in by_root.items()
-                if self._guarded(root_id, lambda: self.physics.turn(root_id, angles))}
+        angle_of = lambda motor_id: nodes[motor_id].angle  # noqa: E731 (every joint's motor is a node)
+        return {root_id for root_id in roots - rebuilt
+                if self._guarded(root_id, lambda: self.physics.turn(root_id, angle_of))}
 
     def _place_bases(self, rebuilt: set[str]) -> set[str]:
         """Place the bases of the moved roots; the roots placed."""

@@ -45,12 +45,12 @@ def test_origins_are_in_the_parent_links_frame_and_parts_at_their_shape_frame(wo
     assert centre == pytest.approx(list(expected[1][0]), abs=1e-9)
 
 
-def test_turning_sets_only_the_named_joints_and_a_rebuild_keeps_angles_and_bases(world):
+def test_turning_sets_the_joints_and_a_rebuild_keeps_angles_and_bases(world):
     tree = Articulation("r", links=(Link(-1, ((0, 0, 0), (0, 0, 0, 1)),
                                          Joint("m", (0.0, 0.0, 1.0), -3, 3), "a",
                                          ((1, 0, 0), (0, 0, 0, 1)), BOX),))
     world.add_tree(tree, ((0, 1, 0), (0, 0, 0, 1)), {"m": 0.0})
-    world.turn("r", {"m": math.pi / 2, "elsewhere": 1.0})
+    world.turn("r", {"m": math.pi / 2}.__getitem__)
     world.move_base("r", ((0, 2, 0), (0, 0, 0, 1)))
     world.rebuild()
     [(position, _)] = world.part_poses("r")[1]
