@@ -40,18 +40,24 @@ class Reading:
 
 def read_sensors(targets: RayTargets, sensors: Sequence[Node],
                  contacts_of: Callable[[Node], list[str]],
-                 pose_of: Callable[[Node], Pose] | None = None) -> dict[str, Reading]:
+                 poses_of: Callable[[list[Node]], tuple[np.ndarray, np.ndarray]] | None = None
+                 ) -> dict[str, Reading]:
     """Readings of ``sensors`` (shapes already placed); ``contacts_of(sensor)`` lists ids,
-    ``pose_of(sensor)`` gives its world pose (by default the tree's)."""
+    ``poses_of(sensors)`` gives their world positions and quaternions as n×3 and n×4
+    arrays (by default the tree's poses)."""
     if not sensors:
         return {}
-    poses = [sensor.world_pose() if pose_of is None else pose_of(sensor) for sensor in sensors]
-    origins = np.array([position for position, _ in poses], dtype=float)
+    sensors = list(sensors)
+    if poses_of is None:
+        poses = [sensor.world_pose() for sensor in sensors]
+        origins, quats = np.array([p for p, _ in poses]), np.array([q for _, q in poses])
+    else:
+        origins, quats = poses_of(sensors)
     # each sensor's +Y axis in the world: the second column of its rotation matrix
-    directions = np.array([(2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x))
-                           for _, (x, y, z, w) in poses])
+    x, y, z, w = quats.T
+    directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
     _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
-    return {sensor.id: Reading(distance, touch, pose[0], tuple(contacts_of(sensor)))
-            for sensor, distance, touch, pose in zip(sensors, hits[:, 1].tolist(),
-                                                     touches.tolist(), poses)}
+    return {sensor.id: Reading(distance, touch, tuple(position), tuple(contacts_of(sensor)))
+            for sensor, distance, touch, position in zip(sensors, hits[:, 1].tolist(),
+                                                         touches.tolist(), origins.tolist())}

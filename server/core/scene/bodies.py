@@ -15,6 +15,8 @@ from __future__ import annotations
 import logging
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping
 
+import numpy as np
+
 from ..kit.limits import Limits
 from ..kit import math3d
 from ..model.node import UNIT_SCALE, Node
@@ -54,6 +56,8 @@ class SceneBodies:
         self._ray_geometry: dict[str, dict[str, Any]] = {}
         self._poses: dict[str, Pose] = {}  # of every part, as Bullet placed it at the last sync
         self._scales: dict[str, Vec3] = {}  # and its world scale
+        self._builds = 0  # trees built so far: a node's offset from its part holds until then
+        self._offsets: dict[str, tuple[int, tuple[str, Pose] | None]] = {}
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
 
     def close(self) -> None:
@@ -111,6 +115,9 @@ class SceneBodies:
                 old.update(tree.parts())
                 self._forget_tree(root_id, tree)
         new: set[str] = set()
+        if roots:
+            self._builds += 1
+            self._offsets.clear()  # and what it held of nodes deleted since
         for root_id in roots:
             new.update(self._build(root_id))
         self._forget_parts(old - new)
@@ -166,23 +173,50 @@ class SceneBodies:
         self._poses.update(zip(keys, poses))
         self._scales.update(zip(keys, self.physics.tree(root_id).scales()))
 
-    def world_pose(self, node: Node) -> Pose:
-        """A node's world pose: from its part's pose in Bullet when a part carries it
-        unscaled (a sensor on a fingertip: one or two local poses composed), else the
-        tree's own (:meth:`Node.world_pose`)."""
+    def world_poses(self, nodes: list[Node]) -> tuple[np.ndarray, np.ndarray]:
+        """World positions (n×3) and quaternions (n×4) of nodes: the pose in Bullet of the
+        unscaled part that carries a node, composed with the node's offset from it (a
+        sensor on a fingertip), for all such nodes at once; else the tree's own
+        (:meth:`Node.world_pose`)."""
+        positions, quats = np.empty((len(nodes), 3)), np.empty((len(nodes), 4))
+        carried: list[tuple[int, str, Pose]] = []
+        for index, node in enumerate(nodes):
+            found = self._offset(node)
+            if found is None or found[0] not in self._poses:  # (a part whose tree failed)
+                positions[index], quats[index] = node.world_pose()
+            else:
+                carried.append((index, *found))
+        if carried:
+            hosts = [self._poses[host] for _, host, _ in carried]
+            at, turned = math3d.compose_arrays(
+                np.array([p for p, _ in hosts]), np.array([q for _, q in hosts]),
+                np.array([o[0] for _, _, o in carried]), np.array([o[1] for _, _, o in carried]))
+            rows = [index for index, _, _ in carried]
+            positions[rows], quats[rows] = at, turned
+        return positions, quats
+
+    def _offset(self, node: Node) -> tuple[str, Pose] | None:
+        """The unscaled part that carries ``node`` and the node's pose relative to it; None
+        when the tree's own pose must be used. Kept until a tree is built again (every
+        change of a pose below a root, or of a parent, rebuilds its tree)."""
+        known = self._offsets.get(node.id)
+        if known is not None and known[0] == self._builds:
+            return known[1]
         chain: list[Node] = []
         host: Node | None = node
         while host is not None and host.id not in self._poses:
             if host.scale != UNIT_SCALE or host.is_motor:
-                return node.world_pose()
+                break
             chain.append(host)
             host = host.parent
-        if host is None or self._scales[host.id] != UNIT_SCALE:
-            return node.world_pose()
-        pose = self._poses[host.id]
-        for link in reversed(chain):
-            pose = math3d.compose(pose, link.local_pose())
-        return pose
+        found: tuple[str, Pose] | None = None
+        if host is not None and host.id in self._poses and self._scales[host.id] == UNIT_SCALE:
+            offset: Pose = (math3d.ORIGIN, math3d.IDENTITY)
+            for link in reversed(chain):
+                offset = math3d.compose(offset, link.local_pose())
+            found = (host.id, offset)
+        self._offsets[node.id] = (self._builds, found)
+        return found
 
     def _guarded(self, root_id: str, work: Callable[[], None]) -> bool:
         """Do ``work`` for a tree; if it fails (a bug) the tree is left out, the scene goes on."""
@@ -248,4 +282,4 @@ class SceneBodies:
         """Readings of ``sensors`` for the scene as it is now."""
         self.sync()
         return read_sensors(self.rays, sensors,
-                            lambda sensor: self.touching(sensor.host(), exact), self.world_pose)
+                            lambda sensor: self.touching(sensor.host(), exact), self.world_poses)
