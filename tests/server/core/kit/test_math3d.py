@@ -70,3 +70,21 @@ def test_matrix_to_euler_xyz_round_trips():
 def test_unknown_order_is_refused():
     with pytest.raises(ValueError):
         math3d.euler_to_quat(0, 0, 0, "XXY")
+
+
+def test_composing_many_poses_at_once_gives_exactly_what_compose_gives():
+    import numpy as np
+
+    rng = random.Random(7)
+
+    def pose():
+        q = math3d.euler_to_quat(*(rng.uniform(-3, 3) for _ in range(3)))
+        return tuple(rng.uniform(-5, 5) for _ in range(3)), q
+
+    parents, locals_ = [pose() for _ in range(50)], [pose() for _ in range(50)]
+    positions, quats = math3d.compose_arrays(
+        np.array([p for p, _ in parents]), np.array([q for _, q in parents]),
+        np.array([p for p, _ in locals_]), np.array([q for _, q in locals_]))
+    expected = [math3d.compose(parent, local) for parent, local in zip(parents, locals_)]
+    assert positions.tolist() == [list(p) for p, _ in expected]  # bit for bit
+    assert quats.tolist() == [list(q) for _, q in expected]
