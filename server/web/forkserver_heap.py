@@ -3,7 +3,7 @@ everything it loaded is frozen out of garbage collection before any scene is for
 
 A forked scene shares its parent's memory until it writes to it, and a collection writes
 to every object it walks (its header), so a scene's first collection copied the whole
-preloaded heap (about 40 MB a scene). Frozen objects are never walked, so those pages
+preloaded heap it walked (11 MB of an idle scene's 80). Frozen objects are never walked, so those pages
 stay shared. Importing this module is its only use.
 """
 

@@ -181,10 +181,6 @@ class ContactTracker:
                 self._bodies.crowd(key, True)
                 self._dirty[key] = None
 
-    def _bullets(self, a: str, b: str) -> bool:
-        """True when Bullet measures the pair: neither is in the crowd (the ground never is)."""
-        return a not in self._crowded and b not in self._crowded
-
     def settle(self, key: str) -> None:
         """Measure every pair of one body now (an exact read of its contacts)."""
         if key in self._rows:

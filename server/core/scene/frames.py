@@ -3,10 +3,10 @@ the one module that knows a frame's whole shape.
 
 A frame has ``op``, ``seq`` and ``time``, and what changed in its tick: ``angles`` (a
 robot's angles as one array in the order of its ``motors``, by the robot's id; a motor
-that is no robot's, by its own id), ``poses`` (node id -> value), ``updates`` (node id -> fields), ``sensors`` (watched sensor id
--> reading), ``contacts`` (``begin``/``end`` lists of pairs, events), ``camera`` and
-``limited`` (limit name -> how much work it held back in the tick). New nodes travel before
-it in ``added``, removed ones after it in ``removed``.
+that is no robot's, by its own id), ``poses`` (node id -> value), ``updates`` (node id ->
+fields), ``sensors`` (watched sensor id -> reading), ``contacts`` (``begin``/``end`` lists
+of pairs, events), ``camera`` and ``limited`` (limit name -> how much work it held back in
+the tick). New nodes travel before it in ``added``, removed ones after it in ``removed``.
 """
 
 from __future__ import annotations
