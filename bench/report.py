@@ -28,6 +28,7 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
     "frame_bytes_two_hands": ("≤ 1 KB (1024 B)", lambda v: v <= 1024),
     "max_hands_60hz": ("≥ 100", lambda v: v >= 100),
     "server_cpu_hands10_pct": ("≤ 25 % of a core", lambda v: v <= 25),
+    "hands100_outside_ticks_per_s": ("100 hands driven from outside hold 60 Hz", lambda v: v >= AT_60_HZ),
     "two_scenes_fps_min": ("both at 60 Hz", lambda v: v >= AT_60_HZ),
     "idle_scenes_server_cpu_pct": ("idle scenes cost memory only (≤ 1 % of a core)", lambda v: v <= 1),
     "idle_scene_mb": ("≤ 70 MB (scene_capacity.SCENE_BYTES)", lambda v: v <= 70),
@@ -91,14 +92,15 @@ def figure_table(found: dict[str, Any]) -> list[str]:
         rows.append(f"| applying one step of {label} through a session (decode, check, apply; "
                     f"not in the tick) | {_ms(m['apply_ms'].median)} "
                     f"| {_ms(m['apply_ms'].p95)} | | |")
-    for row, key in zip(found["outside"], ("hands10", "hands50")):
-        floor = found[key]["floor_ms"].median
+    for row, key in zip(found["outside"], ("hands10", "hands50", None)):
+        floor = found[key]["floor_ms"].median if key else None
+        reference = (f"bare PyBullet: {_ms(floor)} | {row['tick_ms_p50'] / floor:.2f}×" if floor
+                     else f"60 ticks/s | {row['ticks_per_second'] / 60:.2f}×")
         rows.append(f"| tick of hands-{row['hands']} from outside, driven at 60 Hz (/api/metrics; "
                     f"{row['ticks_per_second']:.1f} ticks/s, scene process {row['cpu_percent']:.0f} % CPU; "
                     f"whole server {100 * row['server_cores']:.0f} % of a core, "
                     f"{100 * row['server_cores'] / row['hands']:.1f} % a hand) "
-                    f"| {_ms(row['tick_ms_p50'])} | {_ms(row['tick_ms_p95'])} | bare PyBullet: "
-                    f"{_ms(floor)} | {row['tick_ms_p50'] / floor:.2f}× |")
+                    f"| {_ms(row['tick_ms_p50'])} | {_ms(row['tick_ms_p95'])} | {reference} |")
     for m in found["sensors"]:
         rows.append(f"| sensing step, {m['sensors']} watched sensors (frame {m['frame_bytes'].median:.0f} B) "
                     f"| {_ms(m['sensing_ms'].median)} | {_ms(m['sensing_ms'].p95)} | one `rayTestBatch`: "

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
 
-from ..kit.math3d import Pose, Vec3
+from ..kit.math3d import Vec3
 from ..kit.numbers import wire_number
 from . import part_figures
 

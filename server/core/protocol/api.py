@@ -27,7 +27,6 @@ A method marked ``client`` is handed the calling client's id (``watch`` is per c
 from __future__ import annotations
 
 import functools
-import functools
 import math
 import re
 from dataclasses import dataclass, field
