@@ -18,10 +18,8 @@ from websockets.sync.client import connect
 
 from tests.conftest import RunningServer, eventually, start_server, stop_server
 
+from .live import cpu_seconds
 from .stats import figure
-
-CLOCK_TICKS = 100  # USER_HZ on Linux
-
 
 def descendants(pid: int) -> list[int]:
     """Every process below ``pid`` (scene processes are the forkserver's children)."""
@@ -37,18 +35,6 @@ def descendants(pid: int) -> list[int]:
         level = [child for parent in level for child in parents.get(parent, [])]
         found += level
     return found
-
-
-def cpu_seconds(pids: list[int]) -> float:
-    """User and system CPU seconds of these processes."""
-    total = 0
-    for pid in pids:
-        try:
-            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        total += int(fields[11]) + int(fields[12])
-    return total / CLOCK_TICKS
 
 
 def pss_mb(pid: int) -> float:

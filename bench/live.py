@@ -144,9 +144,17 @@ def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
 
 def server_cpu_seconds(running: RunningServer, scene: str) -> float:
     """CPU seconds (user + system) of the server's own process and of the scene's process."""
+    return cpu_seconds([running.process.pid, scene_metrics(running, scene)["pid"]])
+
+
+def cpu_seconds(pids: list[int]) -> float:
+    """User and system CPU seconds of these processes (those gone meanwhile count 0)."""
     ticks = 0
-    for pid in (running.process.pid, scene_metrics(running, scene)["pid"]):
-        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    for pid in pids:
+        try:
+            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
         ticks += int(fields[11]) + int(fields[12])
     return ticks / 100  # clock ticks (USER_HZ, 100 on Linux)
 

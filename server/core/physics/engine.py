@@ -77,7 +77,7 @@ class _Built:
     tree: Articulation
     body: int
     base_pose: Pose
-    angles: dict[str, float]
+    angles: list[float]          # of its joints, in the order of joints
     joints: dict[str, int]       # motor id -> link index of its joint
     joint_links: list[int]       # the same link indices, in that order
     part_links: list[int]        # link indices that carry parts, in tree.parts() order
@@ -147,7 +147,7 @@ class PhysicsWorld:
         body = pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION, **arguments)
         joints = {joint.motor: k for k, joint in tree.joints()}
         links = [k for k, link in enumerate(tree.links) if link.part is not None]
-        built = _Built(tree, body, base_pose, {}, joints, list(joints.values()), links)
+        built = _Built(tree, body, base_pose, [], joints, list(joints.values()), links)
         self._trees[tree.root] = built
         for link in range(-1, len(tree.links)):
             self._filter(body, link, crowded=True)  # until its neighbourhood is known
@@ -183,7 +183,7 @@ class PhysicsWorld:
             pybullet.resetJointStatesMultiDof(built.body, built.joint_links,
                                               [[angle] for angle in angles],
                                               physicsClientId=self._client)
-            built.angles = dict(zip(built.joints, angles))
+            built.angles = angles
 
     def part_poses(self, root: str) -> tuple[list[str], list[Pose]]:
         """The world pose of every part of the tree of ``root`` (Bullet's forward kinematics,
@@ -245,7 +245,7 @@ class PhysicsWorld:
         self._trees, self._where, self._padding = {}, {}, {}  # every part crowded again
         self._connect()
         for built in trees:
-            self.add_tree(built.tree, built.base_pose, built.angles)
+            self.add_tree(built.tree, built.base_pose, dict(zip(built.joints, built.angles)))
         self.removals = 0
         self.rebuilds += 1
 

@@ -118,7 +118,7 @@ def _passes_in_parts(message: dict[str, Any], op: str) -> bool:
                 not 1 < len(ops) <= _max_batch():
             return False
         for inner in ops[1:]:
-            if type(inner) is not dict or inner.get("op") not in _BATCH_OPS or "id" in inner:
+            if type(inner) is not dict or inner.get("op") not in _batch_ops() or "id" in inner:
                 return False
             if not _passes_in_parts(inner, inner["op"]):
                 validator(inner["op"])(inner)
@@ -166,7 +166,9 @@ def _max_batch() -> int:
     return schema()["$defs"]["batch"]["properties"]["ops"]["maxItems"]
 
 
-_BATCH_OPS = ("create", "call", "delete")
+@cache
+def _batch_ops() -> tuple[str, ...]:
+    return tuple(schema()["$defs"]["batchOp"]["properties"]["op"]["enum"])
 
 
 def check_server_message(message: dict[str, Any]) -> None:

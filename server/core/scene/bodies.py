@@ -56,8 +56,8 @@ class SceneBodies:
         self._ray_geometry: dict[str, dict[str, Any]] = {}
         self._poses: dict[str, Pose] = {}  # of every part, as Bullet placed it at the last sync
         self._scales: dict[str, Vec3] = {}  # and its world scale
-        self._builds = 0  # trees built so far: a node's offset from its part holds until then
-        self._offsets: dict[str, tuple[int, tuple[str, Pose] | None]] = {}
+        # node id -> the part carrying it and its offset from it (None: none); until a build
+        self._offsets: dict[str, tuple[str, Pose] | None] = {}
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
 
     def close(self) -> None:
@@ -116,7 +116,6 @@ class SceneBodies:
                 self._forget_tree(root_id, tree)
         new: set[str] = set()
         if roots:
-            self._builds += 1
             self._offsets.clear()  # and what it held of nodes deleted since
         for root_id in roots:
             new.update(self._build(root_id))
@@ -199,9 +198,8 @@ class SceneBodies:
         """The unscaled part that carries ``node`` and the node's pose relative to it; None
         when the tree's own pose must be used. Kept until a tree is built again (every
         change of a pose below a root, or of a parent, rebuilds its tree)."""
-        known = self._offsets.get(node.id)
-        if known is not None and known[0] == self._builds:
-            return known[1]
+        if node.id in self._offsets:
+            return self._offsets[node.id]
         chain: list[Node] = []
         host: Node | None = node
         while host is not None and host.id not in self._poses:
@@ -215,7 +213,7 @@ class SceneBodies:
             for link in reversed(chain):
                 offset = math3d.compose(offset, link.local_pose())
             found = (host.id, offset)
-        self._offsets[node.id] = (self._builds, found)
+        self._offsets[node.id] = found
         return found
 
     def _guarded(self, root_id: str, work: Callable[[], None]) -> bool:
