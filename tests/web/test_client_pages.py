@@ -275,15 +275,20 @@ def test_the_position_page_reads_a_circle_and_leaves_a_trail(browser, pages, ser
     assert len({round(y, 2) for _, y, _ in points}) == 1, points
     height = next(iter(points))[1]
     # the trail: page meshes the server places where the sensor was (the page's first
-    # frames, before the server has answered for the arm, read the origin: those dots
-    # are moved on once the trail has gone round)
+    # frames, before the server has answered for the arm, read where the page's own tree
+    # puts the sensor without its slots' offsets: the origin, or the robot's position
+    # once that is set; those dots are moved on once the trail has gone round)
+    def on_circle(x: float, y: float, z: float) -> bool:
+        return abs(math.hypot(x, z) - radii[0]) < 0.01 and abs(y - height) < 0.01
+
     deadline = time.monotonic() + 20
     while time.monotonic() < deadline:
         trail = [n["position"] for n in _meshes(server, scene_name).values() if n["visible"]]
-        if len(trail) == 40 and [0, 0, 0] not in trail:
+        if len(trail) == 40 and all(on_circle(*point) for point in trail):
             break
         time.sleep(0.2)
-    assert all(abs(math.hypot(x, z) - radii[0]) < 0.01 and abs(y - height) < 0.01 for x, y, z in trail), trail
+    assert len(trail) == 40 and all(on_circle(*point) for point in trail), trail
+    assert len({tuple(round(c, 2) for c in point) for point in trail}) > 20, trail  # a trail, not a dot
     _seen_by_a_viewer(browser, pages, server, scene_name)
 
 
