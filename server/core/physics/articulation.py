@@ -17,6 +17,7 @@ offset is also the inertial frame and the part's world pose is read without comp
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Callable
 
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
@@ -67,10 +68,14 @@ class Articulation:
         mine = [self.base_scale] if self.base_part is not None else []
         return mine + [link.scale for link in self.links if link.part is not None]
 
-    def parts(self) -> list[str]:
+    def parts(self) -> tuple[str, ...]:
         """Every physical part's id, the base's first."""
+        return self._part_ids
+
+    @cached_property
+    def _part_ids(self) -> tuple[str, ...]:  # a tick asks for them for every moved tree
         mine = [self.base_part] if self.base_part is not None else []
-        return mine + [link.part for link in self.links if link.part is not None]
+        return tuple(mine + [link.part for link in self.links if link.part is not None])
 
     def joints(self) -> list[tuple[int, Joint]]:
         """(link index, joint) of every joint, in link order."""

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from collections import Counter
 from itertools import chain
-from typing import Iterable, Protocol
+from typing import Iterable, Protocol, Sequence
 
 import numpy as np
 
@@ -84,13 +84,14 @@ class ContactTracker:
         self._dirty: dict[str, None] = {}  # moved crowded bodies, in the order they moved
         self._crowded: set[str] = set()  # measured one by one (Bodies.crowd)
         self._stale: dict[str, None] = {}  # bodies whose boxes moved since last read
+        self._stale_groups: dict[tuple[str, ...], None] = {}  # the same, a tree's parts at once
         self.unrecorded = 0  # touching pairs left out at the last update (max_pairs)
         self.tests = 0       # pair tests of the last update
         self._snapshot: Overlaps | None = Overlaps(())
 
     # --- bodies --------------------------------------------------------------------------
 
-    def placed(self, keys: list[str], made: bool = False) -> None:
+    def placed(self, keys: Sequence[str], made: bool = False) -> None:
         """Bodies were added or moved (``made``: their bodies were made afresh, as every
         new body is): their contacts must be measured again. A body made afresh starts in
         the crowd, until its neighbourhood is measured."""
@@ -105,12 +106,29 @@ class ContactTracker:
         self._crowded.update(keys if made else new)
         self._dirty.update(dict.fromkeys(key for key in keys if key in self._crowded))
 
+    def moved(self, keys: tuple[str, ...]) -> None:
+        """Bodies placed before moved again (a tree's parts): as :meth:`placed`, in a time
+        that does not grow with the tree while nothing is crowded (a tick moves every tree)."""
+        self._stale_groups[keys] = None
+        if len(self._stale_groups) > _BLOCK:  # (bounded while nothing reads the boxes)
+            self._ungroup_stale()
+        crowded = self._crowded
+        if crowded and not crowded.isdisjoint(keys):
+            self._dirty.update(dict.fromkeys(key for key in keys if key in crowded))
+
     def made_again(self) -> None:
         """Every body was made afresh (a new physics client): all start in the crowd."""
         self.placed(list(self._keys), made=True)
 
+    def _ungroup_stale(self) -> None:
+        rows = self._rows  # (a body since removed is left out)
+        self._stale.update(dict.fromkeys(k for group in self._stale_groups for k in group
+                                         if k in rows))
+        self._stale_groups.clear()
+
     def _read_boxes(self) -> None:
         """Read the boxes of the bodies that moved since they were last read."""
+        self._ungroup_stale()
         if self._stale:
             keys = list(self._stale)
             boxes = np.array(self._bodies.aabbs(keys), dtype=float).reshape(len(keys), 2, 3)

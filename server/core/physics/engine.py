@@ -21,7 +21,7 @@ import math
 import os
 import sys
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, Sequence
 
 
 def _quiet_import():  # type: ignore[no-untyped-def]
@@ -157,7 +157,7 @@ class PhysicsWorld:
             self._where[key] = (body, link)
             self._key_at[body, link] = key
             self._padding[key] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
-        self.turn(tree.root, angles.__getitem__)
+        self.turn(tree.root, [angles[motor] for motor in joints])
 
     def remove_tree(self, root: str) -> None:
         """Take the tree of ``root`` out of the world."""
@@ -174,18 +174,18 @@ class PhysicsWorld:
                                                  physicsClientId=self._client)
         built.base_pose = pose
 
-    def turn(self, root: str, angle_of: Callable[[str], float]) -> None:
-        """Set every joint of the tree of ``root`` to ``angle_of(its motor id)`` in one call
-        (all of them: one list built, instead of picking the turned ones out)."""
+    def turn(self, root: str, angles: list[float]) -> None:
+        """Set every joint of the tree of ``root`` in one call, to ``angles`` in the order
+        of its joints (:meth:`Articulation.joints`): all of them, as one list is cheaper
+        than picking the turned ones out."""
         built = self._trees[root]
         if built.joints:
-            angles = [angle_of(motor) for motor in built.joints]
             pybullet.resetJointStatesMultiDof(built.body, built.joint_links,
                                               [[angle] for angle in angles],
                                               physicsClientId=self._client)
             built.angles = angles
 
-    def part_poses(self, root: str) -> tuple[list[str], list[Pose]]:
+    def part_poses(self, root: str) -> tuple[Sequence[str], list[Pose]]:
         """The world pose of every part of the tree of ``root`` (Bullet's forward kinematics,
         one call for all links)."""
         built = self._trees[root]

@@ -13,7 +13,7 @@ itself (kinematic mode, as 1.0).
 from __future__ import annotations
 
 import logging
-from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping
+from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
@@ -46,19 +46,27 @@ class SceneBodies:
         self._nodes = nodes
         self._name = name
         self.physics = PhysicsWorld()
-        self.rays = RayTargets(assets)
+        self._rays = RayTargets(assets)
         self.tracker = ContactTracker(self.physics, limits.contact_tests, limits.contact_pairs)
         self.contacts = ContactBook()  # as announced by the last tick
         self._restructured: set[str] = set()  # roots (then) whose trees are built again
         self._based: set[str] = set()         # roots whose own pose changed
         self._turned: set[str] = set()        # motors whose angles changed
         self._motor_root: dict[str, str] = {}  # motor id -> root of the tree it is a joint of
+        self._joint_motors: dict[str, list[Node]] = {}  # root -> its joints' motors, in order
         self._ray_geometry: dict[str, dict[str, Any]] = {}
         self._poses: dict[str, Pose] = {}  # of every part, as Bullet placed it at the last sync
         self._scales: dict[str, Vec3] = {}  # and its world scale
         # node id -> the part carrying it and its offset from it (None: none); until a build
         self._offsets: dict[str, tuple[str, Pose] | None] = {}
+        self._unposed: set[str] = set()  # roots moved since their parts' poses were read
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
+
+    @property
+    def rays(self) -> RayTargets:
+        """The ray shapes of the parts, at their poses now."""
+        self._read_poses()
+        return self._rays
 
     def close(self) -> None:
         """Release the physics world."""
@@ -91,13 +99,23 @@ class SceneBodies:
         rebuilt = self._rebuild()
         moved = self._turn(rebuilt) | self._place_bases(rebuilt)
         for root_id in moved:
-            keys, poses = self.physics.part_poses(root_id)
-            self.rays.move_many(keys, poses)
-            self.tracker.placed(keys)
-            self._place_nodes(root_id, keys, poses)
+            self.tracker.moved(self.physics.tree(root_id).parts())  # type: ignore[union-attr]
+        self._unposed.update(moved)
         if self.physics.needs_rebuild():
             self.physics.rebuild()
             self.tracker.made_again()
+
+    def _read_poses(self) -> None:
+        """Read the parts' poses of the trees moved since they were last read (Bullet's
+        forward kinematics, a call per tree): only rays and sensors need them, so a tick
+        that senses nothing reads none."""
+        self.sync()
+        for root_id in self._unposed:
+            if self.physics.tree(root_id) is not None:  # (not since taken out)
+                keys, poses = self.physics.part_poses(root_id)
+                self._rays.move_many(keys, poses)
+                self._poses.update(zip(keys, poses))
+        self._unposed.clear()
 
     def _rebuild(self) -> set[str]:
         """Build the marked trees again; the roots built."""
@@ -127,13 +145,14 @@ class SceneBodies:
         for key in keys:
             self._poses.pop(key, None)
             self.tracker.removed(key)
-            self.rays.remove(key)
+            self._rays.remove(key)
             del self._ray_geometry[key]
 
     def _forget_tree(self, root_id: str, tree: Articulation) -> None:
         self.physics.remove_tree(root_id)
         for _, joint in tree.joints():
             self._motor_root.pop(joint.motor, None)
+        self._joint_motors.pop(root_id, None)
 
     def _build(self, root_id: str) -> list[str]:
         """Build the tree of a root (nothing for a node gone, attached or without parts)."""
@@ -151,6 +170,7 @@ class SceneBodies:
             log.exception("the parts of %s in scene %s could not be placed", root_id, self._name)
             return []
         self._motor_root.update(dict.fromkeys(angles, root_id))
+        self._joint_motors[root_id] = [self._nodes[motor] for motor in angles]
         keys, poses = self.physics.part_poses(root_id)
         geometries = {tree.base_part: tree.base_geometry,
                       **{link.part: link.geometry for link in tree.links}}
@@ -158,16 +178,16 @@ class SceneBodies:
             geometry = geometries[key]
             if self._ray_geometry.get(key) != geometry:
                 if key in self._ray_geometry:
-                    self.rays.remove(key)
-                self.rays.add(key, geometry, pose)
+                    self._rays.remove(key)
+                self._rays.add(key, geometry, pose)
                 self._ray_geometry[key] = geometry
             else:
-                self.rays.move(key, pose)
+                self._rays.move(key, pose)
         self.tracker.placed(keys, made=True)
         self._place_nodes(root_id, keys, poses)
         return keys
 
-    def _place_nodes(self, root_id: str, keys: list[str], poses: list[Pose]) -> None:
+    def _place_nodes(self, root_id: str, keys: Sequence[str], poses: list[Pose]) -> None:
         """Keep the poses Bullet found for the parts (sensors on them start from there)."""
         self._poses.update(zip(keys, poses))
         self._scales.update(zip(keys, self.physics.tree(root_id).scales()))
@@ -177,6 +197,7 @@ class SceneBodies:
         unscaled part that carries a node, composed with the node's offset from it (a
         sensor on a fingertip), for all such nodes at once; else the tree's own
         (:meth:`Node.world_pose`)."""
+        self._read_poses()
         positions, quats = np.empty((len(nodes), 3)), np.empty((len(nodes), 4))
         carried: list[tuple[int, str, Pose]] = []
         for index, node in enumerate(nodes):
@@ -233,7 +254,7 @@ class SceneBodies:
     def _turn(self, rebuilt: set[str]) -> set[str]:
         """Set the joints of the trees with turned motors, a call per tree; the roots turned."""
         motor_root, nodes = self._motor_root, self._nodes
-        roots = {motor_root.get(motor_id) for motor_id in self._turned}
+        roots = set(map(motor_root.get, self._turned))
         if None in roots:  # motors that are no joint: gone, lone, or in a tree without parts
             roots.discard(None)
             for motor_id in self._turned:
@@ -241,9 +262,9 @@ class SceneBodies:
                 if motor_id not in motor_root and motor is not None and motor.parent is None:
                     self._based.add(motor_id)  # a lone motor: its turn is its base's pose
         self._turned.clear()
-        angle_of = lambda motor_id: nodes[motor_id].angle  # noqa: E731 (every joint's motor is a node)
-        return {root_id for root_id in roots - rebuilt
-                if self._guarded(root_id, lambda: self.physics.turn(root_id, angle_of))}
+        motors = self._joint_motors
+        return {root_id for root_id in roots - rebuilt if self._guarded(root_id, lambda: self.physics.turn(
+            root_id, [motor.angle for motor in motors[root_id]]))}  # type: ignore[attr-defined]
 
     def _place_bases(self, rebuilt: set[str]) -> set[str]:
         """Place the bases of the moved roots; the roots placed."""
@@ -278,6 +299,8 @@ class SceneBodies:
 
     def read(self, sensors: list[Node], exact: bool = True) -> dict[str, Reading]:
         """Readings of ``sensors`` for the scene as it is now."""
-        self.sync()
-        return read_sensors(self.rays, sensors,
+        if not sensors:
+            return {}
+        self._read_poses()
+        return read_sensors(self._rays, sensors,
                             lambda sensor: self.touching(sensor.host(), exact), self.world_poses)

@@ -97,7 +97,7 @@ def test_a_lone_part_is_a_base_and_a_robot_out_of_the_scene_has_no_parts(scene):
     robot = Robot(scene, "r")
     robot.attach_chain(MotorZ(scene, "m"), EdgedFinger(scene, "f"))
     robot.set_position()
-    assert structure_of(robot).parts() == []
+    assert structure_of(robot).parts() == ()
 
 
 def test_what_hangs_below_a_part_riding_on_a_joint_follows_the_part_not_the_joint(scene, world):

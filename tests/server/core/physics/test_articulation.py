@@ -36,7 +36,7 @@ def test_origins_are_in_the_parent_links_frame_and_parts_at_their_shape_frame(wo
     link2 = compose(compose(link1, origin2), turned("x", -0.4))
     expected = [compose(link1, shape1), compose(link2, shape2)]
     keys, poses = world.part_poses("r")
-    assert keys == ["a", "b"]
+    assert list(keys) == ["a", "b"]
     for (position, orientation), (want_p, want_q) in zip(poses, expected):
         assert position == pytest.approx(want_p, abs=1e-12)
         assert abs(sum(x * y for x, y in zip(orientation, want_q))) == pytest.approx(1, abs=1e-12)
@@ -50,7 +50,7 @@ def test_turning_sets_the_joints_and_a_rebuild_keeps_angles_and_bases(world):
                                          Joint("m", (0.0, 0.0, 1.0), -3, 3), "a",
                                          ((1, 0, 0), (0, 0, 0, 1)), BOX),))
     world.add_tree(tree, ((0, 1, 0), (0, 0, 0, 1)), {"m": 0.0})
-    world.turn("r", {"m": math.pi / 2}.__getitem__)
+    world.turn("r", [math.pi / 2])
     world.move_base("r", ((0, 2, 0), (0, 0, 0, 1)))
     world.rebuild()
     [(position, _)] = world.part_poses("r")[1]

@@ -125,13 +125,22 @@ def test_world_poses_of_deep_trees_need_no_recursion():
         scene.close()
 
 
-@pytest.mark.parametrize("argument", [int("9" * 4000), -(10 ** 20)])
-def test_huge_integers_are_out_of_range(session, argument):
+def test_huge_integers_are_out_of_range(session):
     send(session, create("c1.m", "MotorZ"))
     [error] = send(session, {"op": "call", "id": 1, "object": "c1.m", "method": "setAngle",
-                             "args": [argument]})
+                             "args": [int("9" * 4000)]})
     assert error["code"] == "out_of_range" and "too large" in error["message"]
     assert len(error["message"]) < 200
+
+
+def test_integers_beyond_64_bits_are_numbers_as_in_javascript(session):
+    # JSON.parse reads -100000000000000000000 as -1e20; so does the server
+    send(session, create("c1.m", "MotorZ"))
+    [answer] = send(session, {"op": "call", "id": 1, "object": "c1.m", "method": "setAngle",
+                              "args": [-(10 ** 20)]})
+    assert answer["op"] == "ok"
+    [angle] = send(session, {"op": "call", "id": 2, "object": "c1.m", "method": "getAngle", "args": []})
+    assert angle["result"] == -1e20 and encode(angle).endswith('"result":-1e+20}')
 
 
 def test_request_ids_beyond_the_schema_are_not_echoed(session):
