@@ -60,21 +60,32 @@ class Bench:
 def tick_against_floor(name: str, ops: list[dict[str, Any]],
                        step: Callable[[int], list[dict[str, Any]]], ticks: int) -> dict[str, Any]:
     """Our tick (with the frame's encoding) and bare PyBullet placing, detecting and reading
-    contacts for the same shapes at the same poses; applying each step's operations apart."""
+    contacts for the same shapes at the same poses; applying each step's operations apart.
+
+    The two alternate tick by tick (after a warm-up of both), so that whatever else the
+    machine does at a moment weighs on both alike, and each starts as cold as the other:
+    between two of our ticks the step is applied and the floor steps, and the reverse."""
     bench = Bench(ops)
     bodies = bench.bodies()
-    apply_ms, tick_ms, poses = [], [], []
-    for n in range(ticks):
+    world = BareWorld([_collision_geometry(body) for body in bodies],
+                      [body.world_pose() for body in bodies])
+    apply_ms, tick_ms, floor_ms = [], [], []
+    warm_up = max(1, ticks // 10)
+    for n in range(warm_up + ticks):
         started = time.perf_counter()
         bench.send(step(n))
         applied = time.perf_counter()
         encode(bench.scene.tick(PERIOD)[-1])
-        apply_ms.append((applied - started) * 1000)
-        tick_ms.append((time.perf_counter() - applied) * 1000)
-        poses.append([body.world_pose() for body in bodies])
-    geometries = [_collision_geometry(body) for body in bodies]
+        ticked = time.perf_counter()
+        poses = [body.world_pose() for body in bodies]
+        floor_started = time.perf_counter()
+        world.step(poses)
+        if n >= warm_up:
+            apply_ms.append((applied - started) * 1000)
+            tick_ms.append((ticked - applied) * 1000)
+            floor_ms.append((time.perf_counter() - floor_started) * 1000)
+    world.close()
     bench.close()
-    floor_ms = _floor(geometries, poses)
     return {"scene": name, "bodies": len(bodies), "apply_ms": figure(apply_ms), "tick_ms": figure(tick_ms),
             "floor_ms": figure(floor_ms),
             "ratio": figure(tick_ms).median / figure(floor_ms).median}
@@ -83,17 +94,6 @@ def tick_against_floor(name: str, ops: list[dict[str, Any]],
 def _collision_geometry(node: Any) -> dict[str, Any]:
     scale = node.world_scale()
     return node.geometry() if scale == UNIT_SCALE else scaled(node.geometry(), scale)
-
-
-def _floor(geometries: list[dict[str, Any]], poses: list[list[Any]]) -> list[float]:
-    world = BareWorld(geometries, poses[0])
-    times = []
-    for tick_poses in poses + poses:  # the first round warms up
-        started = time.perf_counter()
-        world.step(tick_poses)
-        times.append((time.perf_counter() - started) * 1000)
-    world.close()
-    return times[len(poses):]
 
 
 def sensing(hands: int, sensors: int, ticks: int) -> dict[str, Any]:

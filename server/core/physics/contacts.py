@@ -192,9 +192,12 @@ class ContactTracker:
             if (a in rows or a == GROUND) and (b in rows or b == GROUND):  # not a body gone
                 self.tests += 1
                 self._set(a, b, self._bodies.touching_many(a, [b])[0])
-        neighbours = Counter(chain.from_iterable(p for p in found if GROUND not in p))
+        neighbours = Counter(chain.from_iterable(found))  # in C; the ground's pairs out below
+        neighbours.pop(GROUND, None)
+        if not neighbours or max(neighbours.values()) <= CROWD:
+            return
         for key, count in neighbours.items():
-            if count > CROWD and key not in crowded and key in rows:
+            if count - (pair(key, GROUND) in found) > CROWD and key not in crowded and key in rows:
                 crowded.add(key)
                 self._bodies.crowd(key, True)
                 self._dirty[key] = None

@@ -109,7 +109,8 @@ class PhysicsWorld:
         pybullet.setPhysicsEngineParameter(contactBreakingThreshold=BREAKING_THRESHOLD,
                                            physicsClientId=self._client)
         self._where[GROUND] = (self._ground, -1)
-        self._key_at: dict[tuple[int, int], str] = {(self._ground, -1): GROUND}
+        # body -> the part of each link, the base's last (so that link -1 finds it)
+        self._keys_of: dict[int, list[str | None]] = {self._ground: [GROUND]}
         self._padding[GROUND] = 0.0
 
     def _filter(self, body: int, link: int, crowded: bool = False) -> None:
@@ -153,9 +154,10 @@ class PhysicsWorld:
             self._filter(body, link, crowded=True)  # until its neighbourhood is known
         places = ([(tree.base_part, -1, tree.base_geometry)] if tree.base_part is not None else []) \
             + [(tree.links[k].part, k, tree.links[k].geometry) for k in links]
+        keys_of = self._keys_of[body] = [None] * (len(tree.links) + 1)
         for key, link, geometry in places:
             self._where[key] = (body, link)
-            self._key_at[body, link] = key
+            keys_of[link] = key
             self._padding[key] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
         self.turn(tree.root, [angles[motor] for motor in joints])
 
@@ -163,7 +165,8 @@ class PhysicsWorld:
         """Take the tree of ``root`` out of the world."""
         built = self._trees.pop(root)
         for key in built.tree.parts():
-            del self._key_at[self._where.pop(key)], self._padding[key]
+            del self._where[key], self._padding[key]
+        del self._keys_of[built.body]
         pybullet.removeBody(built.body, physicsClientId=self._client)
         self.removals += 1
 
@@ -277,15 +280,16 @@ class PhysicsWorld:
         """Bullet's own collision detection over the parts it pairs (all but those in a
         crowd) and the ground: for each pair with contact points, by how much its nearest
         point misses touching (≤ 0: touching, by the measure of :meth:`touching`)."""
-        client, padding, key_at = self._client, self._padding, self._key_at
+        client, padding, keys_of = self._client, self._padding, self._keys_of
         pybullet.performCollisionDetection(physicsClientId=client)
         found: dict[tuple[str, str], float] = {}
+        nearest, inf, tolerance = found.get, math.inf, TOUCH_TOLERANCE
         for point in pybullet.getContactPoints(physicsClientId=client):
-            a, b = key_at[point[1], point[3]], key_at[point[2], point[4]]
+            a, b = keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]
             pair = (a, b) if a < b else (b, a)
-            excess = point[8] - TOUCH_TOLERANCE + padding[a] + padding[b]
-            if excess < found.get(pair, math.inf):
-                found[pair] = excess
+            excess = point[8] - tolerance + padding[a] + padding[b]  # type: ignore[index]
+            if excess < nearest(pair, inf):  # type: ignore[arg-type]
+                found[pair] = excess  # type: ignore[index]
         return found
 
     def touching(self, key_a: str, key_b: str) -> bool:

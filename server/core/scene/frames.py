@@ -54,19 +54,23 @@ def _angles(nodes: Mapping[str, Node], changes: ChangeSet) -> dict[str, Any]:
     changed, as the array of all its angles (so a merged frame's newest array always
     matches the newest list); other motors one by one. A motor that left a robot is noted
     as turned (Scene.reparented), so the frame that changes the list sends it too."""
-    born, out, robots = changes.born, {}, {}
+    born, out = changes.born, {}
+    robots: dict[str, list[Any]] = {}
+    covered: set[str] = set()  # motors of the robots found: their roots are not looked up
     for i in changes.angles:
-        if i in nodes and i not in born:
-            root = nodes[i].root()
-            if root.lists_motors:
-                robots[root.id] = root
-            else:
-                out[i] = nodes[i].angle
+        if i in covered or i in born or i not in nodes:
+            continue
+        root = nodes[i].root()
+        if not root.lists_motors:
+            out[i] = nodes[i].angle
+        elif root.id not in robots:
+            robots[root.id] = motors = root.get_motors()  # type: ignore[attr-defined]
+            covered.update([motor.id for motor in motors])
     for i, fields in changes.updates.items():
         if "motors" in fields and i in nodes and i not in born:
-            robots[i] = nodes[i]
-    for i, robot in robots.items():
-        out[i] = [motor.angle for motor in robot.get_motors()]  # type: ignore[attr-defined]
+            robots[i] = nodes[i].get_motors()  # type: ignore[attr-defined]
+    for i, motors in robots.items():
+        out[i] = [motor.angle for motor in motors]
     return out
 
 
