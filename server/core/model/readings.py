@@ -9,8 +9,7 @@ the pad's own business).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Sequence
+from typing import TYPE_CHECKING, Any, NamedTuple, Sequence
 
 import numpy as np
 
@@ -23,9 +22,9 @@ if TYPE_CHECKING:
     from ..physics.raycast import RayTargets
 
 
-@dataclass(frozen=True)
-class Reading:
-    """What one sensor senses: the manual's six readings follow from these four."""
+class Reading(NamedTuple):
+    """What one sensor senses: the manual's six readings follow from these four (a named
+    tuple: a tick makes one per watched sensor)."""
 
     distance: float
     touch: float
@@ -38,26 +37,17 @@ class Reading:
                 "position": list(self.position), "objects": list(self.objects)}
 
 
-def read_sensors(targets: RayTargets, sensors: Sequence[Node],
-                 contacts_of: Callable[[Node], list[str]],
-                 poses_of: Callable[[list[Node]], tuple[np.ndarray, np.ndarray]] | None = None
-                 ) -> dict[str, Reading]:
-    """Readings of ``sensors`` (shapes already placed); ``contacts_of(sensor)`` lists ids,
-    ``poses_of(sensors)`` gives their world positions and quaternions as n×3 and n×4
-    arrays (by default the tree's poses)."""
+def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequence[Sequence[str]],
+                 origins: np.ndarray, quats: np.ndarray) -> dict[str, Reading]:
+    """Readings of ``sensors`` (shapes already placed), given what each one's part touches
+    and their world positions and quaternions (n×3 and n×4 arrays)."""
     if not sensors:
         return {}
-    sensors = list(sensors)
-    if poses_of is None:
-        poses = [sensor.world_pose() for sensor in sensors]
-        origins, quats = np.array([p for p, _ in poses]), np.array([q for _, q in poses])
-    else:
-        origins, quats = poses_of(sensors)
     # each sensor's +Y axis in the world: the second column of its rotation matrix
     x, y, z, w = quats.T
     directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
     _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
-    return {sensor.id: Reading(distance, touch, tuple(position), tuple(contacts_of(sensor)))
-            for sensor, distance, touch, position in zip(sensors, hits[:, 1].tolist(),
-                                                         touches.tolist(), origins.tolist())}
+    return {sensor.id: Reading(distance, touch, tuple(position), tuple(touching))
+            for sensor, distance, touch, position, touching in zip(
+                sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts)}

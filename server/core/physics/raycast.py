@@ -41,6 +41,7 @@ class RayTargets:
         self._rotations = np.empty((0, 3, 3))
         self._positions = np.empty((0, 3))
         self._centres = np.empty((0, 3))  # of the bounding spheres, in the world
+        self._local_centres = np.empty((0, 3))  # the same in each part's own frame
         self._radii = np.empty(0)
         self._moved: dict[str, Pose] = {}  # poses not yet taken into the arrays
         self._planes = ConvexPlanes()  # the convex shapes' planes, met in one go
@@ -65,6 +66,7 @@ class RayTargets:
         self._rotations = np.concatenate([self._rotations, np.eye(3)[None]])
         self._positions = np.concatenate([self._positions, np.zeros((1, 3))])
         self._centres = np.concatenate([self._centres, np.zeros((1, 3))])
+        self._local_centres = np.concatenate([self._local_centres, self._shapes[index].centre[None]])
         self._radii = np.append(self._radii, self._shapes[index].radius)
         self.move(key, pose)
 
@@ -83,10 +85,9 @@ class RayTargets:
         rows = np.array([self._rows[key] for key in self._moved])
         positions = np.array([position for position, _ in self._moved.values()], dtype=float)
         rotations = _matrices(np.array([q for _, q in self._moved.values()], dtype=float))
-        centres = np.stack([self._shapes[i].centre for i in self._shape_of[rows]])
         self._rotations[rows] = rotations
         self._positions[rows] = positions
-        self._centres[rows] = np.einsum("kij,kj->ki", rotations, centres) + positions
+        self._centres[rows] = np.einsum("kij,kj->ki", rotations, self._local_centres[rows]) + positions
         self._moved.clear()
 
     def remove(self, key: str) -> None:
@@ -94,7 +95,8 @@ class RayTargets:
         self._moved.pop(key, None)
         self._place_moved()
         row, last = self._rows.pop(key), len(self._keys) - 1
-        arrays = (self._shape_of, self._rotations, self._positions, self._centres, self._radii)
+        arrays = (self._shape_of, self._rotations, self._positions, self._centres, self._radii,
+                  self._local_centres)
         if row != last:
             moved = self._keys[last]
             self._keys[row] = moved
@@ -102,8 +104,8 @@ class RayTargets:
             for array in arrays:
                 array[row] = array[last]
         self._keys.pop()
-        (self._shape_of, self._rotations, self._positions, self._centres,
-         self._radii) = (array[:last] for array in arrays)
+        (self._shape_of, self._rotations, self._positions, self._centres, self._radii,
+         self._local_centres) = (array[:last] for array in arrays)
 
     def first_hits(self, origin: Sequence[float], direction: Sequence[float],
                    limits: Sequence[float], far: float) -> list[tuple[str, float]]:

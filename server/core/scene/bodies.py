@@ -13,6 +13,7 @@ itself (kinematic mode, as 1.0).
 from __future__ import annotations
 
 import logging
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
@@ -32,6 +33,19 @@ if TYPE_CHECKING:
     from ..physics.articulation import Articulation
 
 log = logging.getLogger(__name__)
+_CARRIED_SETS = 64  # sets of nodes whose carriers are kept (watched sensors: one set)
+
+
+@dataclass(frozen=True)
+class _Carried:
+    """Nodes (by index in a list of them) that parts carry: the part carrying each and the
+    node's offset from it; and the nodes posed by their tree instead (``own``)."""
+
+    own: list[int]
+    rows: np.ndarray
+    hosts: list[str]
+    positions: np.ndarray
+    quats: np.ndarray
 
 
 class SceneBodies:
@@ -60,6 +74,7 @@ class SceneBodies:
         # node id -> the part carrying it and its offset from it (None: none); until a build
         self._offsets: dict[str, tuple[str, Pose] | None] = {}
         self._unposed: set[str] = set()  # roots moved since their parts' poses were read
+        self._carried: dict[tuple[str, ...], _Carried] = {}  # node ids -> as world_poses needs
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
 
     @property
@@ -134,14 +149,22 @@ class SceneBodies:
                 self._forget_tree(root_id, tree)
         new: set[str] = set()
         if roots:
-            self._offsets.clear()  # and what it held of nodes deleted since
+            self._forget_offsets()  # and what it held of nodes deleted since
         for root_id in roots:
             new.update(self._build(root_id))
         self._forget_parts(old - new)
         return roots
 
+    def _forget_offsets(self) -> None:
+        self._offsets.clear()
+        self._carried.clear()
+
     def _forget_parts(self, keys: Iterable[str]) -> None:
-        """Parts without a body any more: their contacts end, their ray shapes go."""
+        """Parts without a body any more: their contacts end, their ray shapes go, and
+        nothing is carried by them."""
+        keys = list(keys)
+        if keys:
+            self._forget_offsets()
         for key in keys:
             self._poses.pop(key, None)
             self.tracker.removed(key)
@@ -198,22 +221,32 @@ class SceneBodies:
         sensor on a fingertip), for all such nodes at once; else the tree's own
         (:meth:`Node.world_pose`)."""
         self._read_poses()
+        key = tuple(node.id for node in nodes)
+        carried = self._carried.get(key)
+        if carried is None:
+            if len(self._carried) >= _CARRIED_SETS:
+                self._carried.clear()
+            carried = self._carried[key] = self._carriers(nodes)
         positions, quats = np.empty((len(nodes), 3)), np.empty((len(nodes), 4))
-        carried: list[tuple[int, str, Pose]] = []
-        for index, node in enumerate(nodes):
-            found = self._offset(node)
-            if found is None or found[0] not in self._poses:  # (a part whose tree failed)
-                positions[index], quats[index] = node.world_pose()
-            else:
-                carried.append((index, *found))
-        if carried:
-            hosts = [self._poses[host] for _, host, _ in carried]
-            at, turned = math3d.compose_arrays(
+        for index in carried.own:
+            positions[index], quats[index] = nodes[index].world_pose()
+        if carried.hosts:
+            hosts = [self._poses[host] for host in carried.hosts]
+            positions[carried.rows], quats[carried.rows] = math3d.compose_arrays(
                 np.array([p for p, _ in hosts]), np.array([q for _, q in hosts]),
-                np.array([o[0] for _, _, o in carried]), np.array([o[1] for _, _, o in carried]))
-            rows = [index for index, _, _ in carried]
-            positions[rows], quats[rows] = at, turned
+                carried.positions, carried.quats)
         return positions, quats
+
+    def _carriers(self, nodes: list[Node]) -> _Carried:
+        """Which of ``nodes`` their parts carry, and their offsets, as arrays."""
+        found = [self._offset(node) for node in nodes]
+        rows = [index for index, host in enumerate(found) if host is not None]
+        offsets = [found[index][1] for index in rows]  # type: ignore[index]
+        return _Carried(own=[index for index, host in enumerate(found) if host is None],
+                        rows=np.array(rows, dtype=np.int64),
+                        hosts=[found[index][0] for index in rows],  # type: ignore[index]
+                        positions=np.array([p for p, _ in offsets]).reshape(-1, 3),
+                        quats=np.array([q for _, q in offsets]).reshape(-1, 4))
 
     def _offset(self, node: Node) -> tuple[str, Pose] | None:
         """The unscaled part that carries ``node`` and the node's pose relative to it; None
@@ -298,9 +331,15 @@ class SceneBodies:
         return list(self.tracker.overlaps().of(part.id))
 
     def read(self, sensors: list[Node], exact: bool = True) -> dict[str, Reading]:
-        """Readings of ``sensors`` for the scene as it is now."""
+        """Readings of ``sensors`` for the scene as it is now (their contacts: exact, or as
+        of the last tick, which watched readings use)."""
         if not sensors:
             return {}
         self._read_poses()
-        return read_sensors(self._rays, sensors,
-                            lambda sensor: self.touching(sensor.host(), exact), self.world_poses)
+        hosts = [sensor.host() for sensor in sensors]  # type: ignore[attr-defined]
+        if exact:
+            contacts = [self.touching(host) for host in hosts]
+        else:
+            of = self.tracker.overlaps().of
+            contacts = [() if host is None else of(host.id) for host in hosts]
+        return read_sensors(self._rays, sensors, contacts, *self.world_poses(sensors))
