@@ -56,15 +56,15 @@ class Hand(Robot):
         """Subclasses call this once their parts are in place: these are the hand's motors."""
         self._built = list(self.get_motors())
 
-    def _motor(self, index: int) -> Motor | None:
-        """The hand's motor of this index, None when it was deleted or detached (looked
-        up again only when the scene's tree changed: every move of a node changes it)."""
+    def _motors_present(self) -> list[Motor | None]:
+        """The hand's motors by index, None for one deleted or detached (looked up again
+        only when the scene's tree changed: every move of a node changes it)."""
         version = self.scene.tree_version
         if self._present is None or self._present[0] != version:
             nodes = self.scene.nodes
             self._present = (version, [motor if motor.id in nodes and motor.root() is self
                                        else None for motor in self._built])
-        return self._present[1][index]
+        return self._present[1]
 
     @staticmethod
     def _check_finger(index: int) -> None:
@@ -96,9 +96,9 @@ class Hand(Robot):
 
     def _turn(self, turns: list[tuple[int, float | None]]) -> None:
         """Motors (by index) to -angle, those the hand still has, in one pass."""
-        motors = [(self._motor(index), angle) for index, angle in turns]
+        present = self._motors_present()
         self.scene.turn([(motor, None if angle is None else -angle)
-                         for motor, angle in motors if motor is not None])
+                         for index, angle in turns if (motor := present[index]) is not None])
 
 
 class EdgedHand(Hand):

@@ -142,10 +142,12 @@ class Scene:
             return
         before = [(motor, motor.angle) for motor, _ in turns]
         self.journal.record(lambda: self.turn(before))
+        ids = []
         for motor, angle in turns:
             motor.angle = angle
-        self.feed.turned(motor.id for motor, _ in turns)
-        self.bodies.turned(motor.id for motor, _ in turns)
+            ids.append(motor.id)
+        self.feed.turned(ids)
+        self.bodies.turned(ids)
         self._moved()
 
     def reparented(self, node: Node, old_parent: Node | None) -> None:
