@@ -154,7 +154,10 @@ class SceneHub:
         self.heard = time.monotonic()
         for event in events:
             kind = event[0]
-            self.asleep = kind == "idle"  # stopped ticking until it is sent a command
+            if kind == "idle":  # stopped ticking until it is sent a command
+                self.asleep = True
+            elif kind != "reply":  # (figures are answered without waking it)
+                self.asleep = False
             if kind == "frame":
                 self.broadcast(event[1])
             elif kind == "answers":

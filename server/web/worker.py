@@ -119,6 +119,9 @@ class SceneWorker:
                 self._flush()
                 if not self._receive(None):
                     return
+                if not self._commands:  # only figures asked for (answered): sleep on
+                    self._flush()
+                    continue
                 deadline = time.monotonic()  # and tick at once: the clock catches up
                 continue
             now = time.monotonic()

@@ -114,10 +114,17 @@ def test_openapi_documents_the_routes(server):
         assert path in paths
 
 
-def test_metrics_report_ticks(server):
-    first = server.get("/api/metrics")["scenes"]["default"]["ticks"]
+def test_metrics_report_ticks_of_a_watched_scene_and_do_not_wake_a_sleeping_one(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as ws:
+        ws.recv(timeout=10)
+        first = server.get("/api/metrics")["scenes"][scene_name]["ticks"]
+        time.sleep(0.2)
+        assert server.get("/api/metrics")["scenes"][scene_name]["ticks"] > first
+    eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["asleep"], timeout=10)
+    asleep = server.get("/api/metrics")["scenes"][scene_name]
     time.sleep(0.2)
-    assert server.get("/api/metrics")["scenes"]["default"]["ticks"] > first
+    again = server.get("/api/metrics")["scenes"][scene_name]
+    assert again["asleep"] and again["ticks"] == asleep["ticks"]
 
 
 def test_metrics_give_recent_tick_percentiles_and_request_rates(server, scene_name):
@@ -134,11 +141,14 @@ def test_metrics_give_recent_tick_percentiles_and_request_rates(server, scene_na
     assert 0 <= figures["cpuPercent"] and figures["cpuSeconds"] > 0
 
 
-def test_metrics_in_prometheus_text(server):
-    with urllib.request.urlopen(f"{server.http}/api/metrics?format=prometheus", timeout=10) as response:
-        assert response.headers["Content-Type"].startswith("text/plain; version=0.0.4")
-        lines = response.read().decode().splitlines()
-    ticks = next(line for line in lines if line.startswith('vp_ticks_total{scene="default"}'))
+def test_metrics_in_prometheus_text(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as ws:
+        ws.recv(timeout=10)
+        eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["ticks"] > 0)
+        with urllib.request.urlopen(f"{server.http}/api/metrics?format=prometheus", timeout=10) as response:
+            assert response.headers["Content-Type"].startswith("text/plain; version=0.0.4")
+            lines = response.read().decode().splitlines()
+    ticks = next(line for line in lines if line.startswith(f'vp_ticks_total{{scene="{scene_name}"}}'))
     assert float(ticks.split()[-1]) > 0
     assert "# TYPE vp_tick_ms_p95 gauge" in lines
     with pytest.raises(urllib.error.HTTPError) as caught:

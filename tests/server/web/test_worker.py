@@ -114,3 +114,16 @@ def test_a_scene_nobody_is_in_stops_ticking_and_its_clock_catches_up_when_asked(
     events_until(worker, "admit")
     frames = events_until(worker, "frame", 5)  # someone is in: 60 ticks a second again
     assert len(frames) == 5
+
+
+def test_asking_a_sleeping_scene_for_its_figures_does_not_wake_it(worker):
+    events_until(worker, "idle")
+    for number in range(3):
+        worker.send([("metrics", number)])
+        (_, _, ok, figures), = events_until(worker, "reply")
+        assert ok and figures["ticks"] <= 2
+        assert worker.poll(5) and worker.recv() == [("idle",)]  # asleep again at once
+    assert not worker.poll(0.3)  # and nothing more: it did not tick for the questions
+    worker.send([("read", 9, scene_clock, ())])
+    _, _, ok, body = events_until(worker, "reply")[0]
+    assert json.loads(body)["seq"] <= 3
