@@ -63,6 +63,7 @@
  * @property {number} seq
  * @property {number} time
  * @property {Object<string, *>} camera
+ * @property {Object<string, *>} physics
  * @property {Array<Object<string, *>>} nodes
  * @property {Array<Array<string>>} contacts
  */
@@ -95,8 +96,10 @@
  * @property {*} [poses]
  * @property {*} [updates]
  * @property {Object<string, *>} [camera]
+ * @property {Object<string, *>} [physics]
  * @property {Object<string, *>} [contacts]
  * @property {Object<string, Object<string, *>>} [sensors]
+ * @property {Object<string, number>} [forces]
  * @property {Object<string, number>} [limited]
  */
 

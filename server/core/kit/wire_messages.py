@@ -64,6 +64,7 @@ class Snapshot(TypedDict):
     seq: int
     time: float
     camera: dict[str, Any]
+    physics: dict[str, Any]
     nodes: list[dict[str, Any]]
     contacts: list[list[str]]
 
@@ -93,8 +94,10 @@ class Frame(TypedDict):
     poses: NotRequired[Any]
     updates: NotRequired[Any]
     camera: NotRequired[dict[str, Any]]
+    physics: NotRequired[dict[str, Any]]
     contacts: NotRequired[dict[str, Any]]
     sensors: NotRequired[dict[str, dict[str, Any]]]
+    forces: NotRequired[dict[str, float]]
     limited: NotRequired[dict[str, int]]
 
 

@@ -8,6 +8,7 @@ from typing import Any
 from ...errors import OutOfRange
 from ..kit import math3d
 from ..kit.math3d import Pose
+from ..physics.dynamics import DEFAULT_MAX_TORQUE
 from . import part_figures
 from .node import World
 from .parts import Part
@@ -39,6 +40,8 @@ class Motor(Part):
                              f"[{self.min}, {self.max}]", object=node_id)
         self.default = clamp(default, self.min, self.max)
         self.angle = self.default
+        self.target = self.angle  # dynamic mode: what the motor drives toward (angle: where it is)
+        self.max_torque: float | None = None  # N·m in dynamic mode (None: DEFAULT_MAX_TORQUE)
         self.flipped = False
         self.name: str | None = None
 
@@ -47,8 +50,23 @@ class Motor(Part):
         return self.position, math3d.multiply(self.quaternion, turn)
 
     def get_angle(self) -> float:
-        """Manual ``getAngle()``."""
+        """Manual ``getAngle()``: in dynamic mode the joint's real angle (a finger stopped by
+        an object reads where it stopped)."""
         return self.angle
+
+    @property
+    def saved_target(self) -> float | None:
+        """``target`` as documents keep it: only where it is not the angle."""
+        return None if self.target == self.angle else self.target
+
+    def set_max_torque(self, torque: float) -> Motor:
+        """The most torque (N·m) the motor drives with in dynamic mode; returns the motor."""
+        self._assign("max_torque", float(torque))
+        return self
+
+    def get_max_torque(self) -> float:
+        """The motor's torque bound in dynamic mode (N·m)."""
+        return DEFAULT_MAX_TORQUE if self.max_torque is None else self.max_torque
 
     def set_angle(self, angle: float | None) -> None:
         """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""
@@ -81,7 +99,8 @@ class Motor(Part):
 
     def properties(self) -> dict[str, Any]:
         return {**super().properties(), "axis": self.axis, "min": self.min, "max": self.max,
-                "angle": self.angle, "flipped": self.flipped, "name": self.name}
+                "angle": self.angle, "flipped": self.flipped, "name": self.name,
+                "maxTorque": self.get_max_torque()}
 
 
 class AxisMotor(Motor):

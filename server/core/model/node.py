@@ -11,6 +11,7 @@ from ..kit.journal import Journal
 from ..kit.limits import Limits
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
 from ..physics.assets import AssetLibrary
+from ..physics.dynamics import Physics
 from .watches import Watches
 
 UNIT_SCALE: Vec3 = (1.0, 1.0, 1.0)
@@ -22,6 +23,8 @@ class Bodies(Protocol):
     def read(self, sensors: list[Node], exact: bool = True) -> dict[str, Any]: ...
 
     def touching(self, part: Node | None, exact: bool = True) -> list[str]: ...
+
+    def force_on(self, part: Node | None) -> float: ...
 
 
 class World(Protocol):
@@ -35,6 +38,7 @@ class World(Protocol):
     bodies: Bodies
     nodes: Mapping[str, Node]
     tree_version: int  # counts the tree's changes (robots list their parts again)
+    physics: Physics  # kinematic or dynamic, and the options
     pose_epoch: int  # counts changes of any pose: world poses cached before it are stale
 
     def register(self, node: Node) -> None: ...

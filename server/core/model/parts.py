@@ -6,8 +6,9 @@ from typing import Any, Sequence
 
 from ..kit.math3d import ORIGIN, Vec3, euler_to_quat
 from ..kit.numbers import Finite
+from ..physics.geometry import scaled, volume
 from . import part_figures
-from .node import Node, Slot, World
+from .node import UNIT_SCALE, Node, Slot, World
 
 
 class Part(Node):
@@ -19,6 +20,9 @@ class Part(Node):
     def __init__(self, scene: World, node_id: str) -> None:
         super().__init__(scene, node_id)
         self._slot_count = 0
+        self.mass: float | None = None      # kg in dynamic mode (None: volume × density)
+        self.friction: float | None = None  # lateral friction in dynamic mode (None: the scene's)
+        self.static = False                 # a top-level part that never moves in dynamic mode
 
     def new_slot(self, position: Vec3 = ORIGIN, rotation: Vec3 | None = None,
                  order: str = "XYZ") -> Slot:
@@ -51,13 +55,51 @@ class Part(Node):
         self._link(target)
         return self
 
+    # --- dynamic mode (not in the manual) -------------------------------------------
+
+    def set_mass(self, mass: float) -> Part:
+        """The part's mass in kilograms in dynamic mode (instead of its volume times the
+        scene's density); returns the part."""
+        self._assign("mass", float(mass))
+        return self
+
+    def get_mass(self) -> float:
+        """The part's mass in dynamic mode (kg): its own, or its volume (as stretched by the
+        scales above it) times the scene's density; 0 for a part without a body."""
+        if self.mass is not None:
+            return self.mass
+        geometry = self.geometry()
+        if not self.physical or geometry is None:
+            return 0.0
+        scale = self.world_scale()
+        shape = geometry if scale == UNIT_SCALE else scaled(geometry, scale)
+        return self.scene.physics.density * volume(shape)
+
+    def set_friction(self, friction: float) -> Part:
+        """The part's friction coefficient in dynamic mode (instead of the scene's); returns
+        the part."""
+        self._assign("friction", float(friction))
+        return self
+
+    def set_static(self, static: bool = True) -> Part:
+        """In dynamic mode a part at the top of its tree never moves (a table, a box's
+        walls); attached to anything it moves with it. Returns the part."""
+        self._assign("static", bool(static))
+        return self
+
+    @property
+    def saved_static(self) -> bool | None:
+        """``static`` as documents keep it: only when set."""
+        return True if self.static else None
+
     def geometry(self) -> dict[str, Any] | None:
         """What the part looks like (and, when physical, its collision envelope)."""
         return None
 
     def properties(self) -> dict[str, Any]:
         geometry = self.geometry()
-        return {"geometry": geometry, "physical": self.physical} if geometry else {}
+        shape = {"geometry": geometry, "physical": self.physical} if geometry else {}
+        return {**shape, "mass": self.mass, "friction": self.friction, "static": self.static}
 
 
 class Ball(Part):

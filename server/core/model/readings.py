@@ -23,24 +23,27 @@ if TYPE_CHECKING:
 
 
 class Reading(NamedTuple):
-    """What one sensor senses: the manual's six readings follow from these four (a named
-    tuple: a tick makes one per watched sensor)."""
+    """What one sensor senses: the manual's six readings follow from the first four, and
+    ``force`` is what presses on its part (dynamic mode). A named tuple: a tick makes one
+    per watched sensor."""
 
     distance: float
     touch: float
     position: Vec3
     objects: tuple[str, ...]
+    force: float = 0.0
 
     def wire(self) -> dict[str, Any]:
         """The reading as frames carry it."""
         return {"distance": wire_number(self.distance), "touch": self.touch,
-                "position": list(self.position), "objects": list(self.objects)}
+                "position": list(self.position), "objects": list(self.objects),
+                "force": self.force}
 
 
 def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequence[Sequence[str]],
-                 origins: np.ndarray, quats: np.ndarray) -> dict[str, Reading]:
+                 forces: Sequence[float], origins: np.ndarray, quats: np.ndarray) -> dict[str, Reading]:
     """Readings of ``sensors`` (shapes already placed), given what each one's part touches
-    and their world positions and quaternions (n×3 and n×4 arrays)."""
+    and how hard, and their world positions and quaternions (n×3 and n×4 arrays)."""
     if not sensors:
         return {}
     # each sensor's +Y axis in the world: the second column of its rotation matrix
@@ -48,6 +51,6 @@ def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequenc
     directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
     _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
-    return {sensor.id: Reading(distance, touch, tuple(position), tuple(touching))
-            for sensor, distance, touch, position, touching in zip(
-                sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts)}
+    return {sensor.id: Reading(distance, touch, tuple(position), tuple(touching), force)
+            for sensor, distance, touch, position, touching, force in zip(
+                sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts, forces)}

@@ -67,6 +67,11 @@ class Sensor(Part):
         """Manual ``senseObjects()``: ids of what the sensor's part touches ("ground" too)."""
         return self.scene.bodies.touching(self.host())
 
+    def sense_force(self) -> float:
+        """Newtons pressing on the sensor's part at the last tick, summed over its contacts
+        (dynamic mode; 0 in kinematic mode, where nothing pushes)."""
+        return self.scene.bodies.force_on(self.host())
+
     def sense_collision(self) -> bool:
         """Manual ``senseCollision()``: whether the sensor's part touches anything."""
         return bool(self.sense_objects())

@@ -34,7 +34,9 @@ def structure_of(root: Node) -> Articulation:
     geometry = _collision_geometry(root, base_scale)
     _walk(root, _Place(-1), NO_POSE, base_scale, links)  # a root motor's turn: in the base pose
     return Articulation(root.id, root.id if geometry is not None else None, geometry,
-                        tuple(links), base_scale)
+                        tuple(links), base_scale, getattr(root, "mass", None),
+                        getattr(root, "friction", None), mounted=root.lists_motors,
+                        static=bool(getattr(root, "static", False)) or root.is_motor)
 
 
 def base_pose(root: Node) -> Pose:
@@ -54,7 +56,7 @@ def _walk(node: Node, place: _Place, frame: Pose, scale: Vec3, links: list[Link]
         if child.is_motor:
             _motor(child, place, before, child_scale, links)
         elif child.physical and child.in_scene():
-            link = _add(links, place, before, child.id, _collision_geometry(child, child_scale),
+            link = _add(links, place, before, child, _collision_geometry(child, child_scale),
                         child_scale)
             _walk(child, _Place(link), links[link].shape, child_scale, links)  # the part's frame
         else:
@@ -71,21 +73,25 @@ def _motor(motor: Any, place: _Place, before: Pose, scale: Vec3, links: list[Lin
         if not stops and not motor.physical:
             return  # nothing physical turns with it: no link needed
         link = _add(links, _Place(place.link, (joint, before)), NO_POSE,
-                    motor.id if motor.physical else None,
+                    motor if motor.physical else None,
                     _collision_geometry(motor, scale) if motor.physical else None, scale)
         _walk(motor, _Place(link), NO_POSE, scale, links)
     else:
         _walk(motor, _Place(place.link, (joint, before)), NO_POSE, scale, links)
 
 
-def _add(links: list[Link], place: _Place, frame: Pose, part: str | None,
+def _add(links: list[Link], place: _Place, frame: Pose, part: Node | None,
          geometry: dict[str, Any] | None, scale: Vec3 = UNIT_SCALE) -> int:
-    """A new link at ``frame`` relative to the place (through its pending joint if any)."""
+    """A new link at ``frame`` relative to the place (through its pending joint if any),
+    carrying ``part`` (with its mass and friction, when it was given any)."""
+    carried = {} if part is None else {"mass": getattr(part, "mass", None),
+                                       "friction": getattr(part, "friction", None)}
+    part_id = None if part is None else part.id
     if place.pending is not None:
         joint, origin = place.pending
-        links.append(Link(place.link, origin, joint, part, frame, geometry, scale))
+        links.append(Link(place.link, origin, joint, part_id, frame, geometry, scale, **carried))
     else:
-        links.append(Link(place.link, frame, None, part, NO_POSE, geometry, scale))
+        links.append(Link(place.link, frame, None, part_id, NO_POSE, geometry, scale, **carried))
     return len(links) - 1
 
 

@@ -47,6 +47,8 @@ class Link:
     shape: Pose = NO_POSE   # the part's frame in this link's frame
     geometry: dict[str, Any] | None = field(default=None, compare=False)
     scale: Vec3 = UNSCALED  # the part's world scale (its geometry is already stretched by it)
+    mass: float | None = None      # kg, given by setMass (None: from volume and density)
+    friction: float | None = None  # given by setFriction (None: the scene's)
 
 
 @dataclass(frozen=True)
@@ -62,6 +64,10 @@ class Articulation:
     base_geometry: dict[str, Any] | None = field(default=None, compare=False)
     links: tuple[Link, ...] = ()
     base_scale: Vec3 = UNSCALED
+    base_mass: float | None = None      # as Link.mass, for the base's part
+    base_friction: float | None = None  # as Link.friction
+    mounted: bool = False  # a robot: in dynamic mode its base is held where it is put
+    static: bool = False   # never moves in dynamic mode (a table)
 
     def scales(self) -> list[Vec3]:
         """The world scale of every physical part, in :meth:`parts` order."""

@@ -88,6 +88,7 @@ class ContactTracker:
         self.unrecorded = 0  # touching pairs left out at the last update (max_pairs)
         self.tests = 0       # pair tests of the last update
         self._snapshot: Overlaps | None = Overlaps(())
+        self.crowding = True  # dynamic mode: off (Bullet pairs everything: nothing may fall through)
 
     # --- bodies --------------------------------------------------------------------------
 
@@ -103,7 +104,8 @@ class ContactTracker:
             grown = np.zeros((len(new), 3))
             self._low, self._high = np.vstack([self._low, grown]), np.vstack([self._high, grown])
         self._stale.update(dict.fromkeys(keys))
-        self._crowded.update(keys if made else new)
+        if self.crowding:
+            self._crowded.update(keys if made else new)
         self._dirty.update(dict.fromkeys(key for key in keys if key in self._crowded))
 
     def moved(self, keys: tuple[str, ...]) -> None:
@@ -117,7 +119,10 @@ class ContactTracker:
             self._dirty.update(dict.fromkeys(key for key in keys if key in crowded))
 
     def made_again(self) -> None:
-        """Every body was made afresh (a new physics client): all start in the crowd."""
+        """Every body was made afresh (a new physics client): all start in the crowd (none
+        without crowding)."""
+        if not self.crowding:
+            self._crowded.clear()
         self.placed(list(self._keys), made=True)
 
     def _ungroup_stale(self) -> None:
@@ -192,6 +197,8 @@ class ContactTracker:
             if (a in rows or a == GROUND) and (b in rows or b == GROUND):  # not a body gone
                 self.tests += 1
                 self._set(a, b, self._bodies.touching_many(a, [b])[0])
+        if not self.crowding:
+            return
         neighbours = Counter(chain.from_iterable(found))  # in C; the ground's pairs out below
         neighbours.pop(GROUND, None)
         if not neighbours or max(neighbours.values()) <= CROWD:

@@ -45,8 +45,9 @@ def _quiet_import():  # type: ignore[no-untyped-def]
 
 pybullet = _quiet_import()
 
-from ..kit.math3d import Pose, Vec3
+from ..kit.math3d import Pose, Vec3, rotate
 from .articulation import NO_POSE, Articulation, multibody_arguments
+from .dynamics import Dynamics, Physics, forces_by_part
 from .geometry import solid_points
 from .hulls import HAIR
 
@@ -60,8 +61,12 @@ TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geo
 # are measured one by one, a budget a tick (contacts.py).
 _BODY_GROUP, _BODY_MASK = 2, 1 | 2
 _CROWD_GROUP, _CROWD_MASK = 4, 0
-# Parts of one tree meet each other too, neighbours included (spec: self-collision).
+# Parts of one tree meet each other too, neighbours included (spec: self-collision). In
+# dynamic mode a link does not meet the links it hangs from: they touch where they are
+# joined, and the solver would push the joint apart.
 _SELF_COLLISION = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_INCLUDE_PARENT
+_SELF_COLLISION_DYNAMIC = pybullet.URDF_USE_SELF_COLLISION | \
+    pybullet.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS
 # Manifold points that drift this far from where they were found are dropped (a part
 # placed elsewhere keeps no stale point beyond it); Bullet's default is 0.02.
 BREAKING_THRESHOLD = 0.0005
@@ -81,6 +86,10 @@ class _Built:
     joints: dict[str, int]       # motor id -> link index of its joint
     joint_links: list[int]       # the same link indices, in that order
     part_links: list[int]        # link indices that carry parts, in tree.parts() order
+    mount: int | None = None     # dynamic mode: a robot's mount (a constraint)
+    # dynamic mode: centres of mass in their parts' frames (Bullet poses bodies by them)
+    base_centre: Vec3 = (0.0, 0.0, 0.0)
+    part_centres: list[Vec3] | None = None  # of the parts on links, in part_links order
 
 
 class PhysicsWorld:
@@ -90,7 +99,10 @@ class PhysicsWorld:
     a lone part is a tree with only a base. Shapes of equal geometry share one collision shape.
     """
 
-    def __init__(self) -> None:
+    def __init__(self, physics: Physics = Physics()) -> None:
+        self.physics = physics
+        self.dynamics: Dynamics | None = None  # in dynamic mode
+        self.forces: dict[str, float] = {}  # dynamic mode: newtons on each part, last step
         self._client: int | None = None
         self._trees: dict[str, _Built] = {}
         self._where: dict[str, tuple[int, int]] = {}  # part id -> (body, link); -1: the base
@@ -108,6 +120,8 @@ class PhysicsWorld:
         pybullet.setCollisionFilterGroupMask(self._ground, -1, 1, -1, physicsClientId=self._client)
         pybullet.setPhysicsEngineParameter(contactBreakingThreshold=BREAKING_THRESHOLD,
                                            physicsClientId=self._client)
+        self.dynamics = Dynamics(pybullet, self._client, self.physics) \
+            if self.physics.dynamic else None
         self._where[GROUND] = (self._ground, -1)
         # body -> the part of each link, the base's last (so that link -1 finds it)
         self._keys_of: dict[int, list[str | None]] = {self._ground: [GROUND]}
@@ -118,8 +132,10 @@ class PhysicsWorld:
         pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=self._client)
 
     def crowd(self, key: str, crowded: bool) -> None:
-        """Let Bullet pair the part ``key`` with the ground and other parts, or (in a crowd) with nothing."""
-        self._filter(*self._where[key], crowded=crowded)
+        """Let Bullet pair the part ``key`` with the ground and other parts, or (in a crowd)
+        with nothing; in dynamic mode everything meets everything (it must not fall through)."""
+        if self.dynamics is None:
+            self._filter(*self._where[key], crowded=crowded)
 
     def close(self) -> None:
         """Release the PyBullet client."""
@@ -142,16 +158,29 @@ class PhysicsWorld:
 
     def add_tree(self, tree: Articulation, base_pose: Pose, angles: Mapping[str, float]) -> None:
         """Build ``tree`` as one multibody, its base at ``base_pose``, its joints at ``angles``."""
-        client = self._client
+        client, dynamics = self._client, self.dynamics
         arguments = multibody_arguments(tree, base_pose, self._shape, pybullet.JOINT_REVOLUTE,
                                         pybullet.JOINT_FIXED)
-        body = pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION, **arguments)
+        if dynamics is not None:
+            arguments["baseMass"], arguments["linkMasses"] = dynamics.masses(tree)
+            base_centre, centres = dynamics.centres(tree)
+            arguments["baseInertialFramePosition"] = base_centre
+            arguments["linkInertialFramePositions"] = [
+                tuple(a + b for a, b in zip(link.shape[0], rotate(link.shape[1], centre)))
+                for link, centre in zip(tree.links, centres)]
+        body = pybullet.createMultiBody(
+            physicsClientId=client, flags=_SELF_COLLISION if dynamics is None else _SELF_COLLISION_DYNAMIC,
+            **arguments)
         joints = {joint.motor: k for k, joint in tree.joints()}
         links = [k for k, link in enumerate(tree.links) if link.part is not None]
         built = _Built(tree, body, base_pose, [], joints, list(joints.values()), links)
         self._trees[tree.root] = built
-        for link in range(-1, len(tree.links)):
-            self._filter(body, link, crowded=True)  # until its neighbourhood is known
+        for link in range(-1, len(tree.links)):  # kinematic: crowded until its neighbourhood is known
+            self._filter(body, link, crowded=dynamics is None)
+        if dynamics is not None:
+            built.mount = dynamics.made(body, tree, base_pose, built.joint_links)
+            built.base_centre = base_centre
+            built.part_centres = [centres[k] for k in links]
         places = ([(tree.base_part, -1, tree.base_geometry)] if tree.base_part is not None else []) \
             + [(tree.links[k].part, k, tree.links[k].geometry) for k in links]
         keys_of = self._keys_of[body] = [None] * (len(tree.links) + 1)
@@ -171,10 +200,16 @@ class PhysicsWorld:
         self.removals += 1
 
     def move_base(self, root: str, pose: Pose) -> None:
-        """Place the base of the tree of ``root`` at a world pose."""
+        """Place the base of the tree of ``root`` at a world pose (dynamic mode: a robot's
+        mount moves there and its base follows; anything else is put there at rest)."""
         built = self._trees[root]
-        pybullet.resetBasePositionAndOrientation(built.body, pose[0], pose[1],
-                                                 physicsClientId=self._client)
+        if self.dynamics is None:
+            pybullet.resetBasePositionAndOrientation(built.body, pose[0], pose[1],
+                                                     physicsClientId=self._client)
+        elif built.mount is not None:
+            self.dynamics.mount(built.mount, pose)
+        else:  # a script's setPosition puts even a static part elsewhere
+            self.dynamics.teleport(built.body, _shifted(pose, built.base_centre))
         built.base_pose = pose
 
     def turn(self, root: str, angles: list[float]) -> None:
@@ -199,7 +234,11 @@ class PhysicsWorld:
             states = pybullet.getLinkStates(built.body, built.part_links,
                                             computeForwardKinematics=1,
                                             physicsClientId=self._client)
-            poses += [(state[0], state[1]) for state in states]
+            if built.part_centres is None:
+                poses += [(state[0], state[1]) for state in states]
+            else:  # Bullet gave where their centres of mass are
+                poses += [_shifted((state[0], state[1]), centre, -1)
+                          for state, centre in zip(states, built.part_centres)]
         return keys, poses
 
     def _shape(self, geometry: dict[str, Any], frame: Pose = NO_POSE) -> int:
@@ -229,10 +268,31 @@ class PhysicsWorld:
         """Place the lone part ``key`` at a world pose."""
         self.move_base(key, pose)
 
-    def move_many(self, keys: list[str], poses: list[Pose]) -> None:
-        """Place the lone parts of ``keys`` at their world poses."""
-        for key, pose in zip(keys, poses):
-            self.move_base(key, pose)
+    # --- dynamic mode --------------------------------------------------------------------
+
+    def drive(self, root: str, targets: list[float], torques: list[float]) -> None:
+        """Dynamic mode: the joints of the tree of ``root`` toward ``targets`` (in the order
+        of its joints), each with at most its torque."""
+        built = self._trees[root]
+        if built.joints and self.dynamics is not None:
+            self.dynamics.drive(built.body, built.joint_links, targets, torques)
+
+    def motion(self, root: str) -> tuple[Pose | None, list[float]]:
+        """Dynamic mode: where the base of the tree of ``root`` is (None: static) and its
+        joints' real angles, in the order of its joints."""
+        built, dynamics = self._trees[root], self.dynamics
+        assert dynamics is not None
+        pose = None if built.tree.static else \
+            _shifted(dynamics.base_pose(built.body), built.base_centre, -1)
+        angles = dynamics.angles(built.body, built.joint_links) if built.joints else []
+        if pose is not None:
+            built.base_pose = pose
+        built.angles = angles
+        return pose, angles
+
+    def roots(self) -> list[str]:
+        """The roots of every tree built."""
+        return list(self._trees)
 
     # --- memory --------------------------------------------------------------------------
 
@@ -241,9 +301,12 @@ class PhysicsWorld:
         return self.removals >= REBUILD_AFTER_REMOVALS or \
             len(self._shapes) > 2 * len(self._where) + REBUILD_AFTER_REMOVALS // 10
 
-    def rebuild(self) -> None:
-        """Move every tree into a fresh PyBullet client and release the old one."""
+    def rebuild(self, physics: Physics | None = None) -> None:
+        """Move every tree into a fresh PyBullet client (with other ``physics``, when
+        given) and release the old one; trees start at rest where they are."""
         trees = list(self._trees.values())
+        self.physics = physics or self.physics
+        self.forces = {}
         self.close()
         self._trees, self._where, self._padding = {}, {}, {}  # every part crowded again
         self._connect()
@@ -281,10 +344,14 @@ class PhysicsWorld:
         crowd) and the ground: for each pair with contact points, by how much its nearest
         point misses touching (≤ 0: touching, by the measure of :meth:`touching`)."""
         client, padding, keys_of = self._client, self._padding, self._keys_of
-        pybullet.performCollisionDetection(physicsClientId=client)
+        if self.dynamics is None:  # (dynamic mode: its last step detected them)
+            pybullet.performCollisionDetection(physicsClientId=client)
         found: dict[tuple[str, str], float] = {}
         nearest, inf, tolerance = found.get, math.inf, TOUCH_TOLERANCE
-        for point in pybullet.getContactPoints(physicsClientId=client):
+        points = pybullet.getContactPoints(physicsClientId=client)
+        if self.dynamics is not None:
+            self.forces = forces_by_part(points, keys_of)
+        for point in points:
             a, b = keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]
             pair = (a, b) if a < b else (b, a)
             excess = point[8] - tolerance + padding[a] + padding[b]  # type: ignore[index]
@@ -311,6 +378,14 @@ class PhysicsWorld:
             out.append(any(point[8] <= reach for point in closest(
                 a, b, tolerance, link_a, link_b, physicsClientId=client)))
         return out
+
+
+def _shifted(pose: Pose, centre: Vec3, sign: int = 1) -> Pose:
+    """A part's pose as the pose of its centre of mass (or back, ``sign`` −1)."""
+    if centre == (0.0, 0.0, 0.0):
+        return pose
+    offset = rotate(pose[1], centre)
+    return tuple(p + sign * o for p, o in zip(pose[0], offset)), pose[1]  # type: ignore[return-value]
 
 
 def shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:

@@ -185,3 +185,29 @@ def solid_points(geometry: dict[str, Any]) -> list[list[float]]:
     if kind == "triangles":
         return triangle_arrays(geometry)[0].tolist()
     return geometry["points"]
+
+
+def volume(geometry: dict[str, Any]) -> float:
+    """The volume a physical geometry encloses (m³): exact for spheres and boxes, the
+    convex hull's for the rest (what contacts and dynamics measure them by)."""
+    kind = geometry["kind"]
+    if kind == "sphere":
+        return 4 / 3 * math.pi * geometry["radius"] ** 3
+    if kind == "box":
+        return float(np.prod(geometry["size"]))
+    return float(convex_hull(solid_points(geometry)).volume)
+
+
+def centroid(geometry: dict[str, Any]) -> tuple[float, float, float]:
+    """The centre of the volume a physical geometry encloses, in its own frame (that of
+    its convex hull for the kinds measured by their hulls)."""
+    if geometry["kind"] in ("sphere", "box"):
+        return (0.0, 0.0, 0.0)
+    hull = convex_hull(solid_points(geometry))
+    corners = hull.points[hull.simplices]  # (faces, 3, 3)
+    inside = hull.points[hull.vertices].mean(axis=0)
+    # the hull as tetrahedra from a point inside: their volumes weigh their centres
+    a, b, c = corners[:, 0] - inside, corners[:, 1] - inside, corners[:, 2] - inside
+    weights = np.abs(np.einsum("ij,ij->i", a, np.cross(b, c)))
+    centres = inside + (corners.sum(axis=1) - 3 * inside) / 4
+    return tuple(float(x) for x in (weights @ centres) / weights.sum())  # type: ignore[return-value]

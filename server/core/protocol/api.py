@@ -17,10 +17,13 @@ Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) �
 ``contact`` a part reference or "ground" · ``quaternion`` [x, y, z, w], not of zero length
 (normalised) · ``scale`` [x, y, z], each 0 to 1000 · ``geometry`` a SceneMesh's geometry
 (:mod:`server.core.physics.geometry`) · ``transforms`` {id: [px, py, pz, qx, qy, qz, qw] with
-sx, sy, sz optionally after}.
+sx, sy, sz optionally after} · ``mode`` 'kinematic' or 'dynamic' · ``options`` an object of
+physics options (checked by :class:`server.core.physics.dynamics.Physics`) · ``mass`` kg,
+above 0, at most 1e9 · ``friction`` 0 to 10 · ``torque`` N·m, 0 to 1e12.
 
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
-or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z].
+or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z] ·
+``physics`` the scene's physics (``{"mode", "gravity", …}``).
 A method marked ``client`` is handed the calling client's id (``watch`` is per client).
 """
 
@@ -129,6 +132,9 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("setCameraTarget", (Param("target", "point"),)),
         Method("getTime", returns="number", mutates=False),
         Method("setTransforms", (Param("transforms", "transforms"),)),
+        # not in the manual: dynamic mode (server.core.physics.dynamics)
+        Method("setPhysics", (Param("mode", "mode"), Param("options", "options", None))),
+        Method("getPhysics", returns="physics", mutates=False),
     )),
     TypeSpec("Slot", None, (Param("position", "point", ORIGIN),),
              (POSITION, ROTATION, QUATERNION, SCALE)),
@@ -137,13 +143,21 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("attachToSlot", (Param("parent", "node", destination=True),
                                 Param("slot", "slot", 0, destination=True)), returns="self"),
         POSITION, ROTATION, QUATERNION, SCALE, VISIBLE, KEEP,
+        # not in the manual: a part's body in dynamic mode (server.core.physics.dynamics)
+        Method("setMass", (Param("mass", "mass"),), returns="self"),
+        Method("getMass", returns="number", mutates=False),
+        Method("setFriction", (Param("friction", "friction"),), returns="self"),
+        Method("setStatic", (Param("static", "bool", True),), returns="self"),
     ), callbacks=("beginContact", "endContact")),
     TypeSpec("Motor", "Part", (Param("axis", "axis"), Param("min", "limit", -math.inf),
                                Param("max", "limit", math.inf), Param("def", "number", 0.0)),
              (Method("setName", (Param("name", "string"),), returns="self"),
               Method("getAngle", returns="number", mutates=False),
               Method("setAngle", (Param("angle", "angle"),), access="steer"),
-              Method("flip", (Param("bool", "bool", True),), returns="self"))),
+              Method("flip", (Param("bool", "bool", True),), returns="self"),
+              # not in the manual: what the motor drives with in dynamic mode
+              Method("setMaxTorque", (Param("torque", "torque"),), returns="self"),
+              Method("getMaxTorque", returns="number", mutates=False))),
     TypeSpec("MotorX", "Motor", _motor_params("MotorX"), slots=1),
     TypeSpec("MotorY", "Motor", _motor_params("MotorY"), slots=1),
     TypeSpec("MotorZ", "Motor", _motor_params("MotorZ"), slots=1),
@@ -164,6 +178,8 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("senseObjects", returns="ids", mutates=False),
         Method("senseObject", (Param("otherObject", "contact"),), returns="bool",
                mutates=False),
+        # not in the manual: newtons pressing on the sensor's part (dynamic mode; else 0)
+        Method("senseForce", returns="number", mutates=False),
         Method("watch", (Param("on", "bool", True),), mutates=False, client=True),
     )),
     TypeSpec("Robot", None, methods=(

@@ -18,6 +18,7 @@ from ..kit.numbers import NON_FINITE
 from ..model.node import Node, Slot
 from ..model.parts import Part
 from ..model.robot import Robot
+from ..physics.dynamics import MODES
 from ..physics.engine import GROUND
 from .api import REQUIRED, Param
 
@@ -247,6 +248,24 @@ def _slot(value: Any, resolve: Resolver, label: str) -> int | Node:
     return index
 
 
+def _ranged(low: float, high: float, what: str, low_open: bool = False) -> Callable[[Any, Resolver, str], float]:
+    """A number within [low, high] (``low_open``: above low)."""
+    def check(value: Any, resolve: Resolver, label: str) -> float:
+        number = _number(value, label)
+        if not (low < number if low_open else low <= number) or number > high:
+            raise OutOfRange(f"{label}: {what} lies {'above' if low_open else 'between'} "
+                             f"{low:g}{'' if low_open else ' and ' + format(high, 'g')}"
+                             f"{', at most ' + format(high, 'g') if low_open else ''}, got {number:g}")
+        return number
+    return check
+
+
+def _options(value: Any, resolve: Resolver, label: str) -> dict[str, Any]:
+    if not isinstance(value, dict):  # the scene checks each option (server.core.physics.dynamics)
+        raise WrongType(f"{label}: expected an object of options, got {show(value)}")
+    return value
+
+
 # the kinds whose values name objects of the scene (ownership checks look only at these)
 NODE_KINDS = frozenset({"node", "part", "slot", "contact", "transforms"})
 
@@ -272,6 +291,11 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "scale": _scale,
     "geometry": _geometry,
     "transforms": _transforms,
+    "mode": _choice(MODES),
+    "options": _options,
+    "mass": _ranged(0.0, 1e9, "a mass (kg)", low_open=True),
+    "friction": _ranged(0.0, 10.0, "a friction coefficient"),
+    "torque": _ranged(0.0, 1e12, "a torque (N·m)"),
 }
 
 

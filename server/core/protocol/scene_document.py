@@ -28,6 +28,7 @@ from ..model.page_meshes import SceneMesh
 from ..model.parts import Part
 from ..model.robot import Robot
 from ..physics.assets import UPLOADED_URL, AssetLibrary
+from ..physics.dynamics import KINEMATIC, Physics
 from ..scene.scene import Scene
 from . import api
 from .api import Param
@@ -55,6 +56,11 @@ class Saved:
         return self.key or self.attribute
 
 
+def _target(motor: Motor, target: float) -> None:
+    """Where a motor drives in dynamic mode, when it is not where it is."""
+    motor.target = target
+
+
 def _slot_count(part: Part, count: int) -> None:
     """Slots ``addSlot`` made so far: new ones continue the numbering, never reuse it."""
     part._slot_count = max(part._slot_count, count)
@@ -67,10 +73,15 @@ STATE: dict[type[Node], tuple[Saved, ...]] = {
            Saved("scale", (Param("scale", "scale"),), Node.set_scale),
            Saved("visible", (Param("visible", "bool"),), Node.set_visible),
            Saved("kept", (Param("on", "bool"),), Node.keep)),
-    Part: (Saved("_slot_count", (Param("count", "integer"),), _slot_count, key="slotCount"),),
+    Part: (Saved("_slot_count", (Param("count", "integer"),), _slot_count, key="slotCount"),
+           Saved("mass", (Param("mass", "mass"),), Part.set_mass),
+           Saved("friction", (Param("friction", "friction"),), Part.set_friction),
+           Saved("saved_static", (Param("static", "bool"),), Part.set_static, key="static")),
     Motor: (Saved("name", (Param("name", "string"),), Motor.set_name),
             Saved("flipped", (Param("flipped", "bool"),), Motor.flip),
-            Saved("angle", (Param("angle", "number"),), Motor.set_angle)),
+            Saved("angle", (Param("angle", "number"),), Motor.set_angle),
+            Saved("max_torque", (Param("torque", "torque"),), Motor.set_max_torque, key="maxTorque"),
+            Saved("saved_target", (Param("target", "number"),), _target, key="target")),
     Robot: (Saved("gui", (Param("title", "string"),), Robot.add_gui),
             Saved("shared", (Param("on", "bool"),), Robot.share)),
     GLTFPart: (Saved("recolors", (Param("fromColor", "rgb"), Param("toColor", "rgb"),
@@ -90,8 +101,9 @@ def state_of(cls: type[Node]) -> tuple[Saved, ...]:
 def export_scene(scene: Scene, embed_assets: bool = True) -> dict[str, Any]:
     """The scene as a document; uploaded mesh files by content hash, with their bytes
     (base64) when ``embed_assets`` (a document another server can import)."""
+    physics = {"physics": scene.physics.wire()} if scene.physics != Physics() else {}
     return {"format": FORMAT, "version": VERSION, "scene": scene.name,
-            "camera": scene.camera.wire(),
+            "camera": scene.camera.wire(), **physics,
             "ids": scene.ids.wire(),
             "assets": [_asset_entry(scene.assets, name, embed_assets)
                        for name in uploaded_assets(scene)],
@@ -190,6 +202,8 @@ def _asset_entry(library: AssetLibrary, name: str, embed: bool) -> dict[str, Any
 
 # --- import -------------------------------------------------------------------------------
 
+_LATER = ("target",)  # restored once the scene's physics is
+
 def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     """Replace everything in ``scene`` with what ``document`` holds; what was restored.
 
@@ -202,6 +216,8 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     if len(wanted) != len(entries):
         raise BadMessage("scene document: an id is listed twice in nodes")
     _store_assets(scene, document["assets"])
+    physics = document.get("physics", {"mode": KINEMATIC})
+    scene.set_physics(KINEMATIC)  # angles restored as set, targets after
     for root in scene.roots():
         scene.delete(root)
     scene.registry.fresh_ids()
@@ -216,6 +232,10 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
         _place_children(scene, entry)
     for entry in entries:
         _restore_state(scene, entry)
+    mode = physics.pop("mode")
+    scene.set_physics(mode, physics)
+    for entry in entries:
+        _restore_state(scene, entry, later=True)
     scene.ids.absorb(document["ids"])
     scene.set_camera_position(tuple(document["camera"]["position"]))
     scene.set_camera_target(tuple(document["camera"]["target"]))
@@ -279,12 +299,14 @@ def _place_children(scene: Scene, entry: dict[str, Any]) -> None:
     node.restore_slots(slots)
 
 
-def _restore_state(scene: Scene, entry: dict[str, Any]) -> None:
+def _restore_state(scene: Scene, entry: dict[str, Any], later: bool = False) -> None:
+    """A node's state as the document has it: all of it but what waits for the scene's
+    physics (:data:`_LATER`), or (``later``) just that."""
     node = scene.get(entry["id"])
     state = entry["state"]
     for saved in state_of(type(node)):
         value = state.get(saved.name)
-        if value is None:
+        if value is None or (saved.name in _LATER) != later:
             continue
         where = f"state {saved.name} of {node.id}"
         calls = value if saved.repeated else [[value]]

@@ -13,39 +13,31 @@ itself (kinematic mode, as 1.0).
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
 from ..kit.limits import Limits
-from ..kit import math3d
-from ..model.node import UNIT_SCALE, Node
+from ..model.node import Node
 from ..model.readings import Reading, read_sensors
 from ..model.structure import base_pose, structure_of
 from ..physics.assets import AssetLibrary
 from ..physics.contacts import ContactBook, ContactTracker, Overlaps
+from ..physics.dynamics import Physics
 from ..physics.engine import PhysicsWorld
 from ..physics.raycast import RayTargets
+from .carriers import PartPoses
 
 if TYPE_CHECKING:
-    from ..kit.math3d import Pose, Vec3
+    from ..kit.math3d import Pose
     from ..physics.articulation import Articulation
 
 log = logging.getLogger(__name__)
-_CARRIED_SETS = 64  # sets of nodes whose carriers are kept (watched sensors: one set)
+HAIR = 1e-9  # dynamic mode: a joint or body that moved less than this (m, rad) has not moved
 
 
-@dataclass(frozen=True)
-class _Carried:
-    """Nodes (by index in a list of them) that parts carry: the part carrying each and the
-    node's offset from it; and the nodes posed by their tree instead (``own``)."""
-
-    own: list[int]
-    rows: np.ndarray
-    hosts: list[str]
-    positions: np.ndarray
-    quats: np.ndarray
+def _apart(a: Pose, b: Pose) -> bool:
+    return any(abs(x - y) > HAIR for x, y in zip((*a[0], *a[1]), (*b[0], *b[1])))
 
 
 class SceneBodies:
@@ -69,13 +61,12 @@ class SceneBodies:
         self._motor_root: dict[str, str] = {}  # motor id -> root of the tree it is a joint of
         self._joint_motors: dict[str, list[Node]] = {}  # root -> its joints' motors, in order
         self._ray_geometry: dict[str, dict[str, Any]] = {}
-        self._poses: dict[str, Pose] = {}  # of every part, as Bullet placed it at the last sync
-        self._scales: dict[str, Vec3] = {}  # and its world scale
-        # node id -> the part carrying it and its offset from it (None: none); until a build
-        self._offsets: dict[str, tuple[str, Pose] | None] = {}
+        self._parts = PartPoses()  # where Bullet put the parts; what they carry
         self._unposed: set[str] = set()  # roots moved since their parts' poses were read
-        self._carried: dict[tuple[str, ...], _Carried] = {}  # node ids -> as world_poses needs
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
+        self._mounts: dict[str, Pose] = {}  # dynamic mode: where robots' mounts are put
+        self._targets_due = False  # dynamic mode: motors' targets to be driven toward
+        self._forces_sent: dict[str, float] = {}  # by the last frame (forces_changed)
 
     @property
     def rays(self) -> RayTargets:
@@ -101,6 +92,10 @@ class SceneBodies:
         """A root moved: its base is placed at the next sync."""
         self._based.add(root_id)
 
+    def retargeted(self) -> None:
+        """Dynamic mode: motors got new targets (or torques), driven from the next step."""
+        self._targets_due = True
+
     def turned(self, motor_ids: Iterable[str]) -> None:
         """Motors turned: their joints are set at the next sync."""
         self._turned.update(motor_ids)
@@ -120,6 +115,60 @@ class SceneBodies:
             self.physics.rebuild()
             self.tracker.made_again()
 
+    # --- dynamic mode ------------------------------------------------------------------
+
+    def remake(self, physics: Physics) -> None:
+        """Every tree built again, at rest where it is, in a world of ``physics``."""
+        self.sync()
+        self._mounts.clear()
+        self.physics.rebuild(physics)
+        self.tracker.crowding = not physics.dynamic
+        self.tracker.made_again()
+        self._unposed.update(self.physics.roots())
+        self._targets_due = physics.dynamic
+
+    def advance(self, dt: float) -> tuple[dict[str, float], dict[str, Pose]]:
+        """Dynamic mode: drive the motors, step the world through ``dt``; the motors' new
+        angles and the free roots' new poses (what moved more than a hair)."""
+        self.sync()
+        physics = self.physics
+        if self._targets_due:
+            for root_id, motors in self._joint_motors.items():
+                physics.drive(root_id, [m.target for m in motors],  # type: ignore[attr-defined]
+                              [m.get_max_torque() for m in motors])  # type: ignore[attr-defined]
+            self._targets_due = False
+        if not physics.dynamics.advance(dt):  # type: ignore[union-attr]
+            return {}, {}
+        angles: dict[str, float] = {}
+        poses: dict[str, Pose] = {}
+        for root_id in physics.roots():
+            pose, joints = physics.motion(root_id)
+            moved = False
+            for motor, angle in zip(self._joint_motors.get(root_id, ()), joints):
+                if abs(motor.angle - angle) > HAIR:  # type: ignore[attr-defined]
+                    angles[motor.id] = angle
+                    moved = True
+            if pose is not None and _apart(self._nodes[root_id].local_pose(), pose):
+                poses[root_id] = pose
+                moved = True
+            if moved:
+                self.tracker.moved(physics.tree(root_id).parts())  # type: ignore[union-attr]
+                self._unposed.add(root_id)
+        return angles, poses
+
+    def forces_changed(self) -> dict[str, float]:
+        """Newtons on each part whose force changed since the last call (0: it ended),
+        rounded to 1 mN, as frames carry them (none in kinematic mode)."""
+        now = {key: round(force, 3) for key, force in self.physics.forces.items()}
+        changed = {key: force for key, force in now.items() if self._forces_sent.get(key) != force}
+        changed.update((key, 0.0) for key in self._forces_sent if key not in now)
+        self._forces_sent = {key: force for key, force in now.items() if force}
+        return changed
+
+    def force_on(self, part: Node | None) -> float:
+        """Newtons pressing on ``part`` at the last tick (0 in kinematic mode)."""
+        return 0.0 if part is None else self.physics.forces.get(part.id, 0.0)
+
     def _read_poses(self) -> None:
         """Read the parts' poses of the trees moved since they were last read (Bullet's
         forward kinematics, a call per tree): only rays and sensors need them, so a tick
@@ -129,7 +178,7 @@ class SceneBodies:
             if self.physics.tree(root_id) is not None:  # (not since taken out)
                 keys, poses = self.physics.part_poses(root_id)
                 self._rays.move_many(keys, poses)
-                self._poses.update(zip(keys, poses))
+                self._parts.placed(keys, poses)
         self._unposed.clear()
 
     def _rebuild(self) -> set[str]:
@@ -149,24 +198,18 @@ class SceneBodies:
                 self._forget_tree(root_id, tree)
         new: set[str] = set()
         if roots:
-            self._forget_offsets()  # and what it held of nodes deleted since
+            self._parts.forget_offsets()  # and what it held of nodes deleted since
         for root_id in roots:
             new.update(self._build(root_id))
         self._forget_parts(old - new)
         return roots
 
-    def _forget_offsets(self) -> None:
-        self._offsets.clear()
-        self._carried.clear()
-
     def _forget_parts(self, keys: Iterable[str]) -> None:
         """Parts without a body any more: their contacts end, their ray shapes go, and
         nothing is carried by them."""
         keys = list(keys)
-        if keys:
-            self._forget_offsets()
+        self._parts.forget(keys)
         for key in keys:
-            self._poses.pop(key, None)
             self.tracker.removed(key)
             self._rays.remove(key)
             del self._ray_geometry[key]
@@ -194,6 +237,10 @@ class SceneBodies:
             return []
         self._motor_root.update(dict.fromkeys(angles, root_id))
         self._joint_motors[root_id] = [self._nodes[motor] for motor in angles]
+        if self.physics.dynamics is not None:
+            self._targets_due = True
+            if root_id in self._mounts:  # the mount stays where it was put
+                self.physics.move_base(root_id, self._mounts[root_id])
         keys, poses = self.physics.part_poses(root_id)
         geometries = {tree.base_part: tree.base_geometry,
                       **{link.part: link.geometry for link in tree.links}}
@@ -212,63 +259,12 @@ class SceneBodies:
 
     def _place_nodes(self, root_id: str, keys: Sequence[str], poses: list[Pose]) -> None:
         """Keep the poses Bullet found for the parts (sensors on them start from there)."""
-        self._poses.update(zip(keys, poses))
-        self._scales.update(zip(keys, self.physics.tree(root_id).scales()))
+        self._parts.placed(keys, poses, self.physics.tree(root_id).scales())  # type: ignore[union-attr]
 
     def world_poses(self, nodes: list[Node]) -> tuple[np.ndarray, np.ndarray]:
-        """World positions (n×3) and quaternions (n×4) of nodes: the pose in Bullet of the
-        unscaled part that carries a node, composed with the node's offset from it (a
-        sensor on a fingertip), for all such nodes at once; else the tree's own
-        (:meth:`Node.world_pose`)."""
+        """World positions (n×3) and quaternions (n×4) of nodes (:class:`PartPoses`)."""
         self._read_poses()
-        key = tuple(node.id for node in nodes)
-        carried = self._carried.get(key)
-        if carried is None:
-            if len(self._carried) >= _CARRIED_SETS:
-                self._carried.clear()
-            carried = self._carried[key] = self._carriers(nodes)
-        positions, quats = np.empty((len(nodes), 3)), np.empty((len(nodes), 4))
-        for index in carried.own:
-            positions[index], quats[index] = nodes[index].world_pose()
-        if carried.hosts:
-            hosts = [self._poses[host] for host in carried.hosts]
-            positions[carried.rows], quats[carried.rows] = math3d.compose_arrays(
-                np.array([p for p, _ in hosts]), np.array([q for _, q in hosts]),
-                carried.positions, carried.quats)
-        return positions, quats
-
-    def _carriers(self, nodes: list[Node]) -> _Carried:
-        """Which of ``nodes`` their parts carry, and their offsets, as arrays."""
-        found = [self._offset(node) for node in nodes]
-        rows = [index for index, host in enumerate(found) if host is not None]
-        offsets = [found[index][1] for index in rows]  # type: ignore[index]
-        return _Carried(own=[index for index, host in enumerate(found) if host is None],
-                        rows=np.array(rows, dtype=np.int64),
-                        hosts=[found[index][0] for index in rows],  # type: ignore[index]
-                        positions=np.array([p for p, _ in offsets]).reshape(-1, 3),
-                        quats=np.array([q for _, q in offsets]).reshape(-1, 4))
-
-    def _offset(self, node: Node) -> tuple[str, Pose] | None:
-        """The unscaled part that carries ``node`` and the node's pose relative to it; None
-        when the tree's own pose must be used. Kept until a tree is built again (every
-        change of a pose below a root, or of a parent, rebuilds its tree)."""
-        if node.id in self._offsets:
-            return self._offsets[node.id]
-        chain: list[Node] = []
-        host: Node | None = node
-        while host is not None and host.id not in self._poses:
-            if host.scale != UNIT_SCALE or host.is_motor:
-                break
-            chain.append(host)
-            host = host.parent
-        found: tuple[str, Pose] | None = None
-        if host is not None and host.id in self._poses and self._scales[host.id] == UNIT_SCALE:
-            offset: Pose = (math3d.ORIGIN, math3d.IDENTITY)
-            for link in reversed(chain):
-                offset = math3d.compose(offset, link.local_pose())
-            found = (host.id, offset)
-        self._offsets[node.id] = found
-        return found
+        return self._parts.world_poses(nodes)
 
     def _guarded(self, root_id: str, work: Callable[[], None]) -> bool:
         """Do ``work`` for a tree; if it fails (a bug) the tree is left out, the scene goes on."""
@@ -307,6 +303,8 @@ class SceneBodies:
             if root_id not in rebuilt and node is not None and self.physics.tree(root_id) and \
                     self._guarded(root_id, lambda: self.physics.move_base(root_id, base_pose(node))):
                 placed.add(root_id)
+                if self.physics.dynamics is not None and node.lists_motors:
+                    self._mounts[root_id] = base_pose(node)
         self._based.clear()
         return placed
 
@@ -342,4 +340,7 @@ class SceneBodies:
         else:
             of = self.tracker.overlaps().of
             contacts = [() if host is None else of(host.id) for host in hosts]
-        return read_sensors(self._rays, sensors, contacts, *self.world_poses(sensors))
+        forces = self.physics.forces
+        return read_sensors(self._rays, sensors, contacts,
+                            [0.0 if host is None else forces.get(host.id, 0.0) for host in hosts],
+                            *self.world_poses(sensors))

@@ -18,6 +18,7 @@ class ChangeSet:
         self.poses: dict[str, None] = {}
         self.updates: dict[str, set[str]] = {}
         self.camera = False
+        self.physics = False
         self.warnings: list[str] = []  # what the requester should know, though nothing failed
 
     def update(self, node_id: str, field: str) -> None:
@@ -27,7 +28,7 @@ class ChangeSet:
     def __bool__(self) -> bool:
         """True once anything changed (warnings aside)."""
         return bool(self.born or self.died or self.angles or self.poses or self.updates
-                    or self.camera)
+                    or self.camera or self.physics)
 
     def clear(self) -> None:
         """Forget everything noted so far."""

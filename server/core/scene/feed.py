@@ -58,6 +58,11 @@ class ChangeFeed:
         for changes in self._recorders:
             changes.camera = True
 
+    def physics_changed(self) -> None:
+        """The scene's physics (mode or options) changed."""
+        for changes in self._recorders:
+            changes.physics = True
+
     def warn(self, message: str) -> None:
         """Tell the open recordings' requesters; the tick's own set has no one to tell."""
         for changes in self._recorders[1:]:

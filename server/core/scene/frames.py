@@ -5,7 +5,8 @@ A frame has ``op``, ``seq`` and ``time``, and what changed in its tick: ``angles
 robot's angles as one array in the order of its ``motors``, by the robot's id; a motor
 that is no robot's, by its own id), ``poses`` (node id -> value), ``updates`` (node id ->
 fields), ``sensors`` (watched sensor id -> reading), ``contacts`` (``begin``/``end`` lists
-of pairs, events), ``camera`` and ``limited`` (limit name -> how much work it held back in
+of pairs, events), ``forces`` (dynamic mode: part id -> newtons pressing on it, for the
+parts whose force changed; 0 once it ends), ``camera``, ``physics`` and ``limited`` (limit name -> how much work it held back in
 the tick). New nodes travel before it in ``added``, removed ones after it in ``removed``.
 """
 
@@ -18,7 +19,7 @@ from ..kit.wire_messages import Added, Frame, Removed
 from ..model.node import Node
 from .changes import ChangeSet
 
-_LATEST_WINS = ("angles", "poses", "sensors")
+_LATEST_WINS = ("angles", "poses", "sensors", "forces")
 
 
 def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[Added | Frame | Removed]:
@@ -30,10 +31,11 @@ def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[Added 
             *([Removed(op="removed", seq=seq, ids=removed)] if removed else [])]
 
 
-def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet,
-                 camera: dict[str, list[float]]) -> dict[str, Any]:
+def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet, camera: dict[str, list[float]],
+                 physics: dict[str, Any] | None = None) -> dict[str, Any]:
     """What a change set amounts to now, in wire form (empty parts left out): a frame's
-    ``angles``, ``poses``, ``updates`` and ``camera``, with ``added`` and ``removed``."""
+    ``angles``, ``poses``, ``updates``, ``camera`` and ``physics``, with ``added`` and
+    ``removed``."""
     born = changes.born
     out: dict[str, Any] = {
         "added": [encode_numbers(nodes[i].describe()) for i in born if i in nodes],
@@ -46,6 +48,8 @@ def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet,
     }
     if changes.camera:
         out["camera"] = camera
+    if changes.physics:
+        out["physics"] = physics
     return {k: v for k, v in out.items() if v}
 
 
@@ -102,8 +106,9 @@ def merge_frames(older: dict[str, Any], newer: dict[str, Any]) -> dict[str, Any]
     if "contacts" in older:  # events: every one is kept, in order
         later = newer.get("contacts", {"begin": [], "end": []})
         merged["contacts"] = _merge_contacts(older["contacts"], later)
-    if "camera" in older and "camera" not in newer:
-        merged["camera"] = older["camera"]
+    for key in ("camera", "physics"):
+        if key in older and key not in newer:
+            merged[key] = older[key]
     if "limited" in older:  # what the limits held back in the worse of the two ticks
         both = (older["limited"], newer.get("limited", {}))
         merged["limited"] = {k: max(side.get(k, 0) for side in both) for k in {**both[0], **both[1]}}

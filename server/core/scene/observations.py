@@ -18,6 +18,9 @@ def observe(bodies: SceneBodies, watches: Watches, nodes: Mapping[str, Node]) ->
     began, ended = bodies.contacts.update(bodies.overlaps())
     if began or ended:
         out["contacts"] = {"begin": [list(p) for p in began], "end": [list(p) for p in ended]}
+    forces = bodies.forces_changed()
+    if forces:
+        out["forces"] = forces
     readings = watched_readings(bodies, watches, nodes)
     if readings:
         out["sensors"] = {i: reading.wire() for i, reading in readings.items()}

@@ -22,6 +22,7 @@ from ..model.node import Node
 from ..model.readings import Reading
 from ..model.watches import Watches
 from ..physics.assets import AssetLibrary
+from ..physics.dynamics import Physics
 from . import frames
 from .bodies import SceneBodies
 from .camera import Camera
@@ -32,6 +33,7 @@ from .registry import Registry
 
 log = logging.getLogger(__name__)
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped", "scale")
+_BODY_FIELDS = ("mass", "friction", "static")  # a tree's body is built again with them
 
 
 class Scene:
@@ -59,6 +61,8 @@ class Scene:
         self.pose_epoch = 0  # counts pose changes (Node.world_pose caches by it)
         self.revision = 0  # ticks that sent changes: a document of the scene is out of date
         self.failures = 0  # ticks whose contacts or sensing failed (a bug; logged)
+        self.physics = Physics()  # kinematic until setPhysics
+        self.moving = False  # dynamic mode: something moved in the last tick
 
     @property
     def ids(self) -> IdBook:
@@ -131,11 +135,18 @@ class Scene:
                 self.bodies.rebased(node.id)
             elif field != "parent":  # reparented() names both trees
                 self.bodies.restructure((node.root().id,))
+        elif field in _BODY_FIELDS:
+            self.bodies.restructure((node.root().id,))
+        elif field == "max_torque":
+            self.bodies.retargeted()
 
     def turn(self, turns: list[tuple[Motor, float | None]]) -> None:
         """Motors to angles, as ``setAngle`` takes them (None and NaN ignored, the rest
         clamped: :meth:`Motor.within_limits`), journaled, reported and moving what hangs on
         them, in one pass: a robot's ``setAngles`` turns all its motors at once."""
+        if self.physics.dynamic:
+            self._retarget(turns)
+            return
         turns = [(motor, value) for motor, angle in turns
                  if (value := motor.within_limits(angle)) is not None and motor.angle != value]
         if not turns:
@@ -144,11 +155,50 @@ class Scene:
         self.journal.record(lambda: self.turn(before))
         ids = []
         for motor, angle in turns:
-            motor.angle = angle
+            motor.angle = motor.target = angle
             ids.append(motor.id)
         self.feed.turned(ids)
         self.bodies.turned(ids)
         self._moved()
+
+    def _retarget(self, turns: list[tuple[Motor, float | None]]) -> None:
+        """Dynamic mode's turn: the motors' targets (journaled); they drive there in the
+        ticks to come, and their angles are where the physics takes them."""
+        turns = [(motor, value) for motor, angle in turns
+                 if (value := motor.within_limits(angle)) is not None and motor.target != value]
+        if not turns:
+            return
+        before = [(motor, motor.target) for motor, _ in turns]
+        self.journal.record(lambda: self._retarget(before))
+        for motor, target in turns:
+            motor.target = target
+        self.bodies.retargeted()
+
+    def set_physics(self, mode: str, options: dict[str, Any] | None = None) -> None:
+        """``setPhysics(mode, options)`` (not in the manual): kinematic, as 1.0 (motors jump
+        to their angles, nothing falls), or dynamic (:mod:`server.core.physics.dynamics`);
+        every tree is built again, at rest where it is, with motors aiming where they are."""
+        physics = Physics.of(mode, options)
+        if physics == self.physics:
+            return
+        before = self.physics
+        self.journal.record(lambda: self._put_physics(before))
+        self._put_physics(physics)
+
+    def _put_physics(self, physics: Physics) -> None:
+        self.physics = physics
+        if not physics.dynamic:  # kinematic: motors are where they are set
+            aims = [(n, n.target) for n in self.nodes.values() if n.is_motor]  # type: ignore[attr-defined]
+            self.journal.record(lambda: [setattr(motor, "target", aim) for motor, aim in aims])
+            for motor, _ in aims:
+                motor.target = motor.angle  # type: ignore[attr-defined]
+        self.bodies.remake(physics)
+        self.feed.physics_changed()
+        self.moving = physics.dynamic
+
+    def get_physics(self) -> dict[str, Any]:
+        """``getPhysics()``: the mode and the options (as ``setPhysics`` takes them)."""
+        return self.physics.wire()
 
     def reparented(self, node: Node, old_parent: Node | None) -> None:
         """Called by a node that moved from ``old_parent`` to its current parent."""
@@ -177,7 +227,7 @@ class Scene:
 
     def delta(self, changes: ChangeSet) -> dict[str, Any]:
         """What a change set amounts to now, in wire form (empty parts left out)."""
-        return frames.changes_wire(self.nodes, changes, self.camera.wire())
+        return frames.changes_wire(self.nodes, changes, self.camera.wire(), self.physics.wire())
 
     # --- time ----------------------------------------------------------------------------
 
@@ -189,6 +239,8 @@ class Scene:
         the tick raises with nothing lost: the next tick sends them. If contacts or
         sensing fail, the frame goes out without them (and the failure is logged).
         """
+        if self.physics.dynamic:
+            self._step(dt)
         pending = self.feed.pending
         delta = self.delta(pending)
         if pending:
@@ -202,6 +254,21 @@ class Scene:
             self.failures += 1
             log.exception("contacts or sensing of scene %s failed", self.name)
         return frames.tick_messages(self.seq, self.time, delta)
+
+    def _step(self, dt: float) -> None:
+        """Dynamic mode: advance the physics through ``dt`` and take where it put every
+        motor and free body (not journaled: it is the world's doing, not a request's)."""
+        angles, poses = self.bodies.advance(dt)
+        for motor_id, angle in angles.items():
+            self.nodes[motor_id].angle = angle  # type: ignore[attr-defined]
+        for root_id, (position, quaternion) in poses.items():
+            root = self.nodes[root_id]
+            root.position, root.quaternion = position, quaternion
+            self.feed.changed(root_id, "position")
+        self.feed.turned(angles)
+        self.moving = bool(angles or poses)
+        if self.moving:
+            self._moved()
 
     def watched_readings(self) -> dict[str, Reading]:
         """Readings of every watched sensor (frames carry them); forgets deleted ones."""
@@ -217,7 +284,7 @@ class Scene:
         """The whole scene: every node (parents before children), camera, time."""
         nodes = [encode_numbers(n.describe()) for root in self.roots() for n in root.walk()]
         return Snapshot(op="snapshot", scene=self.name, seq=self.seq, time=self.time,
-                        camera=self.camera.wire(), nodes=nodes,
+                        camera=self.camera.wire(), physics=self.physics.wire(), nodes=nodes,
                         contacts=self.bodies.contacts.wire())
 
     # --- scene calls (the manual's Scene API) --------------------------------------------

@@ -93,6 +93,12 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
                       st.lists(numbers(-2, 2), min_size=12, max_size=30).filter(lambda v: len(v) % 3 == 0)),
             st.builds(lambda v: {"kind": "triangles", "vertices": v},
                       st.lists(numbers(-2, 2), min_size=9, max_size=9))),
+        "mode": st.sampled_from(["kinematic", "dynamic"]),
+        "options": st.fixed_dictionaries({}, optional={
+            "gravity": numbers(-20, 20), "substeps": st.integers(1, 3),
+            "solverIterations": st.integers(1, 60), "friction": numbers(0, 2),
+            "density": numbers(1, 5000)}),
+        "mass": numbers(0.01, 1000), "friction": numbers(0, 3), "torque": numbers(0, 1e5),
         "transforms": st.dictionaries(st.sampled_from(refs), st.lists(numbers(-1, 1), min_size=7, max_size=7)
                                       .filter(lambda t: sum(c * c for c in t[3:]) > 1e-6), max_size=4)
         if refs else st.just({}),

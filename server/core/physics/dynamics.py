@@ -1,0 +1,249 @@
+"""Dynamic mode: gravity, masses, torque-limited motors, mounts and stepping, in Bullet.
+
+A scene is kinematic (1.0's behaviour: motors jump to their angles, nothing falls, contacts
+are reported, not resolved) or dynamic. In dynamic mode the same compiled trees
+(:mod:`.articulation`) are Bullet multibodies with mass: a robot's base floats, held where
+the script puts it by a fixed constraint of bounded force (its *mount*: moving it drags
+the hand smoothly, so a hand carries what it holds); any other tree is a free body that
+falls, unless it is static; every motor drives its joint toward its target with bounded
+torque (``POSITION_CONTROL``), so a finger stopped by an object stays where it stopped.
+
+Defaults, and why (:class:`Physics`):
+
+- ``gravity`` 9.81 m/s² down (−Y): sizes are metres. The 1.0 hands are about 16 times a
+  human hand; a task that wants motion to look like a human hand's scales gravity by the
+  hand's size (Froude: time goes as √(length/g)), see the Python client's tasks.
+- ``substeps`` 5: physics steps of 1/300 s (five per 60 Hz tick). PyBullet's grasping
+  examples step at 240 Hz or more; fewer steps let fingers sink into what they squeeze.
+- ``solverIterations`` 50: the fewest of the 50-150 that PyBullet's examples use with
+  which a closed hand holds its objects (more cost time every step).
+- ``friction`` 1.0 (lateral): rubber-like fingers on hard objects, PyBullet's examples'
+  value; spinning friction is a tenth of it and rolling friction a thousandth, so a held
+  ball neither spins nor rolls out.
+- ``density`` 1000 kg/m³ (water; plastics and flesh are near it): a part's mass is its
+  volume times this, unless ``setMass`` gave it one.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, replace
+from typing import Any, Mapping, Sequence
+
+from ...errors import BadArguments, OutOfRange, WrongType, show
+from ..kit.math3d import ORIGIN, Pose, Vec3
+from .articulation import Articulation
+from .geometry import centroid, volume
+
+KINEMATIC, DYNAMIC = "kinematic", "dynamic"
+MODES = (KINEMATIC, DYNAMIC)
+NOMINAL_TICK = 1 / 60  # substeps are counted per this much time
+MAX_STEPS_PER_TICK = 4  # × substeps: a late tick catches up this far, no further
+BETWEEN_MASS = 0.1  # kg: a link that carries no part (where two joints meet)
+MOUNT_FORCE = 1e9  # N: what a robot's mount pulls with (its constraint's bound)
+MOUNT_MASS = 1.0  # kg: a robot base without a part of its own
+SHAPELESS_INERTIA = 1e-3  # kg·m², of a base or link without a part (a ball of 0.1 kg, 0.16 m)
+SPINNING, ROLLING = 0.1, 0.001  # of the lateral friction
+BREAKING_THRESHOLD = 0.02  # Bullet's own: contacts persist while resting (kinematic: 0.0005)
+# What a motor drives with unless setMaxTorque says otherwise (N·m): enough for every
+# bundled hand to hold its fingers level and close on a ball of its own size (about
+# 250 kg at 1000 kg/m³) under 9.81 m/s². One figure for every motor: the drawn sizes of
+# the 1.0 motors are pictures, not actuators (a round finger's spread motor is drawn with
+# size 0), so a designer gives real actuators their torques.
+DEFAULT_MAX_TORQUE = 2e4
+
+
+_RANGES: dict[str, tuple[float, float, type]] = {
+    "gravity": (-1000.0, 1000.0, float), "substeps": (1, 20, int),
+    "solverIterations": (1, 500, int), "friction": (0.0, 10.0, float),
+    "density": (1.0, 100_000.0, float),
+}
+
+
+@dataclass(frozen=True)
+class Physics:
+    """A scene's physics: its mode and, for dynamic mode, its options (wire names)."""
+
+    mode: str = KINEMATIC
+    gravity: float = 9.81
+    substeps: int = 5
+    solverIterations: int = 50  # noqa: N815 (the wire's name)
+    friction: float = 1.0
+    density: float = 1000.0
+
+    @property
+    def dynamic(self) -> bool:
+        return self.mode == DYNAMIC
+
+    @property
+    def step(self) -> float:
+        """Seconds of one physics step."""
+        return NOMINAL_TICK / self.substeps
+
+    def wire(self) -> dict[str, Any]:
+        """As ``getPhysics`` answers and documents keep it."""
+        return asdict(self)
+
+    @classmethod
+    def of(cls, mode: Any, options: Any = None) -> Physics:
+        """From ``setPhysics(mode, options)``: options left out take their defaults."""
+        if mode not in MODES:
+            raise OutOfRange(f"physics mode must be kinematic or dynamic, got {show(mode)}",
+                             mode=show(mode))
+        if options is None:
+            options = {}
+        if not isinstance(options, dict):
+            raise WrongType(f"physics options: expected an object like {{\"gravity\": 9.81}}, "
+                            f"got {show(options)}")
+        unknown = set(options) - set(_RANGES)
+        if unknown:
+            raise BadArguments(f"physics options: no option {', '.join(sorted(unknown))}; the "
+                               f"options are {', '.join(_RANGES)}")
+        return replace(cls(mode), **{name: _option(name, value) for name, value in options.items()})
+
+
+def _option(name: str, value: Any) -> float | int:
+    low, high, kind = _RANGES[name]
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+            (kind is int and value != int(value)) or not math.isfinite(value):
+        raise WrongType(f"physics option {name}: expected {'a whole' if kind is int else 'a'} "
+                        f"number, got {show(value)}", option=name)
+    if not low <= value <= high:
+        raise OutOfRange(f"physics option {name} must be within [{low}, {high}], got {value}",
+                         option=name)
+    return kind(value)
+
+
+class Dynamics:
+    """The dynamic side of one PyBullet client (``pybullet`` is the module, ``client`` its id)."""
+
+    def __init__(self, pybullet: Any, client: int, physics: Physics) -> None:
+        self.p, self.client, self.physics = pybullet, client, physics
+        self._masses: dict[str, tuple[float, Vec3]] = {}  # shape -> volume (m³), centre
+        self._debt = 0.0  # seconds not yet stepped
+        self.steps = 0  # physics steps taken
+        pybullet.setGravity(0, -physics.gravity, 0, physicsClientId=client)
+        pybullet.setPhysicsEngineParameter(fixedTimeStep=physics.step,
+                                           numSolverIterations=physics.solverIterations,
+                                           contactBreakingThreshold=BREAKING_THRESHOLD,
+                                           physicsClientId=client)
+
+    # --- building ----------------------------------------------------------------------
+
+    def masses(self, tree: Articulation) -> tuple[float, list[float]]:
+        """The base's mass and every link's (kg): a part's own (``setMass``), else its volume
+        times the density; 0 for the base of a static tree (Bullet: fixed)."""
+        def of(given: float | None, geometry: dict[str, Any] | None) -> float:
+            if given is not None:
+                return given
+            return BETWEEN_MASS if geometry is None else \
+                max(BETWEEN_MASS, self.physics.density * self._volume(geometry))
+        links = [of(link.mass, link.geometry) for link in tree.links]
+        if tree.static:
+            return 0.0, links
+        base = MOUNT_MASS if tree.base_geometry is None else of(tree.base_mass, tree.base_geometry)
+        return base, links
+
+    def _volume(self, geometry: dict[str, Any]) -> float:
+        return self._solid(geometry)[0]
+
+    def _solid(self, geometry: dict[str, Any]) -> tuple[float, Vec3]:
+        """Volume and centre of mass (in the part's frame) of a geometry, kept by shape."""
+        key = repr(sorted((k, v) for k, v in geometry.items() if k not in ("color", "edges")))
+        if key not in self._masses:
+            self._masses[key] = (volume(geometry), centroid(geometry))
+        return self._masses[key]
+
+    def centres(self, tree: Articulation) -> tuple[Vec3, list[Vec3]]:
+        """Where the base's and each link's centre of mass lies in its part's frame (a
+        finger's lies halfway up it, not at its joint: gravity turns it)."""
+        def of(geometry: dict[str, Any] | None) -> Vec3:
+            return ORIGIN if geometry is None else self._solid(geometry)[1]
+        return of(tree.base_geometry), [of(link.geometry) for link in tree.links]
+
+    def made(self, body: int, tree: Articulation, base_pose: Pose,
+             joint_links: Sequence[int]) -> int | None:
+        """Finish a tree built as ``body``: its friction, joint limits and motors (driven by
+        :meth:`drive` only), and for a robot its mount (the constraint's id)."""
+        p, client = self.p, self.client
+        frictions = {-1: tree.base_friction, **{k: link.friction for k, link in enumerate(tree.links)}}
+        for link, given in frictions.items():
+            mu = self.physics.friction if given is None else given
+            p.changeDynamics(body, link, lateralFriction=mu, spinningFriction=SPINNING * mu,
+                             rollingFriction=ROLLING * mu, physicsClientId=client)
+        # Bullet gives a link without a shape no inertia at all, and a joint between two
+        # such turns the whole motor's torque into spin of nothing: a motor then holds any
+        # load whatever its torque. They get that of a small ball of their mass.
+        shapeless = ([-1] if tree.base_geometry is None and not tree.static else []) + \
+            [k for k, link in enumerate(tree.links) if link.geometry is None]
+        for link in shapeless:
+            p.changeDynamics(body, link, localInertiaDiagonal=(SHAPELESS_INERTIA,) * 3,
+                             physicsClientId=client)
+        for k in joint_links:
+            joint = tree.links[k].joint
+            if math.isfinite(joint.lower) and math.isfinite(joint.upper):  # type: ignore[union-attr]
+                p.changeDynamics(body, k, jointLowerLimit=joint.lower,  # type: ignore[union-attr]
+                                 jointUpperLimit=joint.upper, physicsClientId=client)  # type: ignore[union-attr]
+        if joint_links:  # Bullet's own velocity motors would hold every joint still
+            p.setJointMotorControlArray(body, list(joint_links), p.VELOCITY_CONTROL,
+                                        forces=[0.0] * len(joint_links), physicsClientId=client)
+        if not tree.mounted or tree.static:
+            return None
+        return p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
+                                  base_pose[0], childFrameOrientation=base_pose[1],
+                                  physicsClientId=client)
+
+    # --- driving -----------------------------------------------------------------------
+
+    def drive(self, body: int, joint_links: Sequence[int], targets: list[float],
+              torques: list[float]) -> None:
+        """Every motor of a tree toward its target, with at most its torque."""
+        self.p.setJointMotorControlArray(body, list(joint_links), self.p.POSITION_CONTROL,
+                                         targetPositions=targets, forces=torques,
+                                         physicsClientId=self.client)
+
+    def mount(self, constraint: int, pose: Pose) -> None:
+        """Move a robot's mount: its base follows, pulled with at most MOUNT_FORCE."""
+        self.p.changeConstraint(constraint, pose[0], pose[1], maxForce=MOUNT_FORCE,
+                                physicsClientId=self.client)
+
+    def teleport(self, body: int, pose: Pose) -> None:
+        """Put a free body at a pose, at rest (a script's setPosition of an object)."""
+        self.p.resetBasePositionAndOrientation(body, pose[0], pose[1], physicsClientId=self.client)
+        self.p.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=self.client)
+
+    def advance(self, seconds: float) -> int:
+        """Step the world through ``seconds`` (what is left over waits for the next call;
+        a late tick catches up at most MAX_STEPS_PER_TICK ticks); the steps taken."""
+        step = self.physics.step
+        limit = MAX_STEPS_PER_TICK * self.physics.substeps
+        self._debt = min(self._debt + seconds, limit * step)
+        count = int(self._debt / step + 1e-9)
+        self._debt -= count * step
+        for _ in range(count):
+            self.p.stepSimulation(physicsClientId=self.client)
+        self.steps += count
+        return count
+
+    # --- reading -----------------------------------------------------------------------
+
+    def base_pose(self, body: int) -> Pose:
+        position, orientation = self.p.getBasePositionAndOrientation(body, physicsClientId=self.client)
+        return tuple(position), tuple(orientation)
+
+    def angles(self, body: int, joint_links: Sequence[int]) -> list[float]:
+        """The joints' real angles (radians)."""
+        return [state[0] for state in self.p.getJointStates(body, list(joint_links),
+                                                            physicsClientId=self.client)]
+
+
+def forces_by_part(points: Sequence[Sequence[Any]], keys_of: Mapping[int, list[str | None]]) -> dict[str, float]:
+    """Newtons pressing on each part: the normal forces of its contact points, summed."""
+    found: dict[str, float] = {}
+    for point in points:
+        force = point[9]
+        if force > 0.0:
+            for key in (keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]):
+                if key is not None:
+                    found[key] = found.get(key, 0.0) + force
+    return found

@@ -1,0 +1,40 @@
+"""Dynamic mode's options and its Bullet side (in a scene: its own tests use every part)."""
+
+import math
+
+import pytest
+
+from server.core.physics.dynamics import DEFAULT_MAX_TORQUE, Physics
+from server.errors import BadArguments, OutOfRange, WrongType
+
+
+def test_options_left_out_take_their_defaults_and_the_wire_form_round_trips():
+    physics = Physics.of("dynamic", {"gravity": 157, "substeps": 8})
+    assert physics.dynamic and physics.gravity == 157.0 and physics.substeps == 8
+    assert physics.solverIterations == Physics().solverIterations
+    assert physics.step == pytest.approx(1 / 480)
+    wire = physics.wire()
+    assert Physics.of(wire.pop("mode"), wire) == physics
+    assert not Physics.of("kinematic").dynamic
+
+
+@pytest.mark.parametrize("mode, options, error, words", [
+    ("floating", None, OutOfRange, "kinematic or dynamic"),
+    ("dynamic", [9.81], WrongType, "object"),
+    ("dynamic", {"gravitation": 9.81}, BadArguments, "gravitation"),
+    ("dynamic", {"substeps": 2.5}, WrongType, "whole"),
+    ("dynamic", {"substeps": 0}, OutOfRange, "[1, 20]"),
+    ("dynamic", {"friction": True}, WrongType, "friction"),
+    ("dynamic", {"gravity": math.inf}, WrongType, "gravity"),
+    ("dynamic", {"density": 0.5}, OutOfRange, "density"),
+])
+def test_bad_options_are_refused_naming_what_was_wrong(mode, options, error, words):
+    with pytest.raises(error) as refused:
+        Physics.of(mode, options)
+    assert words in refused.value.message
+
+
+def test_the_default_torque_holds_a_hand_level():
+    # an edged finger of 1000 kg/m³ (about 80 kg a segment, three of them, their centres
+    # 0.5, 1.5 and 2.5 m out) held level under 9.81 m/s², with room to grip
+    assert DEFAULT_MAX_TORQUE > 2 * 80 * 9.81 * (0.5 + 1.5 + 2.5)
