@@ -140,13 +140,14 @@ class SceneWorker:
 
     def idle(self) -> bool:
         """True when a tick would have nothing to do or tell: no client connected or within
-        its grace period, no animation, nothing changed, queued or unsaved. The scene then
-        stops ticking; its next tick (before any command is served) advances its clock by
-        the whole time it waited, so the time it reads is right."""
+        its grace period, no animation, nothing changed, queued, unsaved or (dynamic mode)
+        still moving. The scene then stops ticking; its next tick (before any command is
+        served) advances its clock by the whole time it waited, so the time it reads is right."""
         saver = self.saver
         return not (self._sessions or self._departed or self._commands or self._notices
                     or self._resync or self._events or self._animator is not None
-                    or self.scene.feed.pending or saver.saved is False or saver.at_risk)
+                    or self.scene.feed.pending or self.scene.moving
+                    or saver.saved is False or saver.at_risk)
 
     def _serve(self, until: float) -> None:
         """Apply queued commands until ``until`` (at least one), then send what they made."""

@@ -127,3 +127,24 @@ def test_asking_a_sleeping_scene_for_its_figures_does_not_wake_it(worker):
     worker.send([("read", 9, scene_clock, ())])
     _, _, ok, body = events_until(worker, "reply")[0]
     assert json.loads(body)["seq"] <= 3
+
+
+def test_a_dynamic_scene_nobody_watches_ticks_until_everything_rests(worker):
+    worker.send([("join", 1, "c1", "controller"),
+                 ("text", 1, json.dumps({"op": "batch", "ops": [
+                     {"op": "create", "object": "c1.b", "type": "Ball", "args": [0.2]},
+                     {"op": "call", "object": "c1.b", "method": "keep", "args": []},
+                     {"op": "call", "object": "c1.b", "method": "setPosition", "args": [0, 3, 0]},
+                     {"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]}]})),
+                 ("leave", 1)])
+    events_until(worker, "answers")
+    started = time.monotonic()
+    events_until(worker, "idle")  # once the ball lies still (the grace period is over before)
+    assert time.monotonic() - started > 0.7  # three metres take 0.78 s to fall
+    worker.send([("read", 2, _height, ())])
+    (_, _, ok, body), = events_until(worker, "reply")
+    assert ok and json.loads(body) == pytest.approx(0.2, abs=0.01)  # it fell while nobody watched
+
+
+def _height(scene):
+    return scene.get("c1.b").position[1]
