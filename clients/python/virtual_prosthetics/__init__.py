@@ -36,6 +36,17 @@ def set_transforms(transforms: dict[Any, list[float]]) -> None:
     current_session().set_transforms(transforms)
 
 
+def set_physics(mode: str, **options: float) -> None:
+    """``vp.set_physics("dynamic", gravity=9.81, substeps=5, solver_iterations=50,
+    friction=1.0, density=1000)`` or ``vp.set_physics("kinematic")`` (not in the manual)."""
+    current_session().set_physics(mode, **options)
+
+
+def get_physics() -> dict[str, Any]:
+    """The scene's physics mode and options."""
+    return current_session().get_physics()
+
+
 def set_camera_target(*target: float) -> None:
     """Manual ``setCameraTarget(x, y, z)``: every viewer's camera turns towards it."""
     current_session().set_camera_target(*target)
@@ -47,4 +58,5 @@ __all__ = [
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset",
+    "set_physics", "get_physics",
 ]

@@ -19,6 +19,8 @@ class Mirror:
     queued in ``events`` until the client's own thread takes them, so that callbacks never
     run on the thread that reads the socket.
 
+    In dynamic mode it also keeps the scene's ``physics`` and the ``forces`` on parts.
+
     Not thread-safe on its own: the :class:`~virtual_prosthetics.session.Session` holds a
     lock around every use.
     """
@@ -29,6 +31,8 @@ class Mirror:
         self.clock = clock
         self.nodes: dict[str, NodeState] = {}
         self.camera: dict[str, list[float]] = {}
+        self.physics: dict[str, Any] = {"mode": "kinematic"}
+        self.forces: dict[str, float] = {}  # dynamic mode: newtons on each part in contact
         self.time = 0.0
         self.seq = 0
         self.contacts: set[tuple[str, str]] = set()
@@ -43,6 +47,8 @@ class Mirror:
         if op == "snapshot":
             self.nodes.clear()
             self.camera = message["camera"]
+            self.physics = message["physics"]
+            self.forces.clear()
             self._add(message["nodes"])
             self.contacts = {tuple(pair) for pair in message["contacts"]}  # type: ignore[misc]
             self._clock(message)
@@ -71,6 +77,13 @@ class Mirror:
                 self.nodes[node_id].update(position=pose[:3], quaternion=pose[3:])
         if "camera" in changes:
             self.camera = changes["camera"]
+        if "physics" in changes:
+            self.physics = changes["physics"]
+        for node_id, force in changes.get("forces", {}).items():
+            if force:
+                self.forces[node_id] = force
+            else:
+                self.forces.pop(node_id, None)
         self._remove(changes.get("removed", ()))
 
     def _each_angle(self, angles: dict[str, Any]) -> Iterator[tuple[str, float]]:

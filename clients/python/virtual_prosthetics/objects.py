@@ -111,6 +111,29 @@ class Part(Shown):
         self._call("attachToSlot", parent, slot)
         return self
 
+    # --- dynamic mode (not in the manual) ---------------------------------------------
+
+    def set_mass(self, mass: float) -> Part:
+        """Its mass in kilograms in dynamic mode (instead of volume × the scene's density);
+        returns this part."""
+        self._call("setMass", mass)
+        return self
+
+    def get_mass(self) -> float:
+        """Its mass in dynamic mode (kg; asks the server: a mass from the volume depends
+        on the scales above the part)."""
+        return float(self._scene.call(self.id, "getMass", (), wait=True))
+
+    def set_friction(self, friction: float) -> Part:
+        """Its friction coefficient in dynamic mode (instead of the scene's); returns it."""
+        self._call("setFriction", friction)
+        return self
+
+    def set_static(self, static: bool = True) -> Part:
+        """At the top of its tree: never moves in dynamic mode (a table); returns it."""
+        self._call("setStatic", static)
+        return self
+
     @property
     def hears_contacts(self) -> bool:
         """True when a subclass overrides ``begin_contact`` or ``end_contact`` (only then
@@ -144,8 +167,18 @@ class Motor(Part):
         return self._state()["angle"]
 
     def set_angle(self, angle: float | None) -> None:
-        """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""
+        """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped. In
+        dynamic mode the motor drives there; ``get_angle`` reads where it is."""
         self._call("setAngle", angle)
+
+    def set_max_torque(self, torque: float) -> Motor:
+        """The most torque (N·m) it drives with in dynamic mode; returns the motor."""
+        self._call("setMaxTorque", torque)
+        return self
+
+    def get_max_torque(self) -> float:
+        """Its torque bound in dynamic mode (N·m)."""
+        return float(self._state()["maxTorque"])
 
     def flip(self, flipped: bool = True) -> Motor:
         """Manual ``flip(bool)``: turn the other way; returns the motor."""

@@ -63,6 +63,11 @@ class Sensor(Part):
         reading = self._framed(exact)
         return list(reading["position"] if reading else self._ask("sensePosition"))
 
+    def sense_force(self, exact: bool = False) -> float:
+        """Newtons pressing on the sensor's part (dynamic mode; 0 in kinematic mode)."""
+        reading = self._framed(exact)
+        return float(reading["force"] if reading else self._ask("senseForce"))
+
     def _objects(self, exact: bool) -> list[str]:
         reading = self._framed(exact)
         if reading:

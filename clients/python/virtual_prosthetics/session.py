@@ -211,6 +211,19 @@ class Session:
         self.call(SCENE_ID, "setTransforms",
                   ({getattr(key, "id", key): list(value) for key, value in transforms.items()},))
 
+    def set_physics(self, mode: str, **options: float) -> None:
+        """``setPhysics`` (not in the manual): ``"kinematic"`` (1.0's: motors jump, nothing
+        falls) or ``"dynamic"``, with options ``gravity``, ``substeps``,
+        ``solver_iterations``, ``friction``, ``density`` (left out: the defaults)."""
+        wire = {_camel(name): value for name, value in options.items()}
+        self.call(SCENE_ID, "setPhysics", (mode, wire) if wire else (mode,))
+
+    def get_physics(self) -> dict[str, Any]:
+        """The scene's physics: ``{"mode", "gravity", "substeps", …}`` (wire names)."""
+        self.connection.raise_deferred()
+        with self.lock:
+            return dict(self.mirror.physics)
+
     def get_time(self) -> float:
         """Manual ``getTime()``: the server's scene time now."""
         self.connection.raise_deferred()
@@ -229,3 +242,9 @@ class Session:
 
     def __exit__(self, *exc: Any) -> None:
         self.close()
+
+
+def _camel(name: str) -> str:
+    """``solver_iterations`` → ``solverIterations``."""
+    head, *rest = name.split("_")
+    return head + "".join(word.title() for word in rest)

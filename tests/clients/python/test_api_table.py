@@ -59,6 +59,7 @@ ARGUMENTS = {
     "slot": lambda: 0, "color": lambda: 0x336699, "rgb": lambda: [1, 0, 0],
     "node": lambda: vp.MotorZ(), "part": lambda: vp.Box(), "axis": lambda: "z",
     "asset": lambda: "round-tip.glb", "geometry": lambda: {"kind": "box", "size": [1, 1, 1]},
+    "mass": lambda: 2.0, "friction": lambda: 0.5, "torque": lambda: 100.0,
 }
 RETURNS = {
     "none": lambda result, obj: result is None,

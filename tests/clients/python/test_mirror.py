@@ -23,7 +23,7 @@ def _frame(time: float, seq: int) -> dict[str, Any]:
 
 def _snapshot(time: float) -> dict[str, Any]:
     return {"op": "snapshot", "time": time, "seq": 0, "camera": {}, "nodes": [],
-            "contacts": []}
+            "contacts": [], "physics": {"mode": "kinematic"}}
 
 
 def test_time_runs_on_between_frames() -> None:
@@ -59,3 +59,13 @@ def test_a_new_snapshot_may_start_the_clock_again() -> None:
     assert mirror.now() == 31.0
     mirror.apply(_snapshot(0.5))
     assert mirror.now() == 0.5
+
+
+def test_the_physics_and_the_forces_on_parts_follow_the_frames() -> None:
+    mirror = Mirror()
+    mirror.apply(_snapshot(0.0))
+    dynamic = {"mode": "dynamic", "gravity": 9.81}
+    mirror.apply({"op": "frame", "seq": 1, "time": 0.1, "physics": dynamic, "forces": {"c1.b": 98.1}})
+    assert mirror.physics == dynamic and mirror.forces == {"c1.b": 98.1}
+    mirror.apply({"op": "frame", "seq": 2, "time": 0.2, "forces": {"c1.b": 0, "c1.f": 3.5}})
+    assert mirror.forces == {"c1.f": 3.5}  # 0: its contacts ended

@@ -71,3 +71,43 @@ def test_keep_leaves_a_scripts_robots_after_it_ends(server, scene_name):
     time.sleep(1.5)  # past the test server's grace period
     [robot] = server.get(f"/api/scenes/{scene_name}/robots")
     assert robot["type"] == "EdgedHand" and robot["shared"]
+
+
+def _eventually(check, seconds=5.0):
+    deadline = time.monotonic() + seconds
+    while not check():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.02)
+
+
+def test_a_script_switches_the_scene_to_dynamic_and_things_fall_and_are_felt(scene):
+    pad = vp.Box(2, 0.2, 2).set_static()
+    sensor = vp.Sensor().watch()
+    sensor.attach_to_slot(pad)
+    pad.set_position(0, 0.1, 0)
+    load = vp.Ball(0.3).set_mass(10)
+    load.set_position(0, 2, 0)
+    assert load.get_mass() == 10
+    vp.set_physics("dynamic", gravity=9.81, solver_iterations=60)
+    scene.sync()
+    assert vp.get_physics()["mode"] == "dynamic" and vp.get_physics()["solverIterations"] == 60
+    _eventually(lambda: load._state()["position"][1] < 0.5)  # fallen onto the pad
+    _eventually(lambda: sensor.sense_force() == pytest.approx(98.1, rel=0.05))
+    assert scene.mirror.forces[load.id] == pytest.approx(98.1, rel=0.05)
+
+
+def test_in_dynamic_mode_a_motor_reads_where_it_is_not_where_it_was_sent(scene):
+    arm = vp.Robot()
+    motor = vp.MotorZ().set_max_torque(1.0)  # far too weak for the finger
+    arm.attach_chain(motor, vp.EdgedFinger(2))
+    arm.set_position(0, 3, 0)
+    vp.set_physics("dynamic")
+    motor.set_angle(-1.5)
+    assert motor.get_max_torque() == 1.0
+    time.sleep(1.0)
+    scene.sync()
+    assert motor.get_angle() != pytest.approx(-1.5, abs=0.2)  # the finger hangs down instead
+    with pytest.raises(vp.ServerError) as refused:
+        vp.set_physics("dynamic", substeps=0)
+        scene.sync()
+    assert refused.value.code == "out_of_range" and "substeps" in str(refused.value)
