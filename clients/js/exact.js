@@ -9,6 +9,7 @@ export const READS = Object.freeze({
 	getParts: 'refs', getMotors: 'refs', getSensors: 'refs',
 	senseDistance: 'number', senseTouch: 'number', sensePosition: 'point',
 	senseCollision: 'bool', senseObjects: 'ids', senseObject: 'bool',
+	senseForce: 'number', getMaxTorque: 'number', getMass: 'number', getPhysics: 'physics',
 });
 
 const DECODE = {

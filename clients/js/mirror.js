@@ -19,10 +19,12 @@ export class Mirror {
 		this.wants = wants;
 		this.nodes = new Map();    // id -> description (fields as the server sends them)
 		this.camera = null;
+		this.physics = { mode: 'kinematic' };
+		this.forces = new Map();   // dynamic mode: part id -> newtons pressing on it
 		this.time = 0;
 		this.seq = 0;
 		this.contacts = new Set(); // "a|b"
-		this.readings = new Map(); // sensor id -> {distance, touch, position, objects}
+		this.readings = new Map(); // sensor id -> {distance, touch, position, objects, force}
 		this.events = [];          // [kind, a, b] contact changes not yet dispatched
 		this.listeners = [];       // (kind, id, fields) for every node change
 		this.held = new Map();     // id -> {until, known, fields, server}, by until: see predict
@@ -39,6 +41,8 @@ export class Mirror {
 					if (!fresh.has(id) && this.held.get(id)?.known !== false) this.forget(id);
 				}
 				this.camera = message.camera;
+				this.physics = message.physics ?? this.physics;
+				this.forces.clear();
 				for (const node of message.nodes) {
 					if (this.nodes.has(node.id)) this.change(node.id, node);
 					else this.add([node]);
@@ -69,6 +73,11 @@ export class Mirror {
 			this.change(id, { position: pose.slice(0, 3), quaternion: pose.slice(3) });
 		}
 		if (changes.camera) this.camera = changes.camera;
+		if (changes.physics) this.physics = changes.physics;
+		for (const [id, force] of Object.entries(changes.forces ?? {})) {
+			if (force) this.forces.set(id, force);
+			else this.forces.delete(id);
+		}
 		for (const id of changes.removed ?? []) this.forget(id);
 	}
 

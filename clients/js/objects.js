@@ -120,6 +120,27 @@ export class Part extends SceneObject {
 		return this;
 	}
 
+	// Not in 1.0, dynamic mode: the part's mass (kg), friction and whether it never moves.
+	setMass(mass) {
+		this.call('setMass', mass);
+		return this;
+	}
+
+	// Asks the server (a mass from the volume depends on the scales above the part).
+	async getMass() {
+		return this.vp.session.call(this.vp.id, 'getMass', [], { wait: true });
+	}
+
+	setFriction(friction) {
+		this.call('setFriction', friction);
+		return this;
+	}
+
+	setStatic(on = true) {
+		this.call('setStatic', on);
+		return this;
+	}
+
 	// True when a subclass overrides beginContact or endContact (only then are this
 	// part's contact changes kept for it).
 	get hearsContacts() {
@@ -156,6 +177,16 @@ export class Motor extends Part {
 	flip(bool = true) {
 		this.call('flip', bool);
 		return this;
+	}
+
+	// Not in 1.0, dynamic mode: the most torque (N·m) the motor drives with.
+	setMaxTorque(torque) {
+		this.call('setMaxTorque', torque);
+		return this;
+	}
+
+	getMaxTorque() {
+		return this.node?.maxTorque;
 	}
 }
 

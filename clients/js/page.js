@@ -41,6 +41,7 @@ export async function startPage(moduleUrl) {
 		robot.gui = gui;
 	};
 	viewer.setState('connected');
+	if (options.physics) session.call('scene', 'setPhysics', [options.physics]);   // ?physics=dynamic
 	watchLoss(session, viewer);
 	return session;
 }

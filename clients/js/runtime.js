@@ -154,3 +154,14 @@ export function setCameraPosition(...position) {
 export function setCameraTarget(...target) {
 	currentSession().call(SCENE_ID, 'setCameraTarget', target);
 }
+
+// Not in 1.0: setPhysics('dynamic', {gravity, substeps, solverIterations, friction,
+// density}) (options left out take their defaults) or setPhysics('kinematic').
+export function setPhysics(mode, options) {
+	currentSession().call(SCENE_ID, 'setPhysics', options === undefined ? [mode] : [mode, options]);
+}
+
+// The scene's physics as the mirror has it: {mode, gravity, substeps, …}.
+export function getPhysics() {
+	return { ...currentSession().mirror.physics };
+}

@@ -6,7 +6,7 @@
 import * as THREE from 'three';
 import { Part, forward } from './objects.js';
 
-const NOTHING = Object.freeze({ distance: Infinity, touch: 0, objects: [] });
+const NOTHING = Object.freeze({ distance: Infinity, touch: 0, objects: [], force: 0 });
 const where = new THREE.Vector3();
 
 export class Sensor extends Part {
@@ -38,6 +38,11 @@ export class Sensor extends Part {
 	sensePosition() {
 		this.updateWorldMatrix(true, false);
 		return this.getWorldPosition(where).toArray();
+	}
+
+	// Not in 1.0: newtons pressing on the sensor's part (dynamic mode; else 0).
+	senseForce() {
+		return this.reading().force ?? 0;
 	}
 
 	senseObjects() {

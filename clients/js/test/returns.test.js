@@ -19,6 +19,7 @@ const ARGUMENTS = {
 	string: () => 'named', slot: () => 0, color: () => 0x336699, rgb: () => [1, 0, 0],
 	node: () => new Prosthetic.MotorZ(), part: () => new Prosthetic.Box(), axis: () => 'z',
 	asset: () => MESH, geometry: () => ({ kind: 'box', size: [1, 1, 1] }),
+	mass: () => 2, friction: () => 0.5, torque: () => 100,
 };
 
 function lineage(name) {

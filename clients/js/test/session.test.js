@@ -60,3 +60,29 @@ test('an error of a request nobody waited for is thrown by the next call', { ski
 		Prosthetic.close();
 	}
 });
+
+test('a page switches its scene to dynamic: objects fall, forces are felt, motors read where they are', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-dynamic-${process.pid}` });
+	try {
+		const pad = new Prosthetic.Box(2, 0.2, 2).setStatic();
+		const sensor = new Prosthetic.Sensor();
+		sensor.attachToSlot(pad);
+		pad.setPosition(0, 0.1, 0);
+		const load = new Prosthetic.Ball(0.3).setMass(10);
+		load.setPosition(0, 2, 0);
+		Prosthetic.setPhysics('dynamic', { gravity: 9.81 });
+		await Prosthetic.sync();
+		assert.equal(Prosthetic.getPhysics().mode, 'dynamic');
+		assert.equal(await load.getMass(), 10);
+		sensor.senseForce();   // starts the watch
+		const deadline = Date.now() + 5000;
+		while (Math.abs(sensor.senseForce() - 98.1) > 5 && Date.now() < deadline) await new Promise((r) => setTimeout(r, 20));
+		assert.ok(Math.abs(sensor.senseForce() - 98.1) <= 5, `force ${sensor.senseForce()}`);
+		assert.ok(load.node.position[1] < 0.5, 'the ball fell onto the pad');
+		assert.ok(Math.abs(session.mirror.forces.get(load.vp.id) - 98.1) <= 5);
+		await assert.rejects(async () => { Prosthetic.setPhysics('dynamic', { substeps: 0 }); await Prosthetic.sync(); },
+			(error) => error.code === 'out_of_range' && /substeps/.test(error.message));
+	} finally {
+		Prosthetic.close();
+	}
+});

@@ -2,7 +2,7 @@
 
 import { eachAngle } from '/client/pose.js';
 
-const QUIET_FRAME = new Set(['op', 'seq', 'time', 'sensors']);  // readings: see lasers
+const QUIET_FRAME = new Set(['op', 'seq', 'time', 'sensors', 'forces']);  // readings: see lasers
 
 export function makeHandlers(view) {
 	const { tree, motion, overlays, lasers, stage, hook, status } = view;
@@ -18,6 +18,7 @@ export function makeHandlers(view) {
 			tree.add(message.nodes);
 			overlays.reset(message.contacts);
 			stage.setCamera(message.camera);
+			status.physics(message.physics?.mode);
 			hook.frame(message);
 		},
 		added(message) {
@@ -43,6 +44,7 @@ export function makeHandlers(view) {
 			}
 			if (message.contacts) overlays.contacts(message.contacts);
 			if (message.camera) stage.setCamera(message.camera);
+			if (message.physics) status.physics(message.physics.mode);
 		},
 		error(message) {
 			console.warn(`server: ${message.code}: ${message.message}`);

@@ -1,5 +1,6 @@
 // The viewer's URL options: /view?scene=NAME&role=viewer|controller&touch-color=red
 //   &debug-physics&show-slots&engine=NAME&token=TOKEN (a server that asks for one)
+//   &physics=dynamic|kinematic (a page: the scene's physics once connected)
 
 export function readOptions(search = window.location.search) {
 	const params = new URLSearchParams(search);
@@ -12,6 +13,7 @@ export function readOptions(search = window.location.search) {
 		showSlots: flag('show-slots'),
 		engine: params.get('engine') || null,
 		token: params.get('token') || null,
+		physics: ['dynamic', 'kinematic'].includes(params.get('physics')) ? params.get('physics') : null,
 	};
 }
 

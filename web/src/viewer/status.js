@@ -19,6 +19,7 @@ export class StatusLine {
 		this.frames = 0;
 		this.since = null;   // counting starts with the first frame
 		this.warning = null;   // the scene's last warning (changes not saved, replaced), if any
+		this.mode = 'kinematic';   // the scene's physics (said only when dynamic)
 		setInterval(() => this.countClients(), COUNT_EVERY);
 	}
 
@@ -30,6 +31,12 @@ export class StatusLine {
 	// The scene's warning, shown until the next one (null: all is well again).
 	warn(text) {
 		this.warning = text;
+		this.show();
+	}
+
+	// The scene's physics mode (kinematic or dynamic).
+	physics(mode = 'kinematic') {
+		this.mode = mode;
 		this.show();
 	}
 
@@ -64,6 +71,7 @@ export class StatusLine {
 
 	show() {
 		const parts = [this.state, `scene ${this.scene}`, `${this.fps ?? '…'} frames/s`, `${this.pps ?? '…'} pictures/s`];
+		if (this.mode === 'dynamic') parts.splice(2, 0, 'dynamic');
 		if (this.clients) {
 			const { viewers, controllers } = this.clients;
 			parts.push(`${viewers} viewer${viewers === 1 ? '' : 's'}`);
