@@ -75,6 +75,14 @@ def test_a_mounted_hand_follows_its_mount_smoothly_and_keeps_its_pose(scene, kin
     assert all(b - a < 0.5 for a, b in zip(heights, heights[1:]))  # no jump: dragged there
 
 
+def test_a_heavy_hand_under_strong_gravity_does_not_sink_at_its_mount(scene):
+    hand = AnthroHand(scene, "h", True)
+    hand.set_position((0, 3, 0))
+    scene.set_physics("dynamic", {"gravity": 160, "density": 5000})
+    run(scene, 1)
+    assert hand.position == pytest.approx((0, 3, 0), abs=2e-3)
+
+
 def test_masses_come_from_volume_and_density_unless_given(scene):
     box = Box(scene, "b", 1, 2, 0.5)
     assert box.get_mass() == pytest.approx(1000.0)

@@ -189,9 +189,11 @@ class Dynamics:
                                         forces=[0.0] * len(joint_links), physicsClientId=client)
         if not tree.mounted or tree.static:
             return None
-        return p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
-                                  base_pose[0], childFrameOrientation=base_pose[1],
-                                  physicsClientId=client)
+        mount = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
+                                   base_pose[0], childFrameOrientation=base_pose[1],
+                                   physicsClientId=client)
+        self.mount(mount, base_pose)  # (Bullet's own bound lets a heavy hand sink)
+        return mount
 
     # --- driving -----------------------------------------------------------------------
 
