@@ -139,7 +139,7 @@ async def scenes(request: Request, saved: bool = False) -> list[dict[str, Any]]:
     return listed
 
 
-@router.get("/scenes/{scene}", responses=NOT_FOUND, summary="One scene: clock, counts, camera")
+@router.get("/scenes/{scene}", responses=NOT_FOUND, summary="One scene: clock, counts, camera, physics")
 async def scene_detail(request: Request, scene: str) -> dict[str, Any]:
     return await _summary(_hub(request, scene), wait=True)
 
@@ -234,7 +234,7 @@ def _export(scene: Scene, embed: bool) -> dict[str, Any]:
 
 @router.get("/metrics", responses={200: {"content": {"application/json": {}, "text/plain": {}}}},
             summary="Per scene, over the last 10 s: tick duration p50/p95/max, "
-                                 "ticks, requests and CPU per second; totals, connections and "
+                                 "ticks, requests and CPU per second, peak contact force; totals, connections and "
                                  "queues (format=prometheus: Prometheus's text format)")
 async def metrics(request: Request, format: Literal["json", "prometheus"] = "json") -> Any:
     hubs = _hubs(request)

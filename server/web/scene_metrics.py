@@ -1,5 +1,5 @@
 """What a scene's process did lately, for ``/api/metrics``: tick durations (p50, p95, max),
-ticks, requests and CPU per second, over a recent window rather than since start, so a
+ticks, requests and CPU per second, the peak contact force (dynamic mode), over a recent window rather than since start, so a
 scene that was busy an hour ago does not look busy now and a fresh stall shows at once.
 
 Pure bookkeeping with the clocks passed in, so tests need neither a process nor a wait.
@@ -29,12 +29,16 @@ class SceneMetrics:
     _ticks: deque[tuple[float, float]] = field(default_factory=deque)     # (at, ms)
     _requests: deque[tuple[float, int]] = field(default_factory=deque)    # (at, count)
     _cpu: deque[tuple[float, float]] = field(default_factory=deque)       # (at, cpu seconds)
+    _forces: deque[tuple[float, float]] = field(default_factory=deque)    # (at, newtons)
 
-    def ticked(self, at: float, ms: float, cpu: float) -> None:
-        """A tick that ended at ``at`` took ``ms``; the process had used ``cpu`` seconds."""
+    def ticked(self, at: float, ms: float, cpu: float, force: float = 0.0) -> None:
+        """A tick that ended at ``at`` took ``ms``; the process had used ``cpu`` seconds;
+        the most force on any part was ``force`` newtons."""
         self.ticks += 1
         self._ticks.append((at, ms))
         self._cpu.append((at, cpu))
+        if force:
+            self._forces.append((at, force))
         self._forget(at)
 
     def served(self, at: float, count: int) -> None:
@@ -56,7 +60,7 @@ class SceneMetrics:
                 "ticksPerSecond": len(self._ticks) / span if span else 0.0,
                 "requestsPerSecond": sum(n for _, n in self._requests) / span if span else 0.0,
                 "cpuPercent": 100 * (cpu - first_cpu) / span if span else 0.0,
-                "cpuSeconds": cpu}
+                "cpuSeconds": cpu, "peakForceN": max((f for _, f in self._forces), default=0.0)}
 
     def _span(self, now: float) -> float:
         """How much of the window has history (a young scene has less than all of it)."""
@@ -64,6 +68,6 @@ class SceneMetrics:
         return min(self.window, now - oldest)
 
     def _forget(self, now: float) -> None:
-        for noted in (self._ticks, self._requests, self._cpu):
+        for noted in (self._ticks, self._requests, self._cpu, self._forces):
             while noted and noted[0][0] < now - self.window:
                 noted.popleft()

@@ -361,7 +361,7 @@ class SceneWorker:
         self._flush()
         self.saver.tick(time.monotonic())
         self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
-                            time.process_time())
+                            time.process_time(), self.scene.bodies.peak_force())
 
     def _resynced(self) -> list[Outgoing]:
         """After a failed tick, a fresh snapshot first: every client rebuilds from it."""

@@ -83,6 +83,16 @@ def test_a_heavy_hand_under_strong_gravity_does_not_sink_at_its_mount(scene):
     assert hand.position == pytest.approx((0, 3, 0), abs=2e-3)
 
 
+def test_the_clock_of_a_dynamic_scene_is_its_physics_a_late_tick_slows_it(scene):
+    ball = Ball(scene, "b", 0.25)
+    ball.set_position((0, 50, 0))
+    scene.set_physics("dynamic")
+    scene.tick(1.0)  # a tick a whole second late: the world catches up at most 2 ticks
+    assert scene.time == pytest.approx(2 / 60)
+    fallen = 50 - ball.position[1]
+    assert fallen == pytest.approx(9.81 * scene.time ** 2 / 2, rel=0.1)  # falls as its clock says
+
+
 def test_masses_come_from_volume_and_density_unless_given(scene):
     box = Box(scene, "b", 1, 2, 0.5)
     assert box.get_mass() == pytest.approx(1000.0)

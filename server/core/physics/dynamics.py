@@ -38,7 +38,8 @@ from .geometry import centroid, volume
 KINEMATIC, DYNAMIC = "kinematic", "dynamic"
 MODES = (KINEMATIC, DYNAMIC)
 NOMINAL_TICK = 1 / 60  # substeps are counted per this much time
-MAX_STEPS_PER_TICK = 4  # × substeps: a late tick catches up this far, no further
+MAX_STEPS_PER_TICK = 2  # × substeps: a late tick catches up this far, no further (a scene
+# that cannot keep up runs slower than real time rather than sending fewer, larger steps)
 BETWEEN_MASS = 0.1  # kg: a link that carries no part (where two joints meet)
 MOUNT_FORCE = 1e9  # N: what a robot's mount pulls with (its constraint's bound)
 MOUNT_MASS = 1.0  # kg: a robot base without a part of its own

@@ -19,11 +19,11 @@ def robots(scene: Scene) -> list[Robot]:
 
 
 def scene_summary(scene: Scene) -> dict[str, Any]:
-    """Name, clock, object and robot counts of a scene."""
+    """Name, clock, object and robot counts, camera and physics of a scene."""
     return {"name": scene.name, "time": scene.time, "seq": scene.seq,
             "objects": len(scene.nodes), "robots": len(robots(scene)),
             "bodies": len(scene.bodies),
-            "camera": scene.camera.wire()}
+            "camera": scene.camera.wire(), "physics": scene.get_physics()}
 
 
 def robot_summary(robot: Robot) -> dict[str, Any]:

@@ -127,9 +127,10 @@ class SceneBodies:
         self._unposed.update(self.physics.roots())
         self._targets_due = physics.dynamic
 
-    def advance(self, dt: float) -> tuple[dict[str, float], dict[str, Pose]]:
-        """Dynamic mode: drive the motors, step the world through ``dt``; the motors' new
-        angles and the free roots' new poses (what moved more than a hair)."""
+    def advance(self, dt: float) -> tuple[float, dict[str, float], dict[str, Pose]]:
+        """Dynamic mode: drive the motors, step the world through ``dt``; the seconds the
+        world went through (less than ``dt`` when it is behind), the motors' new angles and
+        the free roots' new poses (what moved more than a hair)."""
         self.sync()
         physics = self.physics
         if self._targets_due:
@@ -137,8 +138,10 @@ class SceneBodies:
                 physics.drive(root_id, [m.target for m in motors],  # type: ignore[attr-defined]
                               [m.get_max_torque() for m in motors])  # type: ignore[attr-defined]
             self._targets_due = False
-        if not physics.dynamics.advance(dt):  # type: ignore[union-attr]
-            return {}, {}
+        dynamics = physics.dynamics
+        steps = dynamics.advance(dt)  # type: ignore[union-attr]
+        if not steps:
+            return 0.0, {}, {}
         angles: dict[str, float] = {}
         poses: dict[str, Pose] = {}
         for root_id in physics.roots():
@@ -154,7 +157,7 @@ class SceneBodies:
             if moved:
                 self.tracker.moved(physics.tree(root_id).parts())  # type: ignore[union-attr]
                 self._unposed.add(root_id)
-        return angles, poses
+        return steps * dynamics.physics.step, angles, poses  # type: ignore[union-attr]
 
     def forces_changed(self) -> dict[str, float]:
         """Newtons on each part whose force changed since the last call (0: it ended),
@@ -164,6 +167,10 @@ class SceneBodies:
         changed.update((key, 0.0) for key in self._forces_sent if key not in now)
         self._forces_sent = {key: force for key, force in now.items() if force}
         return changed
+
+    def peak_force(self) -> float:
+        """The most newtons pressing on any one part at the last tick (0 in kinematic mode)."""
+        return max(self.physics.forces.values(), default=0.0)
 
     def force_on(self, part: Node | None) -> float:
         """Newtons pressing on ``part`` at the last tick (0 in kinematic mode)."""

@@ -42,7 +42,7 @@ def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet, camera: dict[str
         "angles": _angles(nodes, changes),
         "poses": {i: [*nodes[i].position, *nodes[i].quaternion] for i in changes.poses
                   if i in nodes and i not in born},
-        "updates": {i: {f: _field(nodes[i], f) for f in sorted(fields)}
+        "updates": {i: {WIRE_NAMES.get(f, f): _field(nodes[i], f) for f in sorted(fields)}
                     for i, fields in changes.updates.items() if i in nodes and i not in born},
         "removed": [i for i in changes.died if i not in nodes and i not in born],
     }
@@ -78,7 +78,13 @@ def _angles(nodes: Mapping[str, Node], changes: ChangeSet) -> dict[str, Any]:
     return out
 
 
+# the node attributes whose wire name (describe()'s) is not their own
+WIRE_NAMES = {"max_torque": "maxTorque"}
+
+
 def _field(node: Node, field: str) -> Any:
+    if field == "max_torque":
+        return node.get_max_torque()  # type: ignore[attr-defined]
     if field == "parent":
         return node.parent.id if node.parent is not None else None
     if field == "children":

@@ -239,8 +239,8 @@ class Scene:
         the tick raises with nothing lost: the next tick sends them. If contacts or
         sensing fail, the frame goes out without them (and the failure is logged).
         """
-        if self.physics.dynamic:
-            self._step(dt)
+        if self.physics.dynamic:  # the clock is the world's: a late tick slows it, never jumps
+            dt = self._step(dt)
         pending = self.feed.pending
         delta = self.delta(pending)
         if pending:
@@ -255,10 +255,11 @@ class Scene:
             log.exception("contacts or sensing of scene %s failed", self.name)
         return frames.tick_messages(self.seq, self.time, delta)
 
-    def _step(self, dt: float) -> None:
+    def _step(self, dt: float) -> float:
         """Dynamic mode: advance the physics through ``dt`` and take where it put every
-        motor and free body (not journaled: it is the world's doing, not a request's)."""
-        angles, poses = self.bodies.advance(dt)
+        motor and free body (not journaled: it is the world's doing, not a request's); the
+        seconds it went through."""
+        seconds, angles, poses = self.bodies.advance(dt)
         for motor_id, angle in angles.items():
             self.nodes[motor_id].angle = angle  # type: ignore[attr-defined]
         for root_id, (position, quaternion) in poses.items():
@@ -269,6 +270,7 @@ class Scene:
         self.moving = bool(angles or poses)
         if self.moving:
             self._moved()
+        return seconds
 
     def watched_readings(self) -> dict[str, Reading]:
         """Readings of every watched sensor (frames carry them); forgets deleted ones."""

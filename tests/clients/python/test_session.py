@@ -104,6 +104,9 @@ def test_in_dynamic_mode_a_motor_reads_where_it_is_not_where_it_was_sent(scene):
     vp.set_physics("dynamic")
     motor.set_angle(-1.5)
     assert motor.get_max_torque() == 1.0
+    motor.set_max_torque(2.0)  # a change after it was made reaches the mirror too
+    scene.sync()
+    assert motor.get_max_torque() == 2.0
     time.sleep(1.0)
     scene.sync()
     assert motor.get_angle() != pytest.approx(-1.5, abs=0.2)  # the finger hangs down instead

@@ -42,3 +42,13 @@ def test_a_quiet_scene_reports_zeros_not_errors():
     figures = SceneMetrics().summary(now=50, cpu=0.25)
     assert figures["ticksPerSecond"] == figures["requestsPerSecond"] == figures["tickMsMax"] == 0
     assert figures["cpuSeconds"] == 0.25
+
+
+def test_the_peak_force_is_the_most_in_the_window():
+    metrics = SceneMetrics(window=10.0)
+    metrics.ticked(1.0, 2.0, 0.0, force=50.0)
+    metrics.ticked(2.0, 2.0, 0.0, force=20.0)
+    metrics.ticked(3.0, 2.0, 0.0)
+    assert metrics.summary(3.0, 0.0)["peakForceN"] == 50.0
+    assert metrics.summary(11.5, 0.0)["peakForceN"] == 20.0  # the 50 N left the window
+    assert metrics.summary(13.0, 0.0)["peakForceN"] == 0.0

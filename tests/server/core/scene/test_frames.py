@@ -49,3 +49,15 @@ def test_a_ticks_messages_carry_new_nodes_before_its_frame_and_removed_ids_after
         {"op": "frame", "seq": 4, "time": 0.25, "angles": {"m": 0.5}, "limited": {"contactPairs": 2}},
         {"op": "removed", "seq": 4, "ids": ["b"]}]
     assert tick_messages(5, 0.3, {}) == [{"op": "frame", "seq": 5, "time": 0.3}]
+
+
+def test_an_update_names_each_field_as_the_nodes_description_does(scene):
+    from server.core.model.motor import MotorZ
+
+    motor = MotorZ(scene, "m")
+    scene.tick(1 / 60)
+    motor.set_max_torque(5.0)
+    motor.set_name("knuckle")
+    updates = scene.tick(1 / 60)[-1]["updates"]["m"]
+    assert updates == {"maxTorque": 5.0, "name": "knuckle"}
+    assert set(updates) <= set(motor.describe())

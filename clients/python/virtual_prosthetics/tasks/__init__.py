@@ -1,0 +1,44 @@
+"""Hand-function tests, run in a scene of a server that any viewer can watch:
+
+- ``grasp``: SHAP's six grip patterns, a light and a heavy object each (:mod:`.grasp`);
+- ``box-and-blocks``: blocks moved over the partition in 60 s (:mod:`.box_and_blocks`);
+- ``hold``: a ball held while the hand moves along a path; drops (:mod:`.hold`).
+
+Sizes are a human hand's, scaled to the 1.0 hand (:mod:`.scale`). Each task has a scripted
+baseline controller; pass your own as ``controller=`` (or ``--controller module:function``).
+"""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any, Callable
+
+from ..session import Session
+from . import box_and_blocks, grasp, hold
+
+
+def _grasp(session: Session, args: argparse.Namespace) -> dict[str, Any]:
+    patterns = args.grips.split(",") if args.grips else grasp.PATTERN_NAMES
+    unknown = sorted(set(patterns) - set(grasp.PATTERN_NAMES))
+    if unknown:
+        raise SystemExit(f"unknown grip {', '.join(unknown)}; the grips are {', '.join(grasp.PATTERN_NAMES)}")
+    extra = {"controller": args.controller} if args.controller else {}
+    return grasp.grasp(session, args.hand, args.trials, args.seed, side_by_side=args.side_by_side,
+                 patterns=patterns, **extra)
+
+
+def _box_and_blocks(session: Session, args: argparse.Namespace) -> dict[str, Any]:
+    extra = {"controller": args.controller} if args.controller else {}
+    return box_and_blocks.box_and_blocks(session, args.hand, args.seed, **extra)
+
+
+def _hold(session: Session, args: argparse.Namespace) -> dict[str, Any]:
+    extra = {"controller": args.controller} if args.controller else {}
+    return hold.hold(session, args.hand, args.trials, args.seed,
+                     side_by_side=args.side_by_side, **extra)
+
+
+TASKS: dict[str, Callable[[Session, argparse.Namespace], dict[str, Any]]] = {
+    "grasp": _grasp, "box-and-blocks": _box_and_blocks, "hold": _hold}
+
+__all__ = ["TASKS"]

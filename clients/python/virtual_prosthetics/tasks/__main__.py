@@ -1,0 +1,58 @@
+"""``python -m virtual_prosthetics.tasks NAME --url ws://… --hand edged|round|anthro
+[--trials N] [--seed S]``: run a hand-function task in a scene of a server (any viewer of
+that scene watches it) and print its results as JSON."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import sys
+from typing import Any, Callable, Sequence
+
+from ..runtime import connect
+from . import TASKS
+
+
+def _function(spec: str) -> Callable[..., Any]:
+    """``module:function`` (a user's controller)."""
+    module, _, name = spec.partition(":")
+    if not name:
+        raise argparse.ArgumentTypeError(f"expected module:function, got {spec!r}")
+    return getattr(importlib.import_module(module), name)  # type: ignore[no-any-return]
+
+
+def parser() -> argparse.ArgumentParser:
+    parse = argparse.ArgumentParser(prog="python -m virtual_prosthetics.tasks",
+                                    description=__doc__.split("\n\n")[0])
+    parse.add_argument("task", choices=sorted(TASKS))
+    parse.add_argument("--url", default="ws://127.0.0.1:8000")
+    parse.add_argument("--scene", default="tasks", help="the scene to run in (default: tasks)")
+    parse.add_argument("--hand", choices=("edged", "round", "anthro"), default="edged")
+    parse.add_argument("--trials", type=int, default=20, help="trials of each object (grasp, hold)")
+    parse.add_argument("--seed", type=int, default=0)
+    parse.add_argument("--side-by-side", type=int, default=10,
+                       help="trials run at once, in a row (grasp, hold)")
+    parse.add_argument("--grips", help="grasp: comma-separated patterns (default: all)")
+    parse.add_argument("--controller", type=_function,
+                       help="module:function making your controller (see the task's docs)")
+    parse.add_argument("--token", help="the server's token, when it asks for one")
+    return parse
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    if args.trials < 1 or args.side_by_side < 1:
+        parser().error("--trials and --side-by-side must be at least 1")
+    session = connect(args.url, scene=args.scene, token=args.token)
+    try:
+        result = TASKS[args.task](session, args)
+    finally:
+        session.close()
+    json.dump(result, sys.stdout, indent=2)
+    print()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,172 @@
+"""``box-and-blocks``: the Box and Blocks Test (Mathiowetz et al., 1985). A box of two
+compartments split by a partition, 150 cubes of 2.5 cm in one; the score is how many
+blocks the hand moves over the partition in 60 s (adults: 55-89). The baseline takes the
+highest block it can reach, carries it over and lets go, again and again."""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass
+from typing import Any, Callable
+
+from ..objects import Box, Part
+from ..robots import Robot
+from ..session import Session
+from .controller import Grip
+from .scale import FIGURES, Scale
+from .trial import HANDS, PALM_DOWN, drive
+
+INSIDE = (0.537, 0.254)  # metres: the box inside, x (both compartments) by z
+WALL_HEIGHT = 0.085
+WALL = 0.01
+PARTITION_HEIGHT = 0.152
+BLOCK = 0.025
+BLOCKS = 150
+SECONDS = 60.0
+BLOCK_MASS = 0.0105  # kilograms: a 2.5 cm pine cube
+GRIP = Grip(flex=1.3, torque=0.3, reach=-0.05, gap=0.004)
+# PyBullet's default: 150 blocks at the grasps' 150 iterations run at a tenth of real time
+SOLVER_ITERATIONS = 50
+
+
+@dataclass
+class Stage:
+    """The box in a scene, its blocks and the hand; sizes in scene metres."""
+
+    session: Session
+    scale: Scale
+    hand: Robot
+    blocks: list[Part]
+    walls: list[Part]
+    partition_x: float
+    floor: float
+    kind: str
+
+    def block_positions(self) -> list[list[float]]:
+        return self.session.read(lambda mirror: [list(mirror.nodes[b.id]["position"])
+                                                 for b in self.blocks if b.id in mirror.nodes])
+
+    def moved(self) -> int:
+        """Blocks past the partition (all start on its -x side)."""
+        return sum(p[0] > self.partition_x and p[1] < self.floor + self.scale.length(WALL_HEIGHT)
+                   for p in self.block_positions())
+
+    def remove(self) -> None:
+        for node in (self.hand, *self.blocks, *self.walls):
+            node.delete()
+
+
+def _wall(session: Session, size: tuple[float, float, float], at: tuple[float, float, float]) -> Part:
+    wall = Box(*size, "peru", scene=session)
+    wall.set_position(*at)
+    wall.set_static(True)
+    return wall
+
+
+def build(session: Session, kind: str, rng: random.Random, count: int = BLOCKS) -> Stage:
+    """The box (floor, walls, partition) at the origin, ``count`` blocks heaped in the -x
+    compartment, the hand over it."""
+    scale = Scale.of(kind)
+    sx, sz = (scale.length(v) for v in INSIDE)
+    wall, height, block = scale.length(WALL), scale.length(WALL_HEIGHT), scale.length(BLOCK)
+    with session.connection.gathering():
+        walls = [_wall(session, (sx + 2 * wall, wall, sz + 2 * wall), (0, wall / 2, 0)),
+                 _wall(session, (wall, scale.length(PARTITION_HEIGHT), sz), (0, wall + scale.length(PARTITION_HEIGHT) / 2, 0))]
+        for side in (-1, 1):
+            walls.append(_wall(session, (wall, height, sz + 2 * wall), (side * (sx + wall) / 2, wall + height / 2, 0)))
+            walls.append(_wall(session, (sx + 2 * wall, height, wall), (0, wall + height / 2, side * (sz + wall) / 2)))
+    per_row = int((sx / 2 - block) // (block * 1.15))
+    per_column = int((sz - block) // (block * 1.15))
+    blocks = []
+    for index in range(count):
+        layer, cell = divmod(index, per_row * per_column)
+        row, column = divmod(cell, per_column)
+        at = (-sx / 2 + block * (0.8 + 1.15 * row), wall + block * (0.55 + 1.1 * layer),
+              -sz / 2 + block * (0.8 + 1.15 * column))
+        with session.connection.gathering():
+            cube = Box(block, block, block, rng.choice(("crimson", "royalblue", "gold", "seagreen")),
+                       scene=session)
+            cube.set_position(*at)
+            cube.set_rotation(0, rng.uniform(-0.2, 0.2), 0)
+            cube.set_mass(scale.mass(BLOCK_MASS))
+        blocks.append(cube)
+    figures = FIGURES[kind]
+    with session.connection.gathering():
+        hand = HANDS[kind](True, scene=session)  # type: ignore[call-arg]
+        hand.set_rotation(*PALM_DOWN)
+        hand.set_position(-sx / 4, wall + scale.length(PARTITION_HEIGHT) * 1.6 + figures.palm_below,
+                          -(figures.fingers_z + GRIP.reach * figures.length))
+        hand.flex_fingers(0)  # type: ignore[attr-defined]
+    session.sync()
+    for motor in hand.get_motors():
+        motor.set_max_torque(scale.torque(GRIP.torque))
+    return Stage(session, scale, hand, blocks, walls, 0.0, wall, kind)
+
+
+CYCLE = (("reach", 0.5), ("descend", 0.5), ("close", 0.5), ("lift", 0.5), ("carry", 0.6),
+         ("open", 0.3), ("back", 0.5))
+
+
+class Baseline:
+    """Over the highest block on the start side, down onto it, close, up over the
+    partition, across, open; then again."""
+
+    def __init__(self, stage: Stage) -> None:
+        self.stage = stage
+        figures = FIGURES[stage.kind]
+        self.grasp_at = figures.fingers_z + GRIP.reach * figures.length  # block z - hand z
+        self.high = stage.floor + stage.scale.length(PARTITION_HEIGHT) * 1.5 + figures.palm_below
+        self.cycle_start = 0.0
+        self.target: list[float] | None = None
+
+    def _pick(self) -> list[float] | None:
+        left = [p for p in self.stage.block_positions() if p[0] < -self.stage.scale.length(BLOCK)]
+        return max(left, key=lambda p: p[1]) if left else None
+
+    def __call__(self, t: float) -> None:
+        hand, scale = self.stage.hand, self.stage.scale
+        phase_t = t - self.cycle_start
+        if phase_t >= sum(span for _, span in CYCLE) or self.target is None:
+            self.cycle_start, phase_t = t, 0.0
+            self.target = self._pick()
+            if self.target is None:
+                return
+        name, into = _phase(phase_t)
+        bx, by, bz = self.target
+        hz = bz - self.grasp_at
+        down = by + scale.length(BLOCK) / 2 + scale.length(GRIP.gap) + FIGURES[self.stage.kind].palm_below
+        across = -bx  # as far past the partition as the block was before it
+        x, y = {"reach": (bx, self.high), "descend": (bx, self.high + (down - self.high) * into),
+                "close": (bx, down), "lift": (bx, down + (self.high - down) * into),
+                "carry": (bx + (across - bx) * into, self.high), "open": (across, self.high),
+                "back": (across, self.high)}[name]
+        hand.set_position(x, y, hz)
+        closed = {"close": into, "lift": 1.0, "carry": 1.0, "open": 1 - into}.get(name, 0.0)
+        hand.flex_fingers(GRIP.flex * closed)  # type: ignore[attr-defined]
+
+
+def _phase(t: float) -> tuple[str, float]:
+    for name, span in CYCLE:
+        if t < span:
+            return name, t / span
+        t -= span
+    return CYCLE[-1][0], 1.0
+
+
+def box_and_blocks(session: Session, hand: str, seed: int, *,
+                   controller: Callable[[Stage], Callable[[float], None]] = Baseline,
+                   seconds: float = SECONDS, blocks: int = BLOCKS) -> dict[str, Any]:
+    """The test once: the blocks moved in ``seconds`` (the test's 60) of scene time."""
+    scale = Scale.of(hand)
+    session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+    stage = build(session, hand, random.Random(seed), blocks)
+    drive(session, 1.0, lambda t: None)  # the heap settles
+    before = stage.moved()
+    drive(session, seconds, controller(stage))
+    drive(session, 1.0, lambda t: None)  # what was let go lands
+    moved = stage.moved() - before
+    stage.remove()
+    return {"task": "box-and-blocks", "hand": hand, "seed": seed, "seconds": seconds,
+            "scale": scale.factor, "gravity": scale.gravity, "blocks": moved,
+            "humanNorm": [55, 89]}

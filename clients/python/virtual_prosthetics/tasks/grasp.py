@@ -1,0 +1,117 @@
+"""``grasp``: SHAP's grip patterns, each with a light and a heavy object: approach, close,
+lift, hold 3 s. A trial succeeds when the object stays above the table by at least 20 % of
+the hand's length for the whole hold and slips under 5 % of its size in the hand."""
+
+from __future__ import annotations
+
+import random
+import statistics
+from dataclasses import dataclass
+from typing import Any, Callable, Iterator, Sequence
+
+from ..session import Session
+from .controller import PHASES, Grip, baseline, prepare
+from .objects import CARD, CUBE, CYLINDER, PLATE, SPHERE, TIP, TestObject
+from .scale import FIGURES, Scale
+from .trial import Trial, drive, lay_out
+
+LIFTED = 0.2      # × the hand's length: how high above the table the object must stay
+SLIP = 0.05       # × the object's size: how far it may move in the hand
+MASS_SPREAD = 0.5  # each trial's mass: the object's × a draw in [1 - this, 1 + this]
+FRICTION_SPREAD = 0.1
+SOLVER_ITERATIONS = 150  # PyBullet's grasp examples hold with 50-150; 50 lets grasps judder
+
+
+@dataclass(frozen=True)
+class Pattern:
+    """A SHAP grip pattern: its object and how the baseline takes it, per hand."""
+
+    name: str
+    item: TestObject
+    grips: dict[str, Grip]
+
+
+def _same(grip: Grip) -> dict[str, Grip]:
+    return {kind: grip for kind in FIGURES}
+
+
+PATTERNS = [
+    Pattern("spherical", SPHERE, _same(Grip(flex=1.4, torque=0.3, reach=-0.08))),
+    Pattern("tripod", CUBE, _same(Grip(flex=1.4, torque=0.3, reach=-0.1))),
+    Pattern("power", CYLINDER, _same(Grip(flex=1.5, torque=0.3, reach=-0.1))),
+    Pattern("lateral", PLATE, _same(Grip(flex=1.3, torque=0.3, reach=-0.05))),
+    Pattern("tip", TIP, _same(Grip(flex=1.3, torque=0.2, reach=0.0))),
+    Pattern("extension", CARD, _same(Grip(flex=1.2, torque=0.3, reach=-0.05))),
+]
+PATTERN_NAMES = [pattern.name for pattern in PATTERNS]
+
+Control = Callable[[Trial, float], None]
+
+
+def draws(rng: random.Random, count: int) -> list[tuple[float, float]]:
+    """Each trial's mass and friction factors, from the seed's generator."""
+    return [(rng.uniform(1 - MASS_SPREAD, 1 + MASS_SPREAD),
+             rng.uniform(1 - FRICTION_SPREAD, 1 + FRICTION_SPREAD)) for _ in range(count)]
+
+
+def _batches(items: Sequence[Any], size: int) -> Iterator[Sequence[Any]]:
+    for start in range(0, len(items), size):
+        yield items[start:start + size]
+
+
+def succeeded(trial: Trial) -> bool:
+    """Above the table by 20 % of the hand's length all through the hold, slip under 5 %."""
+    high = min(trial.heights, default=0.0) >= LIFTED * trial.figures.length
+    return high and trial.slip() < SLIP * trial.item.extent
+
+
+def run_batch(trials: list[Trial], grip: Grip, control: Control,
+              seconds: float = PHASES.end) -> None:
+    """Drive a row of trials together for ``seconds``, observing them from the hold on."""
+    session = trials[0].session
+    for trial in trials:
+        prepare(trial, grip)
+
+    def step(t: float) -> None:
+        for trial in trials:
+            control(trial, t)
+            if t >= PHASES.holding:
+                trial.observe()
+
+    drive(session, seconds, step)
+
+
+def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: int = 10,
+          patterns: Sequence[str] = tuple(PATTERN_NAMES),
+          controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
+    """Every pattern's light and heavy object, ``trials`` times each; the results."""
+    scale = Scale.of(hand)
+    session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+    rng = random.Random(seed)
+    results = []
+    for pattern in (p for p in PATTERNS if p.name in patterns):
+        grip = pattern.grips[hand]
+        for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
+            done: list[Trial] = []
+            for batch in _batches(draws(rng, trials), side_by_side):
+                row = lay_out(session, hand, pattern.item, batch, mass, grip)
+                run_batch(row, grip, controller(grip))
+                done += row
+                for trial in row:
+                    trial.remove()
+            results.append(summary(pattern, weight, done))
+    return {"task": "grasp", "hand": hand, "seed": seed, "scale": scale.factor,
+            "gravity": scale.gravity, "results": results}
+
+
+def summary(pattern: Pattern, weight: str, trials: list[Trial]) -> dict[str, Any]:
+    """One line of the results: the pattern's object at one weight over its trials (slip:
+    the median trial's, in metres; peak force: the most pressing on the object in any
+    hold, in a human hand's newtons)."""
+    successes = sum(succeeded(trial) for trial in trials)
+    return {"grip": pattern.name, "object": pattern.item.name, "weight": weight,
+            "massKg": pattern.item.light if weight == "light" else pattern.item.heavy,
+            "trials": len(trials), "successes": successes,
+            "successRate": successes / len(trials) if trials else 0.0,
+            "peakForceN": round(max((max(t.forces, default=0.0) for t in trials), default=0.0), 2),
+            "slip": round(statistics.median(t.slip() for t in trials), 4) if trials else 0.0}

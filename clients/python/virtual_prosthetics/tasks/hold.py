@@ -1,0 +1,65 @@
+"""``hold``: the spherical grasp's ball, lifted, then carried along a path (a circle in the
+hand's plane and back, at a brisk human pace); a drop is a ball that left the hand."""
+
+from __future__ import annotations
+
+import math
+import random
+from typing import Any, Callable
+
+from ..session import Session
+from .controller import PHASES, Grip, baseline
+from .grasp import PATTERNS, SOLVER_ITERATIONS, draws, run_batch
+from .scale import Scale
+from .trial import Trial, lay_out
+
+RADIUS = 0.1   # metres (human): the circle the wrist goes round
+PERIOD = 2.0   # seconds a round takes
+ROUNDS = 2
+DROPPED = 0.5  # × the ball's size: further than this from where it sat in the hand
+
+
+def carry(scale: Scale, control: Callable[[Trial, float], None]) -> Callable[[Trial, float], None]:
+    """``control`` until the hold begins, then round a circle in the x-y plane."""
+    radius = scale.length(RADIUS)
+
+    def step(trial: Trial, t: float) -> None:
+        if t < PHASES.holding:
+            control(trial, t)
+            return
+        angle = 2 * math.pi * (t - PHASES.holding) / PERIOD
+        x, y, z = trial.home
+        trial.hand.set_position(x + radius * math.sin(angle),
+                                y + trial.lift + radius * (1 - math.cos(angle)), z)
+
+    return step
+
+
+def dropped(trial: Trial) -> bool:
+    """Whether the ball left the hand during the path (or was never lifted)."""
+    size = trial.item.extent
+    return not trial.offsets or trial.slip() > DROPPED * size
+
+
+def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: int = 10,
+         controller: Callable[[Grip], Callable[[Trial, float], None]] = baseline) -> dict[str, Any]:
+    """``trials`` balls (masses and frictions drawn from ``seed``), each carried round the
+    path; the drops."""
+    scale = Scale.of(hand)
+    session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+    pattern = PATTERNS[0]
+    grip = pattern.grips[hand]
+    seconds = PHASES.holding + ROUNDS * PERIOD
+    done: list[Trial] = []
+    every = draws(random.Random(seed), trials)
+    for start in range(0, trials, side_by_side):
+        row = lay_out(session, hand, pattern.item, every[start:start + side_by_side],
+                      pattern.item.light, grip)
+        run_batch(row, grip, carry(scale, controller(grip)), seconds)
+        done += row
+        for trial in row:
+            trial.remove()
+    return {"task": "hold", "hand": hand, "seed": seed, "trials": trials,
+            "object": pattern.item.name, "path": {"radiusM": RADIUS, "periodS": PERIOD,
+                                                  "rounds": ROUNDS},
+            "drops": sum(dropped(trial) for trial in done)}

@@ -1,0 +1,135 @@
+"""A trial: one hand, its table and its object, side by side with the others of its batch;
+and the loop that drives a batch by scene time."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Protocol, Sequence
+
+from ..objects import Box, Part
+from ..robots import AnthroHand, EdgedHand, Robot, RoundHand
+from ..session import Session
+from .objects import TestObject
+from .scale import FIGURES, HandFigures, Scale
+
+HANDS: dict[str, type[Robot]] = {"edged": EdgedHand, "round": RoundHand, "anthro": AnthroHand}
+PALM_DOWN = (-math.pi / 2, 0.0, 0.0)
+TABLE_TOP = 0.4  # × the hand's length: the tables' height
+SPACING = 2.2    # × the hand's length: from one trial's hand to the next
+
+
+class Placement(Protocol):
+    """Where an object lies under the hand: ``reach`` hand lengths past the palm's end,
+    ``side`` metres (human) towards the thumb, ``gap`` metres (human) below the palm."""
+
+    reach: float
+    side: float
+    gap: float
+
+
+@dataclass
+class Trial:
+    """One hand over one object on one table. ``home`` is the hand's position with the
+    object under its grasp; ``lift`` how far a controller lifts it (both scene metres)."""
+
+    session: Session
+    kind: str
+    scale: Scale
+    hand: Robot
+    obj: Part
+    table: Part
+    item: TestObject
+    home: tuple[float, float, float]
+    table_top: float
+    mass: float       # kilograms (human)
+    friction: float
+    lift: float
+    heights: list[float] = field(default_factory=list)
+    offsets: list[tuple[float, ...]] = field(default_factory=list)
+    forces: list[float] = field(default_factory=list)
+
+    @property
+    def figures(self) -> HandFigures:
+        return FIGURES[self.kind]
+
+    def object_position(self) -> list[float]:
+        return self.session.read(lambda mirror: list(mirror.nodes[self.obj.id]["position"]))
+
+    def hand_position(self) -> list[float]:
+        return self.session.read(lambda mirror: list(mirror.nodes[self.hand.id]["position"]))
+
+    def observe(self) -> None:
+        """Note the object's height above the table, where it is relative to the hand
+        and the force on it (human newtons)."""
+        position, hand = self.object_position(), self.hand_position()
+        bottom = position[1] - self.scale.length(self.item.size[1]) / 2
+        self.heights.append(bottom - self.table_top)
+        self.offsets.append(tuple(a - b for a, b in zip(position, hand)))
+        force = self.session.read(lambda mirror: mirror.forces.get(self.obj.id, 0.0))
+        self.forces.append(self.scale.human_force(force))
+
+    def slip(self) -> float:
+        """How far the object moved in the hand while observed (human metres)."""
+        if not self.offsets:
+            return 0.0
+        first = self.offsets[0]
+        return max(math.dist(first, o) for o in self.offsets) / self.scale.factor
+
+    def remove(self) -> None:
+        for node in (self.hand, self.obj, self.table):
+            node.delete()
+
+
+def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple[float, float]],
+            weight: float, place: Placement) -> list[Trial]:
+    """A row of trials, one per ``(mass factor, friction factor)`` draw: each hand palm
+    down and open ``lift`` above its object, the object where ``place`` says."""
+    scale, figures = Scale.of(kind), FIGURES[kind]
+    length = figures.length
+    top = TABLE_TOP * length
+    size = [scale.length(v) for v in item.size]
+    trials = []
+    for index, (mass_factor, friction_factor) in enumerate(draws):
+        x = index * SPACING * length
+        at = (x + figures.palm_x + figures.thumb_side * scale.length(place.side),
+              top + size[1] / 2, figures.fingers_z + place.reach * length)
+        home = (x, top + size[1] + scale.length(place.gap) + figures.palm_below, 0.0)
+        # made and placed in one message: in dynamic mode a robot placed a tick after it
+        # was made would be dragged there from where it was made
+        with session.connection.gathering():
+            hand = HANDS[kind](True, scene=session)  # type: ignore[call-arg]
+            hand.set_rotation(*PALM_DOWN)
+            hand.set_position(home[0], home[1] + 0.6 * length, home[2])
+            hand.flex_fingers(0)  # type: ignore[attr-defined]
+            hand.spread_fingers(0)  # type: ignore[attr-defined]
+            table = Box(1.6 * length, top, 1.6 * length, "burlywood", scene=session)
+            table.set_position(at[0], top / 2, at[2])
+            table.set_static(True)
+            obj = item.make(session, scale)
+            obj.set_position(*at)
+            if item.shape == "cylinder":
+                obj.set_rotation(0, 0, math.pi / 2)
+            obj.set_mass(scale.mass(weight * mass_factor))
+            obj.set_friction(friction_factor)
+        trials.append(Trial(session, kind, scale, hand, obj, table, item, home, top,
+                            weight * mass_factor, friction_factor, 0.6 * length))
+    return trials
+
+
+def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> None:
+    """Call ``step(t)`` with the scene seconds since the start, about 60 times a second of
+    wall time, until ``seconds`` of scene time have passed; what a step sends leaves as
+    one message. The scene's clock is its physics' (it slows when the server is busy), so
+    a controller driven by it sees the same world however loaded the server is."""
+    session.sync()
+    start = session.get_time()
+    while True:
+        now = session.get_time() - start
+        if now > seconds:
+            break
+        with session.connection.gathering():
+            step(now)
+        time.sleep(1 / 60)
+    session.sync()

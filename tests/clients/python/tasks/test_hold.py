@@ -1,0 +1,22 @@
+"""``hold`` against the real server: balls carried round a path, drops counted."""
+
+from virtual_prosthetics.tasks import hold
+
+
+def test_hold_carries_each_ball_round_the_path_and_counts_drops(scene):
+    result = hold.hold(scene, "edged", 2, seed=1)
+    assert result["task"] == "hold" and result["trials"] == 2
+    assert 0 <= result["drops"] <= 2
+
+
+def test_a_hand_that_lets_go_drops_every_ball(scene):
+    def lets_go(grip):
+        baseline = hold.baseline(grip)
+
+        def control(trial, t):
+            baseline(trial, t)
+            if t > hold.PHASES.lifting + 0.5:
+                trial.hand.flex_fingers(0)
+        return control
+
+    assert hold.hold(scene, "edged", 2, seed=1, controller=lets_go)["drops"] == 2

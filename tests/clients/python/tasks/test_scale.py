@@ -1,0 +1,45 @@
+"""The hand figures the tasks predict are the server's, and the scaling keeps time real."""
+
+import math
+
+import numpy as np
+import pytest
+
+from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
+from server.core.scene.scene import Scene
+from virtual_prosthetics.tasks.scale import FIGURES, HUMAN_HAND, Scale
+
+KINDS = {"edged": EdgedHand, "round": RoundHand, "anthro": AnthroHand}
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_each_hands_figures_are_where_the_server_puts_the_hand(kind):
+    scene = Scene("figures")
+    hand = KINDS[kind](scene, "h", True)
+    hand.set_rotation(-math.pi / 2, 0, 0)
+    hand.flex_fingers(0)
+    hand.spread_fingers(0)
+    scene.tick(1 / 60)
+    parts = [part for part in hand.get_parts() if part.physical]
+    boxes = {part.id: scene.bodies.physics.aabb(part.id) for part in parts}
+    palm = next(part for part in parts if "Palm" in part.type_name)
+    low = np.min([box[0] for box in boxes.values()], axis=0)
+    palm_low, palm_high = boxes[palm.id]
+    figures = FIGURES[kind]
+    assert figures.length == pytest.approx(palm_high[2] - low[2], abs=0.01)
+    assert figures.fingers_z == pytest.approx(palm_low[2], abs=0.01)
+    assert figures.palm_x == pytest.approx((palm_low[0] + palm_high[0]) / 2, abs=0.01)
+    assert figures.palm_below == pytest.approx(-palm_low[1], abs=0.01)
+    thumb = np.max([box[1][0] for box in boxes.values()])  # the thumb reaches furthest in +x
+    assert thumb * figures.thumb_side > palm_high[0]
+    scene.close()
+
+
+def test_scaled_gravity_keeps_falls_as_long_as_at_human_size():
+    scale = Scale.of("edged")
+    assert scale.factor == pytest.approx(FIGURES["edged"].length / HUMAN_HAND)
+    human = math.sqrt(2 * 0.1 / 9.81)
+    scaled = math.sqrt(2 * scale.length(0.1) / scale.gravity)
+    assert scaled == pytest.approx(human)
+    weight = scale.mass(0.2) * scale.gravity  # a 200 g object's weight, in the scene
+    assert scale.human_force(weight) == pytest.approx(0.2 * 9.81)
