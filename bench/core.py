@@ -234,3 +234,20 @@ def as_json(value: Any) -> Any:
     if isinstance(value, list):
         return [as_json(v) for v in value]
     return value
+
+
+def dynamic(hands: int, objects: int, ticks: int) -> dict[str, Any]:
+    """A dynamic scene (default physics: 5 substeps a tick) of animated hands and falling
+    objects: the tick, applying a step; whether its median fits in a 60 Hz period."""
+    bench = Bench(scenes.dynamic("c1", hands, objects))
+    times = []
+    for n in range(ticks):
+        started = time.perf_counter()
+        bench.send(scenes.hand_step("c1", hands, n))
+        encode(bench.scene.tick(PERIOD)[-1])
+        times.append((time.perf_counter() - started) * 1000)
+    steps = bench.scene.bodies.physics.dynamics.steps  # type: ignore[union-attr]
+    bench.close()
+    tick = figure(times)
+    return {"hands": hands, "objects": objects, "tick_ms": tick, "physics_steps": steps,
+            "holds_60hz": tick.median <= PERIOD * 1000}

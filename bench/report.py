@@ -27,6 +27,7 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
     "viewers200_late_pct": ("≤ 1 %", lambda v: v <= 1),
     "frame_bytes_two_hands": ("≤ 1 KB (1024 B)", lambda v: v <= 1024),
     "max_hands_60hz": ("≥ 100", lambda v: v >= 100),
+    "dynamic_hands10_objects50_tick_ms": ("≤ one tick period (16.7 ms)", lambda v: v <= PERIOD_MS),
     "server_cpu_hands10_pct": ("≤ 25 % of a core", lambda v: v <= 25),
     "hands100_outside_ticks_per_s": ("100 hands driven from outside hold 60 Hz", lambda v: v >= AT_60_HZ),
     "two_scenes_fps_min": ("both at 60 Hz", lambda v: v >= AT_60_HZ),
@@ -120,6 +121,10 @@ def figure_table(found: dict[str, Any]) -> list[str]:
         rows.append(f"| applying a step and ticking hands-{row['hands']} | {_ms(row['step_ms'].median)} "
                     f"| {_ms(row['step_ms'].p95)} | one tick period: {_ms(PERIOD_MS)} | "
                     f"{row['step_ms'].median / PERIOD_MS:.2f}× |")
+    dyn = found["dynamic"]
+    rows.append(f"| dynamic mode: a tick of {dyn['hands']} hands flexing and {dyn['objects']} falling "
+                f"objects (5 substeps) | {_ms(dyn['tick_ms'].median)} | {_ms(dyn['tick_ms'].p95)} | "
+                f"one tick period: {_ms(PERIOD_MS)} | {dyn['tick_ms'].median / PERIOD_MS:.2f}× |")
     two = found["two_scenes"]
     rows.append(f"| two scenes of hands-{two['hands']} driven at once: ticks/s | "
                 f"{' and '.join(f'{t:.1f}' for t in two['ticks_per_second'])} | tick p95 "

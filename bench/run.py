@@ -44,17 +44,20 @@ class Sizes:
     chaos_faults: int
     idle_scenes: int
     hands_most: int  # driven from outside by one client: the 100 hands
+    dynamic: tuple[int, int, int]  # hands, free objects, ticks of the dynamic scene
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
              requests=20_000, frames=300, hand_counts=(10, 20, 30, 40, 50, 60, 80, 100),
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
-             document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100)
+             document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
+             dynamic=(10, 50, 300))
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
-              document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4)
+              document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4,
+              dynamic=(2, 4, 3))
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -75,6 +78,7 @@ def measure(sizes: Sizes) -> dict[str, Any]:
         "max_hands": lambda: core.max_hands(list(sizes.hand_counts), sizes.hand_ticks),
         "documents": lambda: [core.documents(count, sizes.document_rounds)
                               for count in (small, large)],
+        "dynamic": lambda: core.dynamic(*sizes.dynamic),
     }
     for name, step in steps.items():
         found[name] = _timed(name, step)
@@ -119,6 +123,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "viewers200_late_pct": max(row["late_pct"] for row in most),
         "frame_bytes_two_hands": found["frames"]["frame_bytes"].median,
         "max_hands_60hz": found["max_hands"]["max_hands"],
+        "dynamic_hands10_objects50_tick_ms": found["dynamic"]["tick_ms"].median,
         "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],
         "hands100_outside_ticks_per_s": found["outside"][2]["ticks_per_second"],
         "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),

@@ -74,3 +74,24 @@ def arm_step(client: str, step: int) -> list[Op]:
     return [{"op": "call", "object": f"{client}.a{k}", "method": "setAngles",
              "args": [0.7 * math.sin(step / 15 + k + j) for j in range(ARM_SEGMENTS)]}
             for k in range(ARMS)]
+
+
+def dynamic(client: str, count: int, objects: int) -> list[Op]:
+    """hands-``count`` in dynamic mode, held a hand's length up, with ``objects`` free
+    balls and boxes dropped among them (ids ``{client}.o{k}``); PyBullet's defaults."""
+    ops = hands(client, count)
+    columns = max(1, math.ceil(math.sqrt(count)))
+    for i in range(count):
+        hand = f"{client}.h{i}"
+        ops.append({"op": "call", "object": hand, "method": "setRotation", "args": [-math.pi / 2, 0, 0]})
+        ops.append({"op": "call", "object": hand, "method": "setPosition",
+                    "args": [(i % columns) * GRID, 3, (i // columns) * GRID]})
+    for k in range(objects):
+        item = f"{client}.o{k}"
+        ops.append({"op": "create", "object": item, "type": "Ball" if k % 2 else "Box",
+                    "args": [0.4] if k % 2 else [0.7, 0.7, 0.7]})
+        ops.append({"op": "call", "object": item, "method": "setPosition",
+                    "args": [(k % columns) * GRID + 1.5 * (k % 3 - 1), 4 + k % 5,
+                             (k // columns % columns) * GRID - 2]})
+    ops.append({"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]})
+    return ops
