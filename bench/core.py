@@ -204,20 +204,26 @@ def documents(hands: int, rounds: int) -> dict[str, Any]:
             "export_ms": figure(exports), "import_ms": figure(imports)}
 
 
+def _animate(bench: Bench, hands: int, ticks: int) -> list[float]:
+    """Milliseconds of each of ``ticks`` steps: the hands' animation step applied, a tick
+    and its frame encoded."""
+    times = []
+    for n in range(ticks):
+        started = time.perf_counter()
+        bench.send(scenes.hand_step("c1", hands, n))
+        encode(bench.scene.tick(PERIOD)[-1])
+        times.append((time.perf_counter() - started) * 1000)
+    return times
+
+
 def max_hands(counts: list[int], ticks: int) -> dict[str, Any]:
     """For each count of animated hands, applying a step and ticking; the largest count
     whose median fits in one 60 Hz period (16.7 ms)."""
     rows, fits = [], 0
     for count in counts:
         bench = Bench(scenes.hands("c1", count))
-        times = []
-        for n in range(ticks):
-            started = time.perf_counter()
-            bench.send(scenes.hand_step("c1", count, n))
-            encode(bench.scene.tick(PERIOD)[-1])
-            times.append((time.perf_counter() - started) * 1000)
+        step = figure(_animate(bench, count, ticks))
         bench.close()
-        step = figure(times)
         rows.append({"hands": count, "step_ms": step})
         if step.median > PERIOD * 1000:
             break
@@ -240,14 +246,8 @@ def dynamic(hands: int, objects: int, ticks: int) -> dict[str, Any]:
     """A dynamic scene (default physics: 5 substeps a tick) of animated hands and falling
     objects: the tick, applying a step; whether its median fits in a 60 Hz period."""
     bench = Bench(scenes.dynamic("c1", hands, objects))
-    times = []
-    for n in range(ticks):
-        started = time.perf_counter()
-        bench.send(scenes.hand_step("c1", hands, n))
-        encode(bench.scene.tick(PERIOD)[-1])
-        times.append((time.perf_counter() - started) * 1000)
+    tick = figure(_animate(bench, hands, ticks))
     steps = bench.scene.bodies.physics.dynamics.steps  # type: ignore[union-attr]
     bench.close()
-    tick = figure(times)
     return {"hands": hands, "objects": objects, "tick_ms": tick, "physics_steps": steps,
             "holds_60hz": tick.median <= PERIOD * 1000}

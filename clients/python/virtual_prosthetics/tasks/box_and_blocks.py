@@ -5,7 +5,6 @@ highest block it can reach, carries it over and lets go, again and again."""
 
 from __future__ import annotations
 
-import math
 import random
 from dataclasses import dataclass
 from typing import Any, Callable

@@ -6,13 +6,13 @@ observes)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, Protocol
+from typing import Callable
 
 from .trial import Trial
 
 
-class Controller(Protocol):
-    def __call__(self, trial: Trial, t: float) -> None: ...
+# a controller: moves ``trial.hand`` at ``t`` seconds into the trial
+Control = Callable[[Trial, float], None]
 
 
 @dataclass(frozen=True)
@@ -70,7 +70,7 @@ def _ramp(t: float, start: float, span: float) -> float:
     return min(1.0, max(0.0, (t - start) / span))
 
 
-def baseline(grip: Grip, phases: Phases = PHASES) -> Callable[[Trial, float], None]:
+def baseline(grip: Grip, phases: Phases = PHASES) -> Control:
     """The scripted controller of ``grip``."""
 
     def control(trial: Trial, t: float) -> None:

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Iterator, Sequence
 
 from ..session import Session
-from .controller import PHASES, Grip, baseline, prepare
+from .controller import PHASES, Control, Grip, baseline, prepare
 from .objects import CARD, CUBE, CYLINDER, PLATE, SPHERE, TIP, TestObject
 from .scale import FIGURES, Scale
 from .trial import Trial, drive, lay_out
@@ -44,9 +44,6 @@ PATTERNS = [
     Pattern("extension", CARD, _same(Grip(flex=1.2, torque=0.3, reach=-0.05))),
 ]
 PATTERN_NAMES = [pattern.name for pattern in PATTERNS]
-
-Control = Callable[[Trial, float], None]
-
 
 def draws(rng: random.Random, count: int) -> list[tuple[float, float]]:
     """Each trial's mass and friction factors, from the seed's generator."""

@@ -8,7 +8,7 @@ import random
 from typing import Any, Callable
 
 from ..session import Session
-from .controller import PHASES, Grip, baseline
+from .controller import PHASES, Control, Grip, baseline
 from .grasp import PATTERNS, SOLVER_ITERATIONS, draws, run_batch
 from .scale import Scale
 from .trial import Trial, lay_out
@@ -19,7 +19,7 @@ ROUNDS = 2
 DROPPED = 0.5  # × the ball's size: further than this from where it sat in the hand
 
 
-def carry(scale: Scale, control: Callable[[Trial, float], None]) -> Callable[[Trial, float], None]:
+def carry(scale: Scale, control: Control) -> Control:
     """``control`` until the hold begins, then round a circle in the x-y plane."""
     radius = scale.length(RADIUS)
 
@@ -42,7 +42,7 @@ def dropped(trial: Trial) -> bool:
 
 
 def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: int = 10,
-         controller: Callable[[Grip], Callable[[Trial, float], None]] = baseline) -> dict[str, Any]:
+         controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
     """``trials`` balls (masses and frictions drawn from ``seed``), each carried round the
     path; the drops."""
     scale = Scale.of(hand)
