@@ -73,7 +73,9 @@ def test_an_animation_step_reaches_the_server_as_one_message_and_none_is_refused
 
     vp.set_animation(step, 60)
     vp.run(2)
-    assert len(texts) >= 100 and all(len(json.loads(text)) == 100 for text in texts[:-1])
+    # how many steps 2 s hold depends on the machine's load (88 of 120 on a busy CI run):
+    # what matters is that each of many steps left as one text of its 100 calls
+    assert len(texts) >= 30 and all(len(json.loads(text)) == 100 for text in texts[:-1])
     assert [motor.get_angle() for motor in motors] == pytest.approx(last)
     seen = json.loads(texts[-2])
     assert [m["method"] for m in seen] == ["setAngle"] * 100 and len({m["id"] for m in seen}) == 100
