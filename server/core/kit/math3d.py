@@ -69,6 +69,18 @@ def rotate(q: Quat, v: Sequence[float]) -> Vec3:
     )
 
 
+def between(a: Pose, b: Pose, f: float) -> Pose:
+    """The pose a fraction ``f`` of the way from ``a`` to ``b`` (positions straight, rotations
+    along the shorter arc, normalised: near enough a slerp for the small turns of one tick)."""
+    (ap, aq), (bp, bq) = a, b
+    if sum(x * y for x, y in zip(aq, bq)) < 0:
+        bq = tuple(-x for x in bq)  # type: ignore[assignment]
+    q = tuple(x + (y - x) * f for x, y in zip(aq, bq))
+    norm = math.sqrt(sum(x * x for x in q)) or 1.0
+    return (tuple(x + (y - x) * f for x, y in zip(ap, bp)),  # type: ignore[return-value]
+            tuple(x / norm for x in q))
+
+
 def compose(parent: Pose, local: Pose) -> Pose:
     """World pose of a child whose pose relative to ``parent`` is ``local``."""
     (pp, pq), (lp, lq) = parent, local

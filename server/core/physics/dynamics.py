@@ -19,7 +19,9 @@ Defaults, and why (:class:`Physics`):
   which a closed hand holds its objects (more cost time every step).
 - ``friction`` 1.0 (lateral): rubber-like fingers on hard objects, PyBullet's examples'
   value; spinning friction is a tenth of it and rolling friction a thousandth, so a held
-  ball neither spins nor rolls out.
+  ball neither spins nor rolls out. Every body has Bullet's friction anchors: without them
+  a contact that sticks still creeps a little every step, and a squeezed ball crept out
+  of a closed hand by millimetres a second.
 - ``density`` 1000 kg/m³ (water; plastics and flesh are near it): a part's mass is its
   volume times this, unless ``setMass`` gave it one.
 """
@@ -31,7 +33,7 @@ from dataclasses import asdict, dataclass, replace
 from typing import Any, Mapping, Sequence
 
 from ...errors import BadArguments, OutOfRange, WrongType, show
-from ..kit.math3d import ORIGIN, Pose, Vec3
+from ..kit.math3d import ORIGIN, Pose, Vec3, between
 from .articulation import Articulation
 from .geometry import centroid, volume
 
@@ -123,6 +125,8 @@ class Dynamics:
         self._masses: dict[str, tuple[float, Vec3]] = {}  # shape -> volume (m³), centre
         self._debt = 0.0  # seconds not yet stepped
         self.steps = 0  # physics steps taken
+        self._mounts: dict[int, Pose] = {}  # mount constraint -> where it is
+        self._glides: dict[int, Pose] = {}  # mount constraint -> where it goes over the next steps
         pybullet.setGravity(0, -physics.gravity, 0, physicsClientId=client)
         pybullet.setPhysicsEngineParameter(fixedTimeStep=physics.step,
                                            numSolverIterations=physics.solverIterations,
@@ -171,7 +175,8 @@ class Dynamics:
         for link, given in frictions.items():
             mu = self.physics.friction if given is None else given
             p.changeDynamics(body, link, lateralFriction=mu, spinningFriction=SPINNING * mu,
-                             rollingFriction=ROLLING * mu, physicsClientId=client)
+                             rollingFriction=ROLLING * mu, frictionAnchor=1,
+                             physicsClientId=client)
         # Bullet gives a link without a shape no inertia at all, and a joint between two
         # such turns the whole motor's torque into spin of nothing: a motor then holds any
         # load whatever its torque. They get that of a small ball of their mass.
@@ -193,7 +198,7 @@ class Dynamics:
         mount = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
                                    base_pose[0], childFrameOrientation=base_pose[1],
                                    physicsClientId=client)
-        self.mount(mount, base_pose)  # (Bullet's own bound lets a heavy hand sink)
+        self._put(mount, base_pose)  # (Bullet's own bound lets a heavy hand sink)
         return mount
 
     # --- driving -----------------------------------------------------------------------
@@ -206,9 +211,21 @@ class Dynamics:
                                          physicsClientId=self.client)
 
     def mount(self, constraint: int, pose: Pose) -> None:
-        """Move a robot's mount: its base follows, pulled with at most MOUNT_FORCE."""
+        """Move a robot's mount: it glides there over the steps of the next advance (a
+        script's 60 moves a second are a path, not a staircase: a mount that jumped once a
+        tick jerked what the hand held, and more so when a busy server took two ticks'
+        steps at once), and its base follows, pulled with at most MOUNT_FORCE."""
+        self._glides[constraint] = pose
+
+    def forget(self, constraint: int) -> None:
+        """A mount gone with its robot (Bullet gives its id to the next constraint)."""
+        self._mounts.pop(constraint, None)
+        self._glides.pop(constraint, None)
+
+    def _put(self, constraint: int, pose: Pose) -> None:
         self.p.changeConstraint(constraint, pose[0], pose[1], maxForce=MOUNT_FORCE,
                                 physicsClientId=self.client)
+        self._mounts[constraint] = pose
 
     def teleport(self, body: int, pose: Pose) -> None:
         """Put a free body at a pose, at rest (a script's setPosition of an object)."""
@@ -223,7 +240,12 @@ class Dynamics:
         self._debt = min(self._debt + seconds, limit * step)
         count = int(self._debt / step + 1e-9)
         self._debt -= count * step
-        for _ in range(count):
+        glides = [(c, self._mounts[c], pose) for c, pose in self._glides.items()] if count else []
+        if count:
+            self._glides.clear()
+        for k in range(1, count + 1):
+            for constraint, start, end in glides:
+                self._put(constraint, between(start, end, k / count))
             self.p.stepSimulation(physicsClientId=self.client)
         self.steps += count
         return count

@@ -56,7 +56,7 @@ class SceneBodies:
         self.tracker = ContactTracker(self.physics, limits.contact_tests, limits.contact_pairs)
         self.contacts = ContactBook()  # as announced by the last tick
         self._restructured: set[str] = set()  # roots (then) whose trees are built again
-        self._based: set[str] = set()         # roots whose own pose changed
+        self._based: dict[str, set[str]] = {}  # roots whose own pose changed -> which fields
         self._turned: set[str] = set()        # motors whose angles changed
         self._motor_root: dict[str, str] = {}  # motor id -> root of the tree it is a joint of
         self._joint_motors: dict[str, list[Node]] = {}  # root -> its joints' motors, in order
@@ -88,9 +88,9 @@ class SceneBodies:
         shown, flipped, or moved below its root): built again at the next sync."""
         self._restructured.update(root_ids)
 
-    def rebased(self, root_id: str) -> None:
-        """A root moved: its base is placed at the next sync."""
-        self._based.add(root_id)
+    def rebased(self, root_id: str, field: str) -> None:
+        """A root's ``position`` or ``quaternion`` was set: its base is placed at the next sync."""
+        self._based.setdefault(root_id, set()).add(field)
 
     def retargeted(self) -> None:
         """Dynamic mode: motors got new targets (or torques), driven from the next step."""
@@ -197,8 +197,11 @@ class SceneBodies:
             if node is not None and node.parent is not None:
                 roots.add(node.root().id)  # attached below another tree since
         self._restructured.clear()
+        # in the order the roots were made, not a set's: Bullet's solver visits bodies in
+        # the order they were added, and the same script must give the same world
+        order = sorted(roots, key=lambda root_id: getattr(self._nodes.get(root_id), "serial", 0))
         old: set[str] = set()
-        for root_id in roots:  # every old tree out first: a part may change trees
+        for root_id in order:  # every old tree out first: a part may change trees
             tree = self.physics.tree(root_id)
             if tree is not None:
                 old.update(tree.parts())
@@ -206,7 +209,7 @@ class SceneBodies:
         new: set[str] = set()
         if roots:
             self._parts.forget_offsets()  # and what it held of nodes deleted since
-        for root_id in roots:
+        for root_id in order:
             new.update(self._build(root_id))
         self._forget_parts(old - new)
         return roots
@@ -296,7 +299,7 @@ class SceneBodies:
             for motor_id in self._turned:
                 motor = nodes.get(motor_id)
                 if motor_id not in motor_root and motor is not None and motor.parent is None:
-                    self._based.add(motor_id)  # a lone motor: its turn is its base's pose
+                    self.rebased(motor_id, "quaternion")  # a lone motor: its turn is its base's pose
         self._turned.clear()
         motors = self._joint_motors
         return {root_id for root_id in roots - rebuilt if self._guarded(root_id, lambda: self.physics.turn(
@@ -305,15 +308,29 @@ class SceneBodies:
     def _place_bases(self, rebuilt: set[str]) -> set[str]:
         """Place the bases of the moved roots; the roots placed."""
         placed = set()
-        for root_id in self._based:
+        for root_id, fields in self._based.items():
             node = self._nodes.get(root_id)
-            if root_id not in rebuilt and node is not None and self.physics.tree(root_id) and \
-                    self._guarded(root_id, lambda: self.physics.move_base(root_id, base_pose(node))):
+            if root_id in rebuilt or node is None or not self.physics.tree(root_id):
+                continue
+            if self._guarded(root_id, lambda: self._move_base(root_id, node, fields)):
                 placed.add(root_id)
-                if self.physics.dynamics is not None and node.lists_motors:
-                    self._mounts[root_id] = base_pose(node)
         self._based.clear()
         return placed
+
+    def _move_base(self, root_id: str, node: Node, fields: set[str]) -> None:
+        """Put a root's base where its node is. A dynamic robot's node carries where the
+        physics put it (a loaded hand turns a little at its mount): what the script did not
+        set keeps its mount's value, or a held weight would tip the hand further at every
+        setPosition."""
+        pose = base_pose(node)
+        if self.physics.dynamics is None or not node.lists_motors:
+            self.physics.move_base(root_id, pose)
+            return
+        mount = self._mounts.get(root_id, pose)
+        pose = (pose[0] if "position" in fields else mount[0],
+                pose[1] if "quaternion" in fields else mount[1])
+        self.physics.move_base(root_id, pose)
+        self._mounts[root_id] = pose
 
     # --- contacts and sensors --------------------------------------------------------------
 

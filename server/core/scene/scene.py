@@ -132,7 +132,7 @@ class Scene:
         if field in _POSE_FIELDS or field in ("parent", "visible"):
             self._moved()
             if field in ("position", "quaternion") and node.parent is None:
-                self.bodies.rebased(node.id)
+                self.bodies.rebased(node.id, field)
             elif field != "parent":  # reparented() names both trees
                 self.bodies.restructure((node.root().id,))
         elif field in _BODY_FIELDS:

@@ -12,7 +12,7 @@ from typing import Any, Callable
 from ..objects import Box, Part
 from ..robots import Robot
 from ..session import Session
-from .controller import Grip
+from .controller import OPPOSED_THUMB, Grip, smooth
 from .scale import FIGURES, Scale
 from .trial import HANDS, PALM_DOWN, drive
 
@@ -24,7 +24,9 @@ BLOCK = 0.025
 BLOCKS = 150
 SECONDS = 60.0
 BLOCK_MASS = 0.0105  # kilograms: a 2.5 cm pine cube
-GRIP = Grip(flex=1.3, torque=0.3, reach=-0.05, gap=0.004)
+# the tripod grip of the grasp task: the block where thumb and fingers meet, the hand high
+# enough that curling fingers clear what lies around it
+GRIP = Grip(flex=1.2, torque=0.3, reach=0.0, side=0.015, gap=0.035)
 # PyBullet's default: 150 blocks at the grasps' 150 iterations run at a tenth of real time
 SOLVER_ITERATIONS = 50
 
@@ -98,13 +100,16 @@ def build(session: Session, kind: str, rng: random.Random, count: int = BLOCKS) 
                           -(figures.fingers_z + GRIP.reach * figures.length))
         hand.flex_fingers(0)  # type: ignore[attr-defined]
     session.sync()
-    for motor in hand.get_motors():
+    motors = hand.get_motors()
+    for motor in motors:
         motor.set_max_torque(scale.torque(GRIP.torque))
+    for index, angle in OPPOSED_THUMB[kind].items():
+        motors[index].set_angle(angle)
     return Stage(session, scale, hand, blocks, walls, 0.0, wall, kind)
 
 
-CYCLE = (("reach", 0.5), ("descend", 0.5), ("close", 0.5), ("lift", 0.5), ("carry", 0.6),
-         ("open", 0.3), ("back", 0.5))
+CYCLE = (("reach", 0.5), ("descend", 0.5), ("close", 0.7), ("lift", 0.5), ("carry", 0.6),
+         ("open", 0.3), ("back", 0.4))
 
 
 class Baseline:
@@ -114,7 +119,10 @@ class Baseline:
     def __init__(self, stage: Stage) -> None:
         self.stage = stage
         figures = FIGURES[stage.kind]
-        self.grasp_at = figures.fingers_z + GRIP.reach * figures.length  # block z - hand z
+        # where the block lies relative to the hand: past the palm by the grip's reach and
+        # towards the thumb by its side
+        self.grasp_at = (figures.thumb_side * stage.scale.length(GRIP.side),
+                         figures.fingers_z + GRIP.reach * figures.length)
         self.high = stage.floor + stage.scale.length(PARTITION_HEIGHT) * 1.5 + figures.palm_below
         self.cycle_start = 0.0
         self.target: list[float] | None = None
@@ -133,16 +141,21 @@ class Baseline:
                 return
         name, into = _phase(phase_t)
         bx, by, bz = self.target
-        hz = bz - self.grasp_at
+        hx, hz = bx - self.grasp_at[0], bz - self.grasp_at[1]
         down = by + scale.length(BLOCK) / 2 + scale.length(GRIP.gap) + FIGURES[self.stage.kind].palm_below
-        across = -bx  # as far past the partition as the block was before it
-        x, y = {"reach": (bx, self.high), "descend": (bx, self.high + (down - self.high) * into),
-                "close": (bx, down), "lift": (bx, down + (self.high - down) * into),
-                "carry": (bx + (across - bx) * into, self.high), "open": (across, self.high),
+        across = -hx  # as far past the partition as the block was before it
+        ease = smooth(into, 0.0, 1.0)
+        x, y = {"reach": (hx, self.high), "descend": (hx, self.high + (down - self.high) * ease),
+                "close": (hx, down), "lift": (hx, down + (self.high - down) * ease),
+                "carry": (hx + (across - hx) * ease, self.high), "open": (across, self.high),
                 "back": (across, self.high)}[name]
         hand.set_position(x, y, hz)
-        closed = {"close": into, "lift": 1.0, "carry": 1.0, "open": 1 - into}.get(name, 0.0)
-        hand.flex_fingers(GRIP.flex * closed)  # type: ignore[attr-defined]
+        # the thumb closes first, behind the block, then the fingers push it against it
+        thumb = {"close": smooth(into, 0.0, 0.7), "lift": 1.0, "carry": 1.0, "open": 1 - into}
+        fingers = {"close": smooth(into, 0.3, 0.7), "lift": 1.0, "carry": 1.0, "open": 1 - into}
+        hand.flex_finger(0, GRIP.flex * thumb.get(name, 0.0))  # type: ignore[attr-defined]
+        for finger in (1, 2, 3, 4):
+            hand.flex_finger(finger, GRIP.flex * fingers.get(name, 0.0))  # type: ignore[attr-defined]
 
 
 def _phase(t: float) -> tuple[str, float]:

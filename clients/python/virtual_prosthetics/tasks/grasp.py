@@ -36,8 +36,11 @@ def _same(grip: Grip) -> dict[str, Grip]:
 
 
 PATTERNS = [
-    Pattern("spherical", SPHERE, _same(Grip(flex=1.4, torque=0.3, reach=-0.08))),
-    Pattern("tripod", CUBE, _same(Grip(flex=1.4, torque=0.3, reach=-0.1))),
+    # the ball under the palm, wrapped: thumb behind it, fingers in front
+    Pattern("spherical", SPHERE, _same(Grip(flex=1.2, torque=0.3, reach=-0.1))),
+    # the cube is smaller than a curled finger: the hand stays higher and the cube lies a
+    # little towards the thumb, where the thumb's tip and the fingers' meet
+    Pattern("tripod", CUBE, _same(Grip(flex=1.2, torque=0.3, reach=0.0, side=0.015, gap=0.03))),
     Pattern("power", CYLINDER, _same(Grip(flex=1.5, torque=0.3, reach=-0.1))),
     Pattern("lateral", PLATE, _same(Grip(flex=1.3, torque=0.3, reach=-0.05))),
     Pattern("tip", TIP, _same(Grip(flex=1.3, torque=0.2, reach=0.0))),

@@ -88,3 +88,15 @@ def test_composing_many_poses_at_once_gives_exactly_what_compose_gives():
     expected = [math3d.compose(parent, local) for parent, local in zip(parents, locals_)]
     assert positions.tolist() == [list(p) for p, _ in expected]  # bit for bit
     assert quats.tolist() == [list(q) for _, q in expected]
+
+
+def test_between_goes_straight_and_turns_along_the_shorter_arc():
+    a = ((0.0, 0.0, 0.0), math3d.axis_angle("z", 0.0))
+    b = ((2.0, 4.0, -6.0), math3d.axis_angle("z", 1.0))
+    assert math3d.between(a, b, 0.0) == a
+    assert math3d.between(a, b, 1.0)[0] == pytest.approx(b[0])
+    position, quaternion = math3d.between(a, b, 0.5)
+    assert position == pytest.approx((1.0, 2.0, -3.0))
+    assert quaternion == pytest.approx(math3d.axis_angle("z", 0.5), abs=1e-9)
+    flipped = (b[0], tuple(-x for x in b[1]))  # the same rotation, the other sign
+    assert math3d.between(a, flipped, 0.5)[1] == pytest.approx(math3d.axis_angle("z", 0.5), abs=1e-9)
