@@ -9,7 +9,7 @@ from typing import Any, Callable
 
 from ..session import Session
 from .controller import PHASES, Control, Grip, baseline
-from .grasp import PATTERNS, SOLVER_ITERATIONS, draws, run_batch
+from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, draws, run_batch
 from .scale import Scale
 from .trial import Trial, lay_out
 
@@ -17,6 +17,7 @@ RADIUS = 0.1   # metres (human): the circle the wrist goes round
 PERIOD = 2.0   # seconds a round takes
 ROUNDS = 2
 DROPPED = 0.5  # × the ball's size: further than this from where it sat in the hand
+SETTLE = 0.5   # seconds still after the path before the ball's place in the hand is read
 
 
 def carry(scale: Scale, control: Control) -> Control:
@@ -27,7 +28,7 @@ def carry(scale: Scale, control: Control) -> Control:
         if t < PHASES.holding:
             control(trial, t)
             return
-        angle = 2 * math.pi * (t - PHASES.holding) / PERIOD
+        angle = 2 * math.pi * min(ROUNDS, (t - PHASES.holding) / PERIOD)
         x, y, z = trial.home
         trial.hand.set_position(x + radius * math.sin(angle),
                                 y + trial.lift + radius * (1 - math.cos(angle)), z)
@@ -36,9 +37,15 @@ def carry(scale: Scale, control: Control) -> Control:
 
 
 def dropped(trial: Trial) -> bool:
-    """Whether the ball left the hand during the path (or was never lifted)."""
-    size = trial.item.extent
-    return not trial.offsets or trial.slip() > DROPPED * size
+    """Whether the ball left the hand during the path (or was never lifted): low at any
+    time, or moved in the hand, judged where it sits in the still hand after the path
+    against before it. (Not during the path: the hand's place a client knows is the one
+    it sent, the ball's is a frame old, and at the path's speed that alone looked like a
+    drop: every ball "dropped" while the pictures showed them held.)"""
+    if len(trial.offsets) < 2 or min(trial.heights) < LIFTED * trial.figures.length:
+        return True  # never lifted, or down at the table at some time
+    moved = math.dist(trial.offsets[0], trial.offsets[-1]) / trial.scale.factor
+    return moved > DROPPED * trial.item.extent
 
 
 def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: int = 10,
@@ -49,7 +56,7 @@ def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: i
     session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
     pattern = PATTERNS[0]
     grip = pattern.grips[hand]
-    seconds = PHASES.holding + ROUNDS * PERIOD
+    seconds = PHASES.holding + ROUNDS * PERIOD + SETTLE
     done: list[Trial] = []
     every = draws(random.Random(seed), trials)
     for start in range(0, trials, side_by_side):

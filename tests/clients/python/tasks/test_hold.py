@@ -3,10 +3,10 @@
 from virtual_prosthetics.tasks import hold
 
 
-def test_hold_carries_each_ball_round_the_path_and_counts_drops(scene):
+def test_the_baseline_carries_each_ball_round_the_path_without_a_drop(scene):
     result = hold.hold(scene, "edged", 2, seed=1)
     assert result["task"] == "hold" and result["trials"] == 2
-    assert 0 <= result["drops"] <= 2
+    assert result["drops"] == 0  # the baseline grasp holds through the path
 
 
 def test_a_hand_that_lets_go_drops_every_ball(scene):
