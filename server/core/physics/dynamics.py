@@ -239,10 +239,11 @@ class Dynamics:
         limit = MAX_STEPS_PER_TICK * self.physics.substeps
         self._debt = min(self._debt + seconds, limit * step)
         count = int(self._debt / step + 1e-9)
+        if not count:
+            return 0
         self._debt -= count * step
-        glides = [(c, self._mounts[c], pose) for c, pose in self._glides.items()] if count else []
-        if count:
-            self._glides.clear()
+        glides = [(c, self._mounts[c], pose) for c, pose in self._glides.items()]
+        self._glides.clear()
         for k in range(1, count + 1):
             for constraint, start, end in glides:
                 self._put(constraint, between(start, end, k / count))

@@ -12,6 +12,7 @@ from typing import Any, Callable, Sequence
 
 from ..runtime import connect
 from . import TASKS
+from .scale import FIGURES
 
 
 def _function(spec: str) -> Callable[..., Any]:
@@ -28,7 +29,7 @@ def parser() -> argparse.ArgumentParser:
     parse.add_argument("task", choices=sorted(TASKS))
     parse.add_argument("--url", default="ws://127.0.0.1:8000")
     parse.add_argument("--scene", default="tasks", help="the scene to run in (default: tasks)")
-    parse.add_argument("--hand", choices=("edged", "round", "anthro"), default="edged")
+    parse.add_argument("--hand", choices=sorted(FIGURES), default="edged")
     parse.add_argument("--trials", type=int, default=20, help="trials of each object (grasp, hold)")
     parse.add_argument("--seed", type=int, default=0)
     parse.add_argument("--side-by-side", type=int, default=10,

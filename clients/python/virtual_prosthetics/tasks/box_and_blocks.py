@@ -14,7 +14,7 @@ from ..robots import Robot
 from ..session import Session
 from .controller import OPPOSED_THUMB, Grip, smooth
 from .scale import FIGURES, Scale
-from .trial import HANDS, PALM_DOWN, drive
+from .trial import HANDS, PALM_DOWN, drive, under_hand
 
 INSIDE = (0.537, 0.254)  # metres: the box inside, x (both compartments) by z
 WALL_HEIGHT = 0.085
@@ -97,7 +97,7 @@ def build(session: Session, kind: str, rng: random.Random, count: int = BLOCKS) 
         hand = HANDS[kind](True, scene=session)  # type: ignore[call-arg]
         hand.set_rotation(*PALM_DOWN)
         hand.set_position(-sx / 4, wall + scale.length(PARTITION_HEIGHT) * 1.6 + figures.palm_below,
-                          -(figures.fingers_z + GRIP.reach * figures.length))
+                          -under_hand(kind, GRIP)[1])
         hand.flex_fingers(0)  # type: ignore[attr-defined]
     session.sync()
     motors = hand.get_motors()
@@ -119,10 +119,7 @@ class Baseline:
     def __init__(self, stage: Stage) -> None:
         self.stage = stage
         figures = FIGURES[stage.kind]
-        # where the block lies relative to the hand: past the palm by the grip's reach and
-        # towards the thumb by its side
-        self.grasp_at = (figures.thumb_side * stage.scale.length(GRIP.side),
-                         figures.fingers_z + GRIP.reach * figures.length)
+        self.grasp_at = under_hand(stage.kind, GRIP)  # where the block lies from the hand
         self.high = stage.floor + stage.scale.length(PARTITION_HEIGHT) * 1.5 + figures.palm_below
         self.cycle_start = 0.0
         self.target: list[float] | None = None

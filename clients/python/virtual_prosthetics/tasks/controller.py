@@ -88,11 +88,11 @@ def smooth(t: float, start: float, span: float) -> float:
 def baseline(grip: Grip, phases: Phases = PHASES) -> Control:
     """The scripted controller of ``grip``: the thumb turned to face the fingers while the
     hand hovers, down, the thumb then the fingers closed, up."""
-    opposed: set[int] = set()
+    opposed: set[str] = set()  # the hands whose thumbs were turned
 
     def control(trial: Trial, t: float) -> None:
-        if id(trial) not in opposed:
-            opposed.add(id(trial))
+        if trial.hand.id not in opposed:
+            opposed.add(trial.hand.id)
             motors = trial.hand.get_motors()
             for index, angle in OPPOSED_THUMB[trial.kind].items():
                 motors[index].set_angle(angle)

@@ -84,6 +84,21 @@ def run_batch(trials: list[Trial], grip: Grip, control: Control,
     drive(session, seconds, step)
 
 
+def run_trials(session: Session, hand: str, item: TestObject, every: Sequence[tuple[float, float]],
+               mass: float, grip: Grip, control: Control, side_by_side: int,
+               seconds: float = PHASES.end) -> list[Trial]:
+    """A trial per draw of ``every``, ``side_by_side`` at a time in a row, each row cleared
+    away when it is done; the trials, observed."""
+    done: list[Trial] = []
+    for batch in _batches(every, side_by_side):
+        row = lay_out(session, hand, item, batch, mass, grip)
+        run_batch(row, grip, control, seconds)
+        done += row
+        for trial in row:
+            trial.remove()
+    return done
+
+
 def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: int = 10,
           patterns: Sequence[str] = tuple(PATTERN_NAMES),
           controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
@@ -95,13 +110,8 @@ def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: 
     for pattern in (p for p in PATTERNS if p.name in patterns):
         grip = pattern.grips[hand]
         for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
-            done: list[Trial] = []
-            for batch in _batches(draws(rng, trials), side_by_side):
-                row = lay_out(session, hand, pattern.item, batch, mass, grip)
-                run_batch(row, grip, controller(grip))
-                done += row
-                for trial in row:
-                    trial.remove()
+            done = run_trials(session, hand, pattern.item, draws(rng, trials), mass, grip,
+                              controller(grip), side_by_side)
             results.append(summary(pattern, weight, done))
     return {"task": "grasp", "hand": hand, "seed": seed, "scale": scale.factor,
             "gravity": scale.gravity, "results": results}

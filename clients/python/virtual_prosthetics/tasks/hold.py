@@ -9,9 +9,9 @@ from typing import Any, Callable
 
 from ..session import Session
 from .controller import PHASES, Control, Grip, baseline
-from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, draws, run_batch
+from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, draws, run_trials
 from .scale import Scale
-from .trial import Trial, lay_out
+from .trial import Trial
 
 RADIUS = 0.1   # metres (human): the circle the wrist goes round
 PERIOD = 2.0   # seconds a round takes
@@ -56,16 +56,9 @@ def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: i
     session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
     pattern = PATTERNS[0]
     grip = pattern.grips[hand]
-    seconds = PHASES.holding + ROUNDS * PERIOD + SETTLE
-    done: list[Trial] = []
-    every = draws(random.Random(seed), trials)
-    for start in range(0, trials, side_by_side):
-        row = lay_out(session, hand, pattern.item, every[start:start + side_by_side],
-                      pattern.item.light, grip)
-        run_batch(row, grip, carry(scale, controller(grip)), seconds)
-        done += row
-        for trial in row:
-            trial.remove()
+    done = run_trials(session, hand, pattern.item, draws(random.Random(seed), trials),
+                      pattern.item.light, grip, carry(scale, controller(grip)), side_by_side,
+                      PHASES.holding + ROUNDS * PERIOD + SETTLE)
     return {"task": "hold", "hand": hand, "seed": seed, "trials": trials,
             "object": pattern.item.name, "path": {"radiusM": RADIUS, "periodS": PERIOD,
                                                   "rounds": ROUNDS},

@@ -82,6 +82,14 @@ class Trial:
             node.delete()
 
 
+def under_hand(kind: str, place: Placement) -> tuple[float, float]:
+    """Where an object placed by ``place`` lies relative to the hand's position, palm
+    down: its (x, z) offset in scene metres."""
+    figures, scale = FIGURES[kind], Scale.of(kind)
+    return (figures.palm_x + figures.thumb_side * scale.length(place.side),
+            figures.fingers_z + place.reach * figures.length)
+
+
 def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple[float, float]],
             weight: float, place: Placement) -> list[Trial]:
     """A row of trials, one per ``(mass factor, friction factor)`` draw: each hand palm
@@ -90,11 +98,11 @@ def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple
     length = figures.length
     top = TABLE_TOP * length
     size = [scale.length(v) for v in item.size]
+    dx, dz = under_hand(kind, place)
     trials = []
     for index, (mass_factor, friction_factor) in enumerate(draws):
         x = index * SPACING * length
-        at = (x + figures.palm_x + figures.thumb_side * scale.length(place.side),
-              top + size[1] / 2, figures.fingers_z + place.reach * length)
+        at = (x + dx, top + size[1] / 2, dz)
         home = (x, top + size[1] + scale.length(place.gap) + figures.palm_below, 0.0)
         # made and placed in one message: in dynamic mode a robot placed a tick after it
         # was made would be dragged there from where it was made
