@@ -210,7 +210,10 @@ class Scene:
             robots = []  # no motor moved: the robots' motor orders stand
         self.feed.regrouped([parent.id for parent in parents], robots)
         self.feed.turned(motors)  # their angles go where they went (frames._angles)
-        self.bodies.restructure({node.root().id, *(parent.root().id for parent in parents)})
+        # a node that was a root had a tree of its own: it goes too (else its body stayed
+        # where it was, a ghost that touched things, beside the tree it joined)
+        was_root = [node.id] if old_parent is None else []
+        self.bodies.restructure({node.root().id, *was_root, *(parent.root().id for parent in parents)})
         self.node_changed(node, "parent")
 
     def _moved(self) -> None:

@@ -151,3 +151,20 @@ def test_the_same_script_makes_the_same_dynamic_world_whatever_python_hashes(tmp
                              env={**os.environ, "PYTHONHASHSEED": seed}).stdout
               for seed in ("1", "2", "3")]
     assert worlds[0] and worlds[0] == worlds[1] == worlds[2]
+
+
+def test_a_lone_part_attached_to_a_robot_leaves_no_body_where_it_was(scene):
+    robot = Robot(scene, "r")
+    robot.attach_chain(MotorZ(scene, "m"), EdgedFinger(scene, "f", 1))
+    lone = EdgedFinger(scene, "lone", 1)
+    lone.set_position((5, 0, 0))  # lying on the ground, away from the robot
+    scene.tick(0.1)
+    assert sorted(scene.bodies.physics.roots()) == ["lone", "r"]
+    lone.attach_to_slot(scene.get("f"))
+    scene.tick(0.1)
+    assert scene.bodies.physics.roots() == ["r"]  # its own tree went: no ghost left behind
+    assert "ground" not in scene.bodies.touching(lone)
+    scene.get("m").set_angle(0.3)
+    robot.set_position((0, 3, 0))
+    scene.tick(0.1)
+    assert scene.failures == 0 and scene.bodies.failures == 0
