@@ -22,7 +22,8 @@ Hierarchy::
     ├── ConflictError            a request that contradicts the scene
     │   ├── DuplicateId          duplicate_id   an id already (or once) in use
     │   ├── ForeignId            foreign_id     an id without this client's prefix
-    │   └── Cycle                cycle          attaching a node below itself
+    │   ├── Cycle                cycle          attaching a node below itself
+    │   └── NotPaused            not_paused     stepping a scene whose clock runs
     ├── Forbidden                forbidden      a viewer asked to change something
     ├── LimitExceeded            limit_exceeded a documented limit was reached
     └── InternalError            internal       a server fault (a bug): reported, not hidden
@@ -187,6 +188,10 @@ class ForeignId(ConflictError):
 
 class Cycle(ConflictError):
     code = "cycle"
+
+
+class NotPaused(ConflictError):
+    code = "not_paused"
 
 
 class Forbidden(VPError):

@@ -161,6 +161,26 @@ export function setPhysics(mode, options) {
 	currentSession().call(SCENE_ID, 'setPhysics', options === undefined ? [mode] : [mode, options]);
 }
 
+// Not in 1.0: the scene's clock held by this script. pause() stops it (nothing moves,
+// whatever the server's load, until resume() or until this client leaves); await
+// step(ticks = 1) advances it by whole ticks (1 to 60) after what was sent before and
+// resolves once they are taken and their frames are in the mirror.
+export function pause() {
+	currentSession().call(SCENE_ID, 'pause', []);
+	return currentSession().sync();
+}
+
+export function resume() {
+	currentSession().call(SCENE_ID, 'resume', []);
+	return currentSession().sync();
+}
+
+export async function step(ticks = 1) {
+	currentSession().call(SCENE_ID, 'step', [ticks]);
+	await currentSession().sync();
+	return currentSession().mirror.time;
+}
+
 // The scene's physics as the mirror has it: {mode, gravity, substeps, …}.
 export function getPhysics() {
 	return { ...currentSession().mirror.physics };

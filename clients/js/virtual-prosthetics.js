@@ -13,8 +13,8 @@ export { AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, G
 export { AnthroHand, EdgedHand, RoundHand, Robot } from './robot.js';
 export { Sensor } from './sensor.js';
 export { ConnectionLost, ProtocolError, ServerError, VPError } from './errors.js';
-export { VERSION, close, connect, getPhysics, getScene, getTime, setAnimation,
-	setCameraPosition, setCameraTarget, setPhysics, sync } from './runtime.js';
+export { VERSION, close, connect, getPhysics, getScene, getTime, pause, resume, setAnimation,
+	setCameraPosition, setCameraTarget, setPhysics, step, sync } from './runtime.js';
 
 import { IN_BROWSER, VERSION } from './runtime.js';
 

@@ -126,7 +126,10 @@ class SceneWorker:
                 continue
             now = time.monotonic()
             if now >= deadline:
-                self._tick(now - last)
+                if self.scene.clock.paused:
+                    self._stand()
+                else:
+                    self._tick(now - last)
                 last, deadline = now, max(deadline + period, now - 5 * period)
                 # a scene whose ticks run late still hears its server (and its going)
                 # and still serves requests, half a period's worth after every tick
@@ -207,6 +210,8 @@ class SceneWorker:
         answers = [] if session is None else [
             Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
         self.metrics.served(now, len(answers))
+        for _ in range(self.scene.clock.take()):  # a step's ticks, before its answer
+            self._tick(1.0 / self.tick_rate)
         self._events.append(("answers", cid, answers, len(text)))
 
     def _leave(self, cid: int) -> None:
@@ -306,6 +311,7 @@ class SceneWorker:
         lines = self._store.journal() if self._store is not None else []
         if lines:
             applied, skipped = replay(self.scene, lines)
+            self.scene.clock.take()  # steps replayed are not taken again: their world is gone
             log.info("scene %s: %d journaled changes made again (%d not)", self.scene.name,
                      applied, skipped)
 
@@ -362,6 +368,15 @@ class SceneWorker:
         self.saver.tick(time.monotonic())
         self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
                             time.process_time(), self.scene.bodies.peak_force())
+
+    def _stand(self) -> None:
+        """A due tick of a paused scene: its clock stands, but what requests changed still
+        reaches every client (a frame of no time), and clients that left still go."""
+        if self.scene.feed.pending or self._notices or self._resync:
+            self._tick(0.0)
+        else:
+            self._expire(time.monotonic())
+            self.saver.tick(time.monotonic())
 
     def _resynced(self) -> list[Outgoing]:
         """After a failed tick, a fresh snapshot first: every client rebuilds from it."""

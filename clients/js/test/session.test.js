@@ -61,6 +61,32 @@ test('an error of a request nobody waited for is thrown by the next call', { ski
 	}
 });
 
+test('a paused scene stands still until the script steps it, a tick at a time', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-paused-${process.pid}` });
+	try {
+		const ball = new Prosthetic.Ball(0.3);
+		ball.setPosition(0, 5, 0);
+		await assert.rejects(Prosthetic.step(), (error) => error.code === 'not_paused' && /pause\(\)/.test(error.message));
+		await Prosthetic.pause();
+		Prosthetic.setPhysics('dynamic', { gravity: 9.81 });
+		await Prosthetic.sync();
+		const start = session.mirror.time;
+		await new Promise((r) => setTimeout(r, 300));
+		await Prosthetic.sync();
+		assert.equal(session.mirror.time, start, 'no time passes while paused');
+		assert.equal(ball.node.position[1], 5, 'nothing falls while paused');
+		const time = await Prosthetic.step(30);
+		assert.ok(Math.abs(time - start - 0.5) < 1e-9, `${time - start} s after 30 ticks`);
+		const fallen = 5 - ball.node.position[1];   // half a second of free fall: g t² / 2
+		assert.ok(Math.abs(fallen - 9.81 * 0.25 / 2) < 0.05, `fell ${fallen} m`);
+		await assert.rejects(Prosthetic.step(61), (error) => error.code === 'out_of_range' && /1 to 60/.test(error.message));
+		await Prosthetic.resume();
+		await assert.rejects(Prosthetic.step(), (error) => error.code === 'not_paused');
+	} finally {
+		Prosthetic.close();
+	}
+});
+
 test('a page switches its scene to dynamic: objects fall, forces are felt, motors read where they are', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	const session = await Prosthetic.connect({ url: URL_, scene: `js-dynamic-${process.pid}` });
 	try {

@@ -47,6 +47,21 @@ def get_physics() -> dict[str, Any]:
     return current_session().get_physics()
 
 
+def pause() -> None:
+    """Stop the current scene's clock until ``resume`` (see :meth:`Session.pause`)."""
+    current_session().pause()
+
+
+def resume() -> None:
+    """Let the current scene's clock run again (see :meth:`Session.resume`)."""
+    current_session().resume()
+
+
+def step(ticks: int = 1) -> float:
+    """Advance the paused scene by ``ticks`` ticks; its time (see :meth:`Session.step`)."""
+    return current_session().step(ticks)
+
+
 def set_camera_target(*target: float) -> None:
     """Manual ``setCameraTarget(x, y, z)``: every viewer's camera turns towards it."""
     current_session().set_camera_target(*target)
@@ -58,5 +73,5 @@ __all__ = [
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset",
-    "set_physics", "get_physics",
+    "set_physics", "get_physics", "pause", "resume", "step",
 ]

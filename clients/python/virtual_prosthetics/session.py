@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import os
 import threading
+from contextlib import contextmanager
 from itertools import count
-from typing import Any, Callable, Protocol, TypeVar
+from typing import Any, Callable, Iterator, Protocol, TypeVar
 from urllib.parse import urlencode
 
 from .codec import encode_arg
@@ -75,6 +76,7 @@ class Session:
         self.hello: dict[str, Any] = {}
         self.animation: tuple[Callable[..., None], float] | None = None
         self._ids = count(1)
+        self._holding = False  # this client paused the scene: its time is the frames'
         self._ready = threading.Event()
         token = token if token is not None else os.environ.get("VP_TOKEN")
         self.token = token  # uploads send it too
@@ -225,10 +227,52 @@ class Session:
             return dict(self.mirror.physics)
 
     def get_time(self) -> float:
-        """Manual ``getTime()``: the server's scene time now."""
+        """Manual ``getTime()``: the server's scene time now (a scene this client paused:
+        the time of the last tick it stepped to)."""
         self.connection.raise_deferred()
         with self.lock:
-            return self.mirror.now()
+            return self.mirror.time if self._holding else self.mirror.now()
+
+    @property
+    def tick_rate(self) -> float:
+        """The scene's ticks a second (a ``step`` of one tick is ``1 / tick_rate`` s)."""
+        return float(self.hello["tickRate"])
+
+    def pause(self) -> None:
+        """Stop the scene's clock (not in the manual): nothing moves until :meth:`step`,
+        whatever the server's load, until :meth:`resume` or until this client leaves."""
+        self.call(SCENE_ID, "pause")
+        self.connection.settle()
+        self._holding = True
+
+    def resume(self) -> None:
+        """Let the scene's clock run with the wall clock again."""
+        self.call(SCENE_ID, "resume")
+        self.connection.settle()
+        self._holding = False
+
+    @contextmanager
+    def paused(self) -> Iterator[None]:
+        """The scene's clock held inside the block (:meth:`pause`, then :meth:`resume`;
+        inside a block already paused, nothing more)."""
+        if self._holding:
+            yield
+            return
+        self.pause()
+        try:
+            yield
+        finally:
+            if self.connection.closed is None:
+                self.resume()
+
+    def step(self, ticks: int = 1) -> float:
+        """Advance the paused scene by ``ticks`` ticks (1 to 60) with what was sent before
+        (anything gathered leaves first); return once they are taken and their frames are
+        in the mirror, with the scene's time."""
+        self.call(SCENE_ID, "step", (ticks,))
+        self.sync()
+        with self.lock:
+            return self.mirror.time
 
     def close(self) -> None:
         """Disconnect; the server deletes what this client made."""

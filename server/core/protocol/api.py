@@ -19,7 +19,7 @@ Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) �
 (:mod:`server.core.physics.geometry`) · ``transforms`` {id: [px, py, pz, qx, qy, qz, qw] with
 sx, sy, sz optionally after} · ``mode`` 'kinematic' or 'dynamic' · ``options`` an object of
 physics options (checked by :class:`server.core.physics.dynamics.Physics`) · ``mass`` kg,
-above 0, at most 1e9 · ``friction`` 0 to 10 · ``torque`` N·m, 0 to 1e12.
+above 0, at most 1e9 · ``friction`` 0 to 10 · ``torque`` N·m, 0 to 1e12 · ``ticks`` a whole number of ticks, 1 to 60.
 
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
 or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z] ·
@@ -135,6 +135,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         # not in the manual: dynamic mode (server.core.physics.dynamics)
         Method("setPhysics", (Param("mode", "mode"), Param("options", "options", None))),
         Method("getPhysics", returns="physics", mutates=False),
+        # not in the manual: a script's own clock (server.core.scene.clock)
+        Method("pause", client=True),
+        Method("resume"),
+        Method("step", (Param("ticks", "ticks", 1),)),
     )),
     TypeSpec("Slot", None, (Param("position", "point", ORIGIN),),
              (POSITION, ROTATION, QUATERNION, SCALE)),

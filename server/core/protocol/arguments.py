@@ -20,6 +20,7 @@ from ..model.parts import Part
 from ..model.robot import Robot
 from ..physics.dynamics import MODES
 from ..physics.engine import GROUND
+from ..scene.clock import MAX_STEP_TICKS
 from .api import REQUIRED, Param
 
 Resolver = Callable[[str], Node]
@@ -176,6 +177,13 @@ def _integer(value: Any, resolve: Resolver, label: str) -> int:
     return int(number)
 
 
+def _ticks(value: Any, resolve: Resolver, label: str) -> int:
+    ticks = _integer(value, resolve, label)
+    if not 1 <= ticks <= MAX_STEP_TICKS:
+        raise OutOfRange(f"{label}: a step is 1 to {MAX_STEP_TICKS} ticks, got {ticks}")
+    return ticks
+
+
 def _bool(value: Any, resolve: Resolver, label: str) -> bool:
     if not isinstance(value, bool):
         raise WrongType(f"{label}: expected true or false, got {show(value)}")
@@ -296,6 +304,7 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "mass": _ranged(0.0, 1e9, "a mass (kg)", low_open=True),
     "friction": _ranged(0.0, 10.0, "a friction coefficient"),
     "torque": _ranged(0.0, 1e12, "a torque (N·m)"),
+    "ticks": _ticks,
 }
 
 

@@ -27,6 +27,7 @@ from . import frames
 from .bodies import SceneBodies
 from .camera import Camera
 from .changes import ChangeSet
+from .clock import Clock
 from .feed import ChangeFeed
 from .observations import observe, watched_readings
 from .registry import Registry
@@ -56,6 +57,7 @@ class Scene:
         self.camera = Camera(self.journal, self.feed.camera_moved)
         self.watches = Watches(self.journal, limits.watched_sensors)
         self.time = 0.0
+        self.clock = Clock(self.journal)  # running with the wall clock until a script pauses it
         self.seq = 0
         self.tree_version = 0
         self.pose_epoch = 0  # counts pose changes (Node.world_pose caches by it)
@@ -94,6 +96,7 @@ class Scene:
         """A client left: its watches end, what it created and did not keep is deleted
         (newest first) and its id is never handed out again; the ids deleted at the top."""
         self.watches.drop_watcher(client_id)
+        self.clock.released(client_id)
         deleted = []
         for node in reversed(self.registry.left_behind(client_id)):
             if node.id in self.nodes:  # not deleted with a part it hung on
@@ -319,4 +322,17 @@ class Scene:
     def get_time(self) -> float:
         """Manual ``getTime()``: seconds since the scene started."""
         return self.time
+
+    def pause(self, client: str) -> None:
+        """``pause()`` (not in the manual): the scene's clock stands until ``resume`` (or
+        until the client that paused it leaves); ``step`` advances it (:mod:`.clock`)."""
+        self.clock.pause(client)
+
+    def resume(self) -> None:
+        """``resume()``: the scene's clock runs with the wall clock again."""
+        self.clock.resume()
+
+    def step(self, ticks: int) -> None:
+        """``step(ticks)``: advance a paused scene by whole ticks, taken before the answer."""
+        self.clock.step(ticks)
 

@@ -114,3 +114,48 @@ def test_in_dynamic_mode_a_motor_reads_where_it_is_not_where_it_was_sent(scene):
         vp.set_physics("dynamic", substeps=0)
         scene.sync()
     assert refused.value.code == "out_of_range" and "substeps" in str(refused.value)
+
+
+def _stepped_run(server, scene_name: str) -> tuple[list[float], list[float], float]:
+    """A hand swept through a ball under gravity, 90 ticks stepped one by one; where the
+    ball ends, the hand's angles and the scene's time."""
+    with vp.connect(server.ws, scene=scene_name) as session:
+        ball = vp.Ball(0.4).set_mass(2)
+        ball.set_position(0.5, 0.4, 1.5)
+        hand = vp.EdgedHand(False)
+        hand.set_position(0, 1.2, 0)
+        with session.paused():
+            vp.set_physics("dynamic")
+            start = session.get_time()
+            for tick in range(90):
+                with session.connection.gathering():
+                    hand.flex_fingers(0.02 * tick)
+                    hand.set_position(0.01 * tick, 1.2, 0)
+                time = session.step()
+            assert time - start == pytest.approx(1.5) and session.get_time() == time
+            return list(ball._state()["position"]), hand.get_angles(), time - start
+
+
+def test_a_paused_scene_moves_only_when_stepped_and_the_same_way_every_run(server, scene_name):
+    first = _stepped_run(server, scene_name + "a")
+    second = _stepped_run(server, scene_name + "b")
+    assert first == second  # exactly: the run does not depend on when messages arrived
+    assert first[0] != [0.5, 0.4, 1.5]  # the ball fell and was swept
+
+
+def test_a_pause_ends_when_its_client_leaves_and_stepping_a_running_scene_is_refused(
+        server, scene_name):
+    watcher = vp.Session(server.ws, scene=scene_name, role="viewer")
+    try:
+        with vp.connect(server.ws, scene=scene_name) as pauser:
+            pauser.pause()
+            held = watcher.read(lambda mirror: mirror.time)
+            time.sleep(0.5)
+            assert watcher.read(lambda mirror: mirror.time) == held  # nothing ticks
+        _eventually(lambda: watcher.read(lambda mirror: mirror.time) > held + 0.5)
+        with vp.connect(server.ws, scene=scene_name) as stepper:
+            with pytest.raises(vp.ServerError) as refused:
+                stepper.step()
+            assert refused.value.code == "not_paused" and "pause()" in str(refused.value)
+    finally:
+        watcher.close()

@@ -148,3 +148,25 @@ def test_a_dynamic_scene_nobody_watches_ticks_until_everything_rests(worker):
 
 def _height(scene):
     return scene.get("c1.b").position[1]
+
+
+def test_a_paused_scene_ticks_only_when_stepped_and_the_steps_frames_come_before_the_answer(worker):
+    worker.send([("join", 1, "c1", "controller"),
+                 ("text", 1, json.dumps({"op": "call", "object": "scene", "method": "pause",
+                                         "id": 1}))])
+    events_until(worker, "answers")
+    time.sleep(0.3)  # 18 ticks' time: a running scene would have sent frames of it
+    worker.send([("text", 1, json.dumps({"op": "call", "object": "scene", "method": "getTime",
+                                         "id": 2}))])
+    (_, _, (answer,), _), = events_until(worker, "answers")
+    paused_at = answer.message["result"]
+    worker.send([("text", 1, json.dumps({"op": "call", "object": "scene", "method": "step",
+                                         "args": [3], "id": 3}))])
+    events = []
+    while not any(event[0] == "answers" for event in events):
+        assert worker.poll(10), "no answer to step"
+        events += worker.recv()
+    frames = [m.message for event in events if event[0] == "frame" for m in event[1]
+              if m.op == "frame"]
+    assert [f["time"] - paused_at for f in frames] == pytest.approx([1 / 60, 2 / 60, 3 / 60])
+    assert events[-1][0] == "answers" and events[-1][2][0].message["id"] == 3

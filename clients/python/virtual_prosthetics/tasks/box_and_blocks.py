@@ -169,13 +169,14 @@ def box_and_blocks(session: Session, hand: str, seed: int, *,
     """The test once: the blocks moved in ``seconds`` (the test's 60) of scene time."""
     scale = Scale.of(hand)
     session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
-    stage = build(session, hand, random.Random(seed), blocks)
-    drive(session, 1.0, lambda t: None)  # the heap settles
-    before = stage.moved()
-    drive(session, seconds, controller(stage))
-    drive(session, 1.0, lambda t: None)  # what was let go lands
-    moved = stage.moved() - before
-    stage.remove()
-    return {"task": "box-and-blocks", "hand": hand, "seed": seed, "seconds": seconds,
-            "scale": scale.factor, "gravity": scale.gravity, "blocks": moved,
-            "humanNorm": [55, 89]}
+    with session.paused():  # stepped tick by tick (drive): the same run on any load
+        stage = build(session, hand, random.Random(seed), blocks)
+        drive(session, 1.0, lambda t: None)  # the heap settles
+        before = stage.moved()
+        drive(session, seconds, controller(stage))
+        drive(session, 1.0, lambda t: None)  # what was let go lands
+        moved = stage.moved() - before
+        stage.remove()
+        return {"task": "box-and-blocks", "hand": hand, "seed": seed, "seconds": seconds,
+                "scale": scale.factor, "gravity": scale.gravity, "blocks": moved,
+                "humanNorm": [55, 89]}

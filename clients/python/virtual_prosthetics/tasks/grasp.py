@@ -105,16 +105,17 @@ def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: 
     """Every pattern's light and heavy object, ``trials`` times each; the results."""
     scale = Scale.of(hand)
     session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
-    rng = random.Random(seed)
-    results = []
-    for pattern in (p for p in PATTERNS if p.name in patterns):
-        grip = pattern.grips[hand]
-        for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
-            done = run_trials(session, hand, pattern.item, draws(rng, trials), mass, grip,
-                              controller(grip), side_by_side)
-            results.append(summary(pattern, weight, done))
-    return {"task": "grasp", "hand": hand, "seed": seed, "scale": scale.factor,
-            "gravity": scale.gravity, "results": results}
+    with session.paused():  # stepped tick by tick (drive): the same run on any load
+        rng = random.Random(seed)
+        results = []
+        for pattern in (p for p in PATTERNS if p.name in patterns):
+            grip = pattern.grips[hand]
+            for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
+                done = run_trials(session, hand, pattern.item, draws(rng, trials), mass, grip,
+                                  controller(grip), side_by_side)
+                results.append(summary(pattern, weight, done))
+        return {"task": "grasp", "hand": hand, "seed": seed, "scale": scale.factor,
+                "gravity": scale.gravity, "results": results}
 
 
 def summary(pattern: Pattern, weight: str, trials: list[Trial]) -> dict[str, Any]:

@@ -54,12 +54,13 @@ def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: i
     path; the drops."""
     scale = Scale.of(hand)
     session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
-    pattern = PATTERNS[0]
-    grip = pattern.grips[hand]
-    done = run_trials(session, hand, pattern.item, draws(random.Random(seed), trials),
-                      pattern.item.light, grip, carry(scale, controller(grip)), side_by_side,
-                      PHASES.holding + ROUNDS * PERIOD + SETTLE)
-    return {"task": "hold", "hand": hand, "seed": seed, "trials": trials,
-            "object": pattern.item.name, "path": {"radiusM": RADIUS, "periodS": PERIOD,
-                                                  "rounds": ROUNDS},
-            "drops": sum(dropped(trial) for trial in done)}
+    with session.paused():  # stepped tick by tick (drive): the same run on any load
+        pattern = PATTERNS[0]
+        grip = pattern.grips[hand]
+        done = run_trials(session, hand, pattern.item, draws(random.Random(seed), trials),
+                          pattern.item.light, grip, carry(scale, controller(grip)), side_by_side,
+                          PHASES.holding + ROUNDS * PERIOD + SETTLE)
+        return {"task": "hold", "hand": hand, "seed": seed, "trials": trials,
+                "object": pattern.item.name, "path": {"radiusM": RADIUS, "periodS": PERIOD,
+                                                      "rounds": ROUNDS},
+                "drops": sum(dropped(trial) for trial in done)}

@@ -1,10 +1,9 @@
 """A trial: one hand, its table and its object, side by side with the others of its batch;
-and the loop that drives a batch by scene time."""
+and the loop that drives a batch tick by tick."""
 
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Protocol, Sequence
 
@@ -127,17 +126,13 @@ def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple
 
 
 def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> None:
-    """Call ``step(t)`` with the scene seconds since the start, about 60 times a second of
-    wall time, until ``seconds`` of scene time have passed; what a step sends leaves as
-    one message. The scene's clock is its physics' (it slows when the server is busy), so
-    a controller driven by it sees the same world however loaded the server is."""
-    session.sync()
-    start = session.get_time()
-    while True:
-        now = session.get_time() - start
-        if now > seconds:
-            break
+    """Call ``step(t)`` once a tick, ``t`` the scene seconds since the start, until
+    ``seconds`` have passed; what a step sends leaves as one message, then the scene (which
+    must be paused by this client: :meth:`Session.paused`) takes one tick. A controller
+    driven so sees the same world however loaded the server is, and a trial runs as fast
+    as the server computes it."""
+    period = 1.0 / session.tick_rate
+    for tick in range(round(seconds / period) + 1):
         with session.connection.gathering():
-            step(now)
-        time.sleep(1 / 60)
-    session.sync()
+            step(tick * period)
+        session.step()

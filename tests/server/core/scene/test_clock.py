@@ -1,0 +1,41 @@
+"""A scene's clock held by a script: pause, step, resume, and what undoes or ends them."""
+
+import pytest
+
+from server.core.scene.scene import Scene
+from server.errors import NotPaused
+
+
+@pytest.fixture
+def scene():
+    made = Scene("clock")
+    yield made
+    made.close()
+
+
+def test_steps_count_only_while_paused_and_are_taken_once(scene):
+    with pytest.raises(NotPaused, match=r"pause\(\) first"):
+        scene.step(2)
+    scene.pause("c1")
+    scene.step(2)
+    scene.step(3)
+    assert scene.clock.paused and scene.clock.take() == 5 and scene.clock.take() == 0
+    scene.step(4)
+    scene.resume()
+    assert not scene.clock.paused and scene.clock.take() == 0  # a resumed scene owes nothing
+
+
+def test_a_failed_batch_undoes_its_pause_and_its_steps(scene):
+    with pytest.raises(RuntimeError), scene.journal.transaction():
+        scene.pause("c1")
+        scene.step(5)
+        raise RuntimeError("a later op of the batch failed")
+    assert not scene.clock.paused and scene.clock.owed == 0
+
+
+def test_the_pause_ends_when_the_client_that_paused_leaves_for_good(scene):
+    scene.pause("c1")
+    scene.remove_client("c2")
+    assert scene.clock.paused_by == "c1"
+    scene.remove_client("c1")
+    assert not scene.clock.paused
