@@ -38,12 +38,21 @@ def _same(grip: Grip) -> dict[str, Grip]:
 PATTERNS = [
     # the ball under the palm, wrapped: thumb behind it, fingers in front
     # (the round hand's light ball slipped out of the same grip in 4 of 20: nearer the
-    # palm's end, with the thumb pressing harder, it stays)
+    # palm's end, with the thumb pressing harder, it stays; the anthro hand's light ball
+    # rolled 3-7 mm in 3 of 20 and its heaviest fell once: coming down closer, with the
+    # thumb behind the ball longer before the fingers close, 20 of 20 for seeds 1-3 but one)
     Pattern("spherical", SPHERE, {**_same(Grip(flex=1.2, torque=0.3, reach=-0.1)),
-                                  "round": Grip(flex=1.2, thumb=1.4, torque=0.3, reach=-0.05)}),
+                                  "round": Grip(flex=1.2, thumb=1.4, torque=0.3, reach=-0.05),
+                                  "anthro": Grip(flex=1.2, torque=0.3, reach=-0.1, gap=0.006,
+                                                 lead=0.6)}),
     # the cube is smaller than a curled finger: the hand stays higher and the cube lies a
-    # little towards the thumb, where the thumb's tip and the fingers' meet
-    Pattern("tripod", CUBE, _same(Grip(flex=1.2, torque=0.3, reach=0.0, side=0.015, gap=0.03))),
+    # little towards the thumb, where the thumb's tip and the fingers' meet (the anthro
+    # hand's fingertips squeezed the cube 2-4 mm along over the hold in 3-5 of 20, light
+    # cubes more than heavy ones: taken lower, thumb first for longer and squeezed less
+    # hard, 20 of 20 light and heavy for seeds 1-3)
+    Pattern("tripod", CUBE, {**_same(Grip(flex=1.2, torque=0.3, reach=0.0, side=0.015, gap=0.03)),
+                             "anthro": Grip(flex=1.2, torque=0.2, reach=0.0, side=0.015,
+                                            gap=0.025, lead=0.6)}),
     Pattern("power", CYLINDER, _same(Grip(flex=1.5, torque=0.3, reach=-0.1))),
     Pattern("lateral", PLATE, _same(Grip(flex=1.3, torque=0.3, reach=-0.05))),
     Pattern("tip", TIP, _same(Grip(flex=1.3, torque=0.2, reach=0.0))),

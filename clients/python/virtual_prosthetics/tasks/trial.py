@@ -127,12 +127,13 @@ def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple
 
 def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> None:
     """Call ``step(t)`` once a tick, ``t`` the scene seconds since the start, until
-    ``seconds`` have passed; what a step sends leaves as one message, then the scene (which
-    must be paused by this client: :meth:`Session.paused`) takes one tick. A controller
-    driven so sees the same world however loaded the server is, and a trial runs as fast
-    as the server computes it."""
+    ``seconds`` have passed; what a step sends leaves as one message, then the scene,
+    paused (:meth:`Session.paused`; a task holds it paused from start to end), takes one
+    tick. A controller driven so sees the same world however loaded the server is, and a
+    trial runs as fast as the server computes it."""
     period = 1.0 / session.tick_rate
-    for tick in range(round(seconds / period) + 1):
-        with session.connection.gathering():
-            step(tick * period)
-        session.step()
+    with session.paused():
+        for tick in range(round(seconds / period) + 1):
+            with session.connection.gathering():
+                step(tick * period)
+            session.step()
