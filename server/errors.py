@@ -213,5 +213,6 @@ class InternalError(VPError):
 ERROR_CODES: tuple[str, ...] = tuple(
     cls.code for cls in (BadJSON, BadMessage, UnknownOp, TooLarge, UnknownType, UnknownMethod,
                          UnknownObject, UnknownScene, UnknownAsset, BadArguments, WrongType,
-                         OutOfRange, BadAsset, DuplicateId, ForeignId, Cycle, Forbidden, LimitExceeded, InternalError)
+                         OutOfRange, BadAsset, DuplicateId, ForeignId, Cycle, NotPaused, Forbidden,
+                         LimitExceeded, InternalError)
 )
