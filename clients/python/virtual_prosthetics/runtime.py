@@ -58,7 +58,9 @@ def run(seconds: float | None = None) -> None:
     Before every step the contact callbacks that are due run (``begin_contact`` and
     ``end_contact`` of this client's parts). Without an animation, ``run`` only does that.
     What a step sends reaches the server as one message (a read in the step sends what
-    came before it first).
+    came before it first). In a scene this client paused (``pause``), each step is
+    followed by the ticks of one period (``step``), without waiting: the animation comes
+    out the same on every run and as fast as the server computes it.
     """
     scene = current_session()
     func, fps = scene.animation or (None, 30.0)
@@ -76,6 +78,9 @@ def run(seconds: float | None = None) -> None:
             with scene.connection.gathering():  # the step's setters leave as one message
                 func(*(now, step)[:arity])
         last = now
+        if scene.holding:
+            scene.step(max(1, round(period * scene.tick_rate)))
+            continue
         next_wake = max(next_wake + period, time.monotonic())
         time.sleep(max(0.0, next_wake - time.monotonic()))
     scene.sync()

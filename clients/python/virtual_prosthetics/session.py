@@ -76,7 +76,7 @@ class Session:
         self.hello: dict[str, Any] = {}
         self.animation: tuple[Callable[..., None], float] | None = None
         self._ids = count(1)
-        self._holding = False  # this client paused the scene: its time is the frames'
+        self.holding = False  # this client paused the scene: its time is the frames' (run steps it)
         self._ready = threading.Event()
         token = token if token is not None else os.environ.get("VP_TOKEN")
         self.token = token  # uploads send it too
@@ -231,7 +231,7 @@ class Session:
         the time of the last tick it stepped to)."""
         self.connection.raise_deferred()
         with self.lock:
-            return self.mirror.time if self._holding else self.mirror.now()
+            return self.mirror.time if self.holding else self.mirror.now()
 
     @property
     def tick_rate(self) -> float:
@@ -243,19 +243,19 @@ class Session:
         whatever the server's load, until :meth:`resume` or until this client leaves."""
         self.call(SCENE_ID, "pause")
         self.connection.settle()
-        self._holding = True
+        self.holding = True
 
     def resume(self) -> None:
         """Let the scene's clock run with the wall clock again."""
         self.call(SCENE_ID, "resume")
         self.connection.settle()
-        self._holding = False
+        self.holding = False
 
     @contextmanager
     def paused(self) -> Iterator[None]:
         """The scene's clock held inside the block (:meth:`pause`, then :meth:`resume`;
         inside a block already paused, nothing more)."""
-        if self._holding:
+        if self.holding:
             yield
             return
         self.pause()

@@ -19,8 +19,10 @@ def robots(scene: Scene) -> list[Robot]:
 
 
 def scene_summary(scene: Scene) -> dict[str, Any]:
-    """Name, clock, object and robot counts, camera and physics of a scene."""
+    """Name, clock (and which client holds it paused, if one does), object and robot
+    counts, camera and physics of a scene."""
     return {"name": scene.name, "time": scene.time, "seq": scene.seq,
+            "pausedBy": scene.clock.paused_by,
             "objects": len(scene.nodes), "robots": len(robots(scene)),
             "bodies": len(scene.bodies),
             "camera": scene.camera.wire(), "physics": scene.get_physics()}

@@ -79,3 +79,14 @@ def test_an_animation_step_reaches_the_server_as_one_message_and_none_is_refused
     assert [motor.get_angle() for motor in motors] == pytest.approx(last)
     seen = json.loads(texts[-2])
     assert [m["method"] for m in seen] == ["setAngle"] * 100 and len({m["id"] for m in seen}) == 100
+
+
+def test_run_in_a_paused_scene_steps_it_a_period_per_step(scene):
+    times = []
+    vp.set_animation(lambda t, dt: times.append((t, dt)), fps=30)
+    with scene.paused():
+        start = scene.get_time()
+        vp.run(1.0)
+        assert scene.get_time() - start == pytest.approx(1.0 + 1 / 30)  # the last step's ticks too
+    assert len(times) == 31 and times[0][1] == 0.0
+    assert all(dt == pytest.approx(2 / 60) for _, dt in times[1:])  # two ticks a step, exactly

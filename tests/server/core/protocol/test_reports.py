@@ -14,6 +14,9 @@ def test_a_robots_report_lists_its_parts_motors_in_order_and_pose(scene):
     assert [r.id for r in reports.robots(scene)] == ["c1.1"]
     summary = reports.scene_summary(scene)
     assert summary["robots"] == 1 and summary["objects"] == len(scene.nodes)
+    assert summary["pausedBy"] is None
+    scene.pause("c1")
+    assert reports.scene_summary(scene)["pausedBy"] == "c1"  # why its clock stands
     report = reports.robot_report(hand)
     assert report["owner"] == "c1" and report["position"] == [1, 2, 3]
     assert [m["index"] for m in report["motors"]] == list(range(20))
