@@ -29,9 +29,12 @@ def test_the_grasp_page_closes_the_hand_on_the_ball_and_a_viewer_shows_it(
                 pressed = metrics["peakForceN"]
         time.sleep(0.2)
     assert pressed, "the hand never pressed on the ball"
-    hand = _node(server, scene_name, "EdgedHand")
-    angles = [n["angle"] for n in server.nodes(scene_name) if n["type"].startswith("Motor")]
-    assert hand is not None and min(angles) < -0.5  # its fingers closed
+    assert _node(server, scene_name, "EdgedHand") is not None
+    closed = 0.0
+    while time.monotonic() < deadline and closed > -0.5:  # pressing, the fingers go on closing
+        closed = min(n["angle"] for n in server.nodes(scene_name) if n["type"].startswith("Motor"))
+        time.sleep(0.1)
+    assert closed <= -0.5  # its fingers closed
     viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(viewer, "() => VP.objects.size > 10")
     deadline = time.monotonic() + 20
