@@ -10,10 +10,10 @@ between two ticks, never during one. It runs as fast as the server can compute.
 
 from __future__ import annotations
 
-from ...errors import NotPaused
+from ...errors import NotPaused, OutOfRange
 from ..kit.journal import Journal
 
-MAX_STEP_TICKS = 60  # one step's ticks at most (a second): the scene still answers its others
+MAX_STEP_TICKS = 60  # a message's steps at most (a second): the scene still answers its others
 
 
 class Clock:
@@ -42,6 +42,9 @@ class Clock:
         """Ask for ``ticks`` more ticks of the paused scene."""
         if self.paused_by is None:
             raise NotPaused("step advances a paused scene; call pause() first")
+        if self.owed + ticks > MAX_STEP_TICKS:  # a batch of steps is no way round the bound
+            raise OutOfRange(f"one message steps at most {MAX_STEP_TICKS} ticks; "
+                             f"{self.owed} asked already, {ticks} more refused")
         before = self.owed
         self._journal.record(lambda: setattr(self, "owed", before))
         self.owed += ticks

@@ -3,7 +3,7 @@
 import pytest
 
 from server.core.scene.scene import Scene
-from server.errors import NotPaused
+from server.errors import NotPaused, OutOfRange
 
 
 @pytest.fixture
@@ -39,3 +39,12 @@ def test_the_pause_ends_when_the_client_that_paused_leaves_for_good(scene):
     assert scene.clock.paused_by == "c1"
     scene.remove_client("c1")
     assert not scene.clock.paused
+
+
+def test_the_steps_of_one_message_are_bounded_however_they_are_batched(scene):
+    scene.pause("c1")
+    scene.step(40)
+    with pytest.raises(OutOfRange, match="at most 60 ticks; 40 asked already, 21 more"):
+        scene.step(21)
+    scene.step(20)
+    assert scene.clock.take() == 60
