@@ -44,7 +44,7 @@ class Sizes:
     chaos_faults: int
     idle_scenes: int
     hands_most: int  # driven from outside by one client: the 100 hands
-    dynamic: tuple[int, int, int]  # hands, free objects, ticks of the dynamic scene
+    dynamic: tuple[int, int, int, int]  # hands, free objects, ticks while they fall, ticks at rest
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -52,12 +52,12 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
              document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
-             dynamic=(10, 50, 300))
+             dynamic=(10, 50, 240, 300))
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
               document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4,
-              dynamic=(2, 4, 3))
+              dynamic=(2, 4, 3, 3))
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:

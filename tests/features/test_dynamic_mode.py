@@ -230,3 +230,75 @@ def test_a_mount_moved_every_tick_glides_and_does_not_fling_what_rests_on_it(sce
     top = robot.position[1] + 0.15 + 0.2
     highest = max(ball.position[1] for _ in range(60) if run(scene, TICK) is not None)
     assert highest - top < speed ** 2 / (2 * 9.81) * 1.3  # thrown no higher than its speed says
+
+
+def _resting(scene, *items):
+    """Things put down and left alone for longer than Bullet waits before it puts still
+    bodies to sleep (2 s): nothing may then hang where it rested."""
+    scene.set_physics("dynamic")
+    run(scene, 3.5)
+    return [item.position for item in items]
+
+
+def test_a_resting_ball_a_hand_runs_into_is_pushed_away(scene):
+    ball = Ball(scene, "b", 1)
+    ball.set_position((0, 1, 0))
+    hand = EdgedHand(scene, "h", True)
+    hand.set_position((-4, 1, 0))
+    (before,) = _resting(scene, ball)
+    for k in range(60):
+        hand.set_position((-4 + 8 * (k + 1) / 60, 1, 0))
+        run(scene, TICK)
+    assert ball.position[0] > before[0] + 0.5
+
+
+def test_a_resting_box_falls_when_its_table_goes_or_moves_away(scene):
+    for name, x in (("t1", 0), ("t2", 5)):
+        Box(scene, name, 2, 1, 2).set_position((x, 0.5, 0))
+        scene.get(name).set_static(True)
+    gone, moved = Box(scene, "b1", 0.5, 0.5, 0.5), Box(scene, "b2", 0.5, 0.5, 0.5)
+    gone.set_position((0, 1.25, 0))
+    moved.set_position((5, 1.25, 0))
+    _resting(scene, gone, moved)
+    scene.delete(scene.get("t1"))
+    scene.get("t2").set_position((9, 0.5, 0))
+    run(scene, 1)
+    assert gone.position[1] == pytest.approx(0.25, abs=0.01)
+    assert moved.position[1] == pytest.approx(0.25, abs=0.01)
+
+
+def test_a_resting_ball_put_up_high_falls_and_one_made_slippery_slides(scene):
+    ball = Ball(scene, "ball", 0.3)
+    ball.set_position((0, 0.3, 0))
+    slope = Box(scene, "slope", 4, 0.2, 4)
+    slope.set_position((6, 1, 0))
+    slope.set_rotation(0.3, 0, 0)
+    slope.set_static(True)
+    box = Box(scene, "box", 0.4, 0.4, 0.4)
+    box.set_position((6, 1 + 0.1 / math.cos(0.3) + 0.2 / math.cos(0.3), 0))
+    box.set_rotation(0.3, 0, 0)
+    box.set_friction(1.0)  # tan(0.3) ≈ 0.31: it stays
+    _, rested = _resting(scene, ball, box)
+    ball.set_position((0, 2, 0))
+    box.set_friction(0.05)
+    run(scene, 0.1)
+    assert ball.position[1] < 2 - 0.03  # falling
+    run(scene, 1.5)
+    assert ball.position[1] == pytest.approx(0.3, abs=0.01)
+    assert math.dist(box.position, rested) > 0.5
+
+
+def test_a_ball_held_still_on_a_palm_falls_when_the_palm_drops_away(scene):
+    """A ball still on a still palm for seconds, then left in the air by a palm pulled
+    away faster than it falls: a body Bullet let sleep would hang there (its island goes
+    to sleep the step it is alone)."""
+    robot = Robot(scene, "r")
+    EdgedPalm(scene, "p").attach_to_slot(robot)
+    robot.set_rotation(-math.pi / 2, 0, 0)  # palm up
+    robot.set_position((0, 2, 0))
+    ball = Ball(scene, "b", 0.2)
+    ball.set_position((0, 2.36, -0.7))
+    (rested,) = _resting(scene, ball)
+    robot.set_position((0, 1, 0))  # a metre down in one tick
+    run(scene, 0.1)
+    assert ball.position[1] < rested[1] - 0.02  # falling after it

@@ -22,6 +22,10 @@ Defaults, and why (:class:`Physics`):
   ball neither spins nor rolls out. Every body has Bullet's friction anchors: without them
   a contact that sticks still creeps a little every step, and a squeezed ball crept out
   of a closed hand by millimetres a second.
+- Nothing sleeps (Bullet's deactivation of bodies still for 2 s): a sleeper left without
+  support wakes only if something awake touches it, and with sleeping the Box and Blocks
+  baseline moved fewer blocks with every hand. Every tree is a multibody: single bodies as
+  Bullet rigid bodies solve faster but held the grasp task's objects less well.
 - ``density`` 1000 kg/m³ (water; plastics and flesh are near it): a part's mass is its
   volume times this, unless ``setMass`` gave it one.
 """
@@ -46,7 +50,10 @@ BETWEEN_MASS = 0.1  # kg: a link that carries no part (where two joints meet)
 MOUNT_FORCE = 1e9  # N: what a robot's mount pulls with (its constraint's bound)
 MOUNT_MASS = 1.0  # kg: a robot base without a part of its own
 SHAPELESS_INERTIA = 1e-3  # kg·m², of a base or link without a part (a ball of 0.1 kg, 0.16 m)
-SPINNING, ROLLING = 0.1, 0.001  # of the lateral friction
+SPINNING, ROLLING = 0.2, 0.002  # of a free body's lateral friction (robots and static
+# bodies carry none: Bullet adds both bodies' shares, so a free body's contact with a finger
+# or a table gets 0.2 and 0.002 of the two frictions' product, and contacts of fingers with
+# fingers, palms or the ground carry no turning friction, which the solver would pay for)
 BREAKING_THRESHOLD = 0.02  # Bullet's own: contacts persist while resting (kinematic: 0.0005)
 # What a motor drives with unless setMaxTorque says otherwise (N·m): enough for every
 # bundled hand to hold its fingers level and close on a ball of its own size (about
@@ -171,12 +178,7 @@ class Dynamics:
         """Finish a tree built as ``body``: its friction, joint limits and motors (driven by
         :meth:`drive` only), and for a robot its mount (the constraint's id)."""
         p, client = self.p, self.client
-        frictions = {-1: tree.base_friction, **{k: link.friction for k, link in enumerate(tree.links)}}
-        for link, given in frictions.items():
-            mu = self.physics.friction if given is None else given
-            p.changeDynamics(body, link, lateralFriction=mu, spinningFriction=SPINNING * mu,
-                             rollingFriction=ROLLING * mu, frictionAnchor=1,
-                             physicsClientId=client)
+        self._surface(body, tree)
         # Bullet gives a link without a shape no inertia at all, and a joint between two
         # such turns the whole motor's torque into spin of nothing: a motor then holds any
         # load whatever its torque. They get that of a small ball of their mass.
@@ -200,6 +202,17 @@ class Dynamics:
                                    physicsClientId=client)
         self._put(mount, base_pose)  # (Bullet's own bound lets a heavy hand sink)
         return mount
+
+    def _surface(self, body: int, tree: Articulation) -> None:
+        """Every link's friction (turning friction only on a free body's)."""
+        p, client = self.p, self.client
+        turning = 0.0 if tree.mounted or tree.static else 1.0
+        frictions = {-1: tree.base_friction, **{k: link.friction for k, link in enumerate(tree.links)}}
+        for link, given in frictions.items():
+            mu = self.physics.friction if given is None else given
+            p.changeDynamics(body, link, lateralFriction=mu, spinningFriction=turning * SPINNING * mu,
+                             rollingFriction=turning * ROLLING * mu, frictionAnchor=1,
+                             physicsClientId=client)
 
     # --- driving -----------------------------------------------------------------------
 
