@@ -30,6 +30,8 @@ addExactReads(...Object.values(CLASSES));
 
 let scene = new THREE.Scene();   // the viewer's, once one is mounted (browser)
 let animation = null;            // {stop}
+let holding = null;              // this script paused the scene: {at, scene} times then
+let skew = 0;                    // s: getTime() past the wall clock, from steps while paused
 let keeper = null;               // flushes directly written transforms without an animation
 
 // The WebSocket address of a scene: `url` is the server (ws://host:port) or already /ws.
@@ -71,6 +73,7 @@ function closeOnSignals() {
 export function close() {
 	animation?.stop();
 	animation = null;
+	holding = null;
 	clearInterval(keeper);
 	keeper = null;
 	let session;
@@ -101,12 +104,18 @@ function keepSyncing(session) {
 }
 
 // Manual setAnimation(func, fps=30): func(time, dTime) fps times a second, seconds since
-// the import. Everything it sets leaves as one message per step.
+// the import. Everything it sets leaves as one message per step. In a scene this script
+// paused (pause()), each step is followed by the ticks of one period (step()), and the
+// next waits for them: the animation comes out the same on every run, as fast as the
+// server computes it in Node, never ahead of the wall clock in a page. Not in 1.0:
+// setAnimation(null) stops it.
 export function setAnimation(func, fps = 30) {
 	animation?.stop();
+	animation = null;
+	if (func === null) return;
 	const period = 1000 / fps;
 	let last = getTime();
-	const step = () => {
+	const animate = () => {
 		const time = getTime();
 		func(time, time - last);
 		last = time;
@@ -116,14 +125,21 @@ export function setAnimation(func, fps = 30) {
 			if (!(error instanceof ConnectionLost)) throw error;
 		}
 	};
-	animation = IN_BROWSER ? browserLoop(step, period) : { stop: clearInterval.bind(null, setInterval(step, period)) };
+	const free = IN_BROWSER ? browserLoop(animate, period) : intervalLoop(animate, period);
+	const held = heldLoop(animate, period, free);
+	animation = { stop: () => { free.stop(); held.stop(); } };
+}
+
+function intervalLoop(step, period) {
+	const timer = setInterval(() => { if (!holding) step(); }, period);
+	return { stop: () => clearInterval(timer) };
 }
 
 function browserLoop(step, period) {
 	let running = true, due = performance.now();
 	const frame = (now) => {
 		if (!running) return;
-		if (now >= due - 1) {
+		if (!holding && now >= due - 1) {
 			step();
 			due = Math.max(due + period, now + period / 2);
 		}
@@ -133,9 +149,32 @@ function browserLoop(step, period) {
 	return { stop: () => { running = false; } };
 }
 
-// Manual getTime(): seconds since the library was imported.
+// While this script holds the clock: a step, then its period's ticks, then the next.
+function heldLoop(animate, period, free) {
+	let running = true;
+	(async () => {
+		while (running) {
+			if (!holding) { await new Promise((wake) => setTimeout(wake, period)); continue; }
+			const wall = performance.now();
+			animate();
+			const ticks = Math.max(1, Math.round(period / 1000 * currentSession().hello.tickRate));
+			try {
+				await step(ticks);
+			} catch (error) {
+				if (!(error instanceof ConnectionLost)) { running = false; free.stop(); throw error; }
+			}
+			const due = wall + period - performance.now();
+			if (IN_BROWSER && due > 0) await new Promise((wake) => setTimeout(wake, due));
+		}
+	})();
+	return { stop: () => { running = false; } };
+}
+
+// Manual getTime(): seconds since the library was imported. While this script holds the
+// scene's clock, time moves only with its steps (the scene's ticks).
 export function getTime() {
-	return (performance.now() - STARTED) / 1000;
+	if (holding) return holding.at + currentSession().mirror.time - holding.scene;
+	return (performance.now() - STARTED) / 1000 + skew;
 }
 
 // Manual getScene(): the THREE.Scene that is drawn (in Node, one kept here).
@@ -165,14 +204,18 @@ export function setPhysics(mode, options) {
 // whatever the server's load, until resume() or until this client leaves); await
 // step(ticks = 1) advances it by whole ticks (1 to 60) after what was sent before and
 // resolves once they are taken and their frames are in the mirror.
-export function pause() {
+export async function pause() {
 	currentSession().call(SCENE_ID, 'pause', []);
-	return currentSession().sync();
+	await currentSession().sync();
+	holding = { at: getTime(), scene: currentSession().mirror.time };
 }
 
-export function resume() {
+export async function resume() {
 	currentSession().call(SCENE_ID, 'resume', []);
-	return currentSession().sync();
+	await currentSession().sync();
+	const at = getTime();
+	holding = null;
+	skew += at - getTime();   // time goes on from where the steps took it
 }
 
 export async function step(ticks = 1) {

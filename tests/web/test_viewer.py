@@ -124,3 +124,13 @@ def test_an_unavailable_engine_is_named_in_the_status_line(browser, pages, serve
     page = open_page(browser, pages, f"{server.http}/view?scene=default&engine=cannon")
     wait_until(page, "() => document.getElementById('status').textContent.startsWith('refused')")
     assert "this server runs pybullet" in page.inner_text("#status")
+
+
+def test_the_status_line_says_when_a_script_holds_the_scenes_clock(browser, pages, server,
+                                                                   scene, scene_name):
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    vp.Ball(0.5)
+    scene.pause()
+    wait_until(page, "() => document.getElementById('status').textContent.includes('paused')")
+    scene.resume()
+    wait_until(page, "() => !document.getElementById('status').textContent.includes('paused')")

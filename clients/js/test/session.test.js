@@ -87,6 +87,36 @@ test('a paused scene stands still until the script steps it, a tick at a time', 
 	}
 });
 
+test('setAnimation in a scene the script paused steps a period after each call: the same run every time', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-held-${process.pid}` });
+	try {
+		const ball = new Prosthetic.Ball(0.3);
+		ball.setPosition(0, 0.3, 0);
+		await Prosthetic.pause();
+		const start = session.mirror.time, times = [];
+		await new Promise((done) => {
+			Prosthetic.setAnimation((time) => {
+				times.push(time);
+				ball.setPosition(times.length, 0.3, 0);
+				if (times.length === 12) {
+					Prosthetic.setAnimation(null);
+					done();
+				}
+			}, 30);
+		});
+		await Prosthetic.sync();
+		const gaps = times.slice(1).map((t, k) => t - times[k]);
+		assert.ok(gaps.every((gap) => Math.abs(gap - 1 / 30) < 1e-9), `calls ${gaps} s apart`);
+		assert.equal(Math.round((session.mirror.time - start) * 60), 24, 'two ticks after each call');
+		assert.ok(ball.node.position[0] >= 11, 'what the calls set reached the server');
+		await Prosthetic.resume();
+		const after = Prosthetic.getTime();
+		assert.ok(after >= times.at(-1), 'time goes on from where the steps took it');
+	} finally {
+		Prosthetic.close();
+	}
+});
+
 test('a page switches its scene to dynamic: objects fall, forces are felt, motors read where they are', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	const session = await Prosthetic.connect({ url: URL_, scene: `js-dynamic-${process.pid}` });
 	try {

@@ -1,6 +1,6 @@
 // The status line: connection state, scene, frames per second from the server (the scene's
 // tick rate when all is well), pictures per second drawn here, and how many clients watch
-// or drive the scene.
+// or drive the scene, and whether a script holds its clock (paused, stepping it).
 
 const COUNT_EVERY = 2000;   // ms between asks for the scene's client count
 
@@ -20,6 +20,7 @@ export class StatusLine {
 		this.since = null;   // counting starts with the first frame
 		this.warning = null;   // the scene's last warning (changes not saved, replaced), if any
 		this.mode = 'kinematic';   // the scene's physics (said only when dynamic)
+		this.paused = false;   // a script holds the scene's clock (REST's pausedBy, asked with the count)
 		setInterval(() => this.countClients(), COUNT_EVERY);
 	}
 
@@ -60,8 +61,9 @@ export class StatusLine {
 		try {
 			const response = await fetch(new URL(`/api/scenes/${encodeURIComponent(this.scene)}`, import.meta.url));
 			if (response.ok) {
-				const { viewers, controllers } = await response.json();
+				const { viewers, controllers, pausedBy } = await response.json();
 				this.clients = { viewers, controllers };
+				this.paused = pausedBy != null;
 			}
 		} catch {
 			this.clients = null;
@@ -72,6 +74,7 @@ export class StatusLine {
 	show() {
 		const parts = [this.state, `scene ${this.scene}`, `${this.fps ?? '…'} frames/s`, `${this.pps ?? '…'} pictures/s`];
 		if (this.mode === 'dynamic') parts.splice(2, 0, 'dynamic');
+		if (this.paused) parts.splice(2, 0, 'paused by a script');
 		if (this.clients) {
 			const { viewers, controllers } = this.clients;
 			parts.push(`${viewers} viewer${viewers === 1 ? '' : 's'}`);
