@@ -158,13 +158,16 @@ function heldLoop(animate, period, free) {
 			const wall = performance.now();
 			animate();
 			const ticks = Math.max(1, Math.round(period / 1000 * currentSession().hello.tickRate));
+			let wait = 0;
 			try {
 				await step(ticks);
 			} catch (error) {
-				if (!(error instanceof ConnectionLost)) { running = false; free.stop(); throw error; }
+				if (error.code === 'not_paused') release();   // the pause is gone (a server restart)
+				else if (error instanceof ConnectionLost) wait = period;   // until it is back
+				else { running = false; free.stop(); throw error; }
 			}
-			const due = wall + period - performance.now();
-			if (IN_BROWSER && due > 0) await new Promise((wake) => setTimeout(wake, due));
+			if (IN_BROWSER) wait = Math.max(wait, wall + period - performance.now());
+			if (wait > 0) await new Promise((wake) => setTimeout(wake, wait));
 		}
 	})();
 	return { stop: () => { running = false; } };
@@ -213,6 +216,10 @@ export async function pause() {
 export async function resume() {
 	currentSession().call(SCENE_ID, 'resume', []);
 	await currentSession().sync();
+	release();
+}
+
+function release() {
 	const at = getTime();
 	holding = null;
 	skew += at - getTime();   // time goes on from where the steps took it

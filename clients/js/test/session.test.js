@@ -3,6 +3,7 @@
 
 import assert from 'node:assert/strict';
 import test from 'node:test';
+import WebSocket from 'ws';
 import * as Prosthetic from '../virtual-prosthetics.js';
 
 const URL_ = process.env.VP_URL;
@@ -112,6 +113,28 @@ test('setAnimation in a scene the script paused steps a period after each call: 
 		await Prosthetic.resume();
 		const after = Prosthetic.getTime();
 		assert.ok(after >= times.at(-1), 'time goes on from where the steps took it');
+	} finally {
+		Prosthetic.close();
+	}
+});
+
+test('an animation whose pause another client ended runs on with the wall clock', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const name = `js-unheld-${process.pid}`;
+	const session = await Prosthetic.connect({ url: URL_, scene: name });
+	try {
+		await Prosthetic.pause();
+		let calls = 0;
+		Prosthetic.setAnimation(() => { calls++; }, 30);
+		const other = new WebSocket(`${URL_}/ws?scene=${name}&role=controller`);
+		await new Promise((resolve, reject) => { other.once('open', resolve); other.once('error', reject); });
+		other.send(JSON.stringify({ op: 'call', id: 1, object: 'scene', method: 'resume', args: [] }));
+		await new Promise((resolve) => setTimeout(resolve, 500));
+		const before = calls, time = session.mirror.time;
+		await new Promise((resolve) => setTimeout(resolve, 500));
+		other.close();
+		assert.ok(calls - before >= 8, `${calls - before} calls in half a second`);
+		assert.ok(session.mirror.time - time > 0.3, 'the scene runs on its own again');
+		Prosthetic.setAnimation(null);
 	} finally {
 		Prosthetic.close();
 	}
