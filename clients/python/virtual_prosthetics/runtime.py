@@ -9,7 +9,7 @@ from typing import Callable
 
 from . import objects
 from . import session as sessions
-from .errors import ConnectionLost
+from .errors import ConnectionLost, ServerError
 from .objects import Node
 from .robots import AnthroHand, EdgedHand, Robot, RoundHand
 from .session import Session, current_session, set_current_session
@@ -78,12 +78,23 @@ def run(seconds: float | None = None) -> None:
             with scene.connection.gathering():  # the step's setters leave as one message
                 func(*(now, step)[:arity])
         last = now
-        if scene.holding:
-            scene.step(max(1, round(period * scene.tick_rate)))
+        if scene.holding and _stepped(scene, max(1, round(period * scene.tick_rate))):
             continue
         next_wake = max(next_wake + period, time.monotonic())
         time.sleep(max(0.0, next_wake - time.monotonic()))
     scene.sync()
+
+
+def _stepped(scene: sessions.Session, ticks: int) -> bool:
+    """Step the scene this client holds; False when the pause is gone (the animation
+    then runs on with the wall clock)."""
+    try:
+        scene.step(ticks)
+    except ServerError as error:
+        if error.code != "not_paused":
+            raise
+        return False
+    return True
 
 
 def get_time() -> float:

@@ -12,7 +12,7 @@ from urllib.parse import urlencode
 
 from .codec import encode_arg
 from .connection import Connection
-from .errors import ConnectionLost, Timeout, VPError
+from .errors import ConnectionLost, ServerError, Timeout, VPError
 from .mirror import Mirror
 from .wire_messages import Call, Create, Delete
 
@@ -268,9 +268,15 @@ class Session:
     def step(self, ticks: int = 1) -> float:
         """Advance the paused scene by ``ticks`` ticks (1 to 60) with what was sent before
         (anything gathered leaves first); return once they are taken and their frames are
-        in the mirror, with the scene's time."""
+        in the mirror, with the scene's time. A ``not_paused`` answer ends :attr:`holding`
+        (another client resumed, or a restarted server lost the pause)."""
         self.call(SCENE_ID, "step", (ticks,))
-        self.sync()
+        try:
+            self.sync()
+        except ServerError as error:
+            if error.code == "not_paused":
+                self.holding = False
+            raise
         with self.lock:
             return self.mirror.time
 

@@ -90,3 +90,20 @@ def test_run_in_a_paused_scene_steps_it_a_period_per_step(scene):
         assert scene.get_time() - start == pytest.approx(1.0 + 1 / 30)  # the last step's ticks too
     assert len(times) == 31 and times[0][1] == 0.0
     assert all(dt == pytest.approx(2 / 60) for _, dt in times[1:])  # two ticks a step, exactly
+
+
+def test_run_whose_pause_another_client_ended_goes_on_with_the_wall_clock(server, scene, scene_name):
+    other = vp.Session(server.ws, scene=scene_name)
+    calls = []
+
+    def animate(t: float) -> None:
+        calls.append(t)
+        if len(calls) == 5:
+            other.resume()
+
+    vp.set_animation(animate, fps=30)
+    scene.pause()
+    vp.run(0.5)
+    other.close()
+    assert not scene.holding and len(calls) > 10
+    assert calls[-1] - calls[5] > 0.3  # the server's own time, after the pause ended
