@@ -55,7 +55,13 @@ PATTERNS = [
                                             gap=0.025, lead=0.6)}),
     Pattern("power", CYLINDER, _same(Grip(flex=1.5, torque=0.3, reach=-0.1))),
     Pattern("lateral", PLATE, _same(Grip(flex=1.3, torque=0.3, reach=-0.05))),
-    Pattern("tip", TIP, _same(Grip(flex=1.3, torque=0.2, reach=0.0))),
+    # the 1.6 cm cube: with every finger curling, the edged and round hands' fingertips
+    # passed beside it (0 of 20); thumb, index and middle only, the cube towards the
+    # thumb, the hand right down on it: 13 and 10 of 20 (edged), 8 and 10 (round) at
+    # seed 1. The anthro hand's tips still miss it
+    Pattern("tip", TIP, {**_same(Grip(flex=1.3, torque=0.2, reach=0.0)),
+                         **{kind: Grip(flex=1.5, thumb=1.4, torque=0.3, reach=0.0, side=0.03,
+                                       gap=0.005, fingers=(0, 1, 2)) for kind in ("edged", "round")}}),
     Pattern("extension", CARD, _same(Grip(flex=1.2, torque=0.3, reach=-0.05))),
 ]
 PATTERN_NAMES = [pattern.name for pattern in PATTERNS]
