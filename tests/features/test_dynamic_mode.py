@@ -210,17 +210,23 @@ def test_a_ball_squeezed_in_a_lifted_hand_stays_where_it_is_held(scene):
     assert crept < 0.01  # 0.5 mm in a human hand, in 2 s
 
 
+def _ball_on_palm(scene, height):
+    """A robot of one edged palm held palm up at ``height``, a ball of 0.2 m lying on it."""
+    robot = Robot(scene, "r")
+    EdgedPalm(scene, "p").attach_to_slot(robot)
+    robot.set_rotation(-math.pi / 2, 0, 0)  # palm up
+    robot.set_position((0, height, 0))
+    ball = Ball(scene, "b", 0.2)
+    ball.set_position((0, height + 0.36, -0.7))
+    return robot, ball
+
+
 def test_a_mount_moved_every_tick_glides_and_does_not_fling_what_rests_on_it(scene):
     """A script's moves are a path: the mount glides along it over each tick's physics
     steps. (It jumped once a tick, and when a script's moves came every other tick, as
     from a busy client, the palm hit what lay on it at several times its speed: a ball
     was flung twice as high as its speed throws.)"""
-    robot = Robot(scene, "r")
-    EdgedPalm(scene, "p").attach_to_slot(robot)
-    robot.set_rotation(-math.pi / 2, 0, 0)  # palm up
-    robot.set_position((0, 1, 0))
-    ball = Ball(scene, "b", 0.2)
-    ball.set_position((0, 1.36, -0.7))
+    robot, ball = _ball_on_palm(scene, 1)
     scene.set_physics("dynamic")
     run(scene, 0.5)  # the ball rests on the palm
     speed = 3.0  # m/s, up, for a fifth of a second, then the palm stops
@@ -292,12 +298,7 @@ def test_a_ball_held_still_on_a_palm_falls_when_the_palm_drops_away(scene):
     """A ball still on a still palm for seconds, then left in the air by a palm pulled
     away faster than it falls: a body Bullet let sleep would hang there (its island goes
     to sleep the step it is alone)."""
-    robot = Robot(scene, "r")
-    EdgedPalm(scene, "p").attach_to_slot(robot)
-    robot.set_rotation(-math.pi / 2, 0, 0)  # palm up
-    robot.set_position((0, 2, 0))
-    ball = Ball(scene, "b", 0.2)
-    ball.set_position((0, 2.36, -0.7))
+    robot, ball = _ball_on_palm(scene, 2)
     (rested,) = _resting(scene, ball)
     robot.set_position((0, 1, 0))  # a metre down in one tick
     run(scene, 0.1)
