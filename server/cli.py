@@ -73,10 +73,6 @@ def _raise_file_limit(limits: Limits) -> None:
                         new, limits.connections)
 
 
-if __name__ == "__main__":
-    main()
-
-
 def _parser() -> argparse.ArgumentParser:
     """The command line: every flag with its default and what it does."""
     parser = argparse.ArgumentParser(prog="vp-server", description=__doc__)
@@ -121,3 +117,7 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--log-level", default="info",
                         choices=["critical", "error", "warning", "info", "debug"])
     return parser
+
+
+if __name__ == "__main__":  # after every definition: python -m server.cli
+    main()

@@ -197,8 +197,8 @@ export function setCameraTarget(...target) {
 	currentSession().call(SCENE_ID, 'setCameraTarget', target);
 }
 
-// Not in 1.0: setPhysics('dynamic', {gravity, substeps, solverIterations, friction,
-// density}) (options left out take their defaults) or setPhysics('kinematic').
+// Not in 1.0: setPhysics('dynamic', {gravity, substeps, solverIterations, solverTolerance,
+// friction, density}) (options left out take their defaults) or setPhysics('kinematic').
 export function setPhysics(mode, options) {
 	currentSession().call(SCENE_ID, 'setPhysics', options === undefined ? [mode] : [mode, options]);
 }

@@ -38,7 +38,7 @@ def set_transforms(transforms: dict[Any, list[float]]) -> None:
 
 def set_physics(mode: str, **options: float) -> None:
     """``vp.set_physics("dynamic", gravity=9.81, substeps=5, solver_iterations=50,
-    friction=1.0, density=1000)`` or ``vp.set_physics("kinematic")`` (not in the manual)."""
+    solver_tolerance=0.05, friction=1.0, density=1000)`` or ``vp.set_physics("kinematic")`` (not in the manual)."""
     current_session().set_physics(mode, **options)
 
 

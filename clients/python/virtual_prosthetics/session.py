@@ -216,7 +216,8 @@ class Session:
     def set_physics(self, mode: str, **options: float) -> None:
         """``setPhysics`` (not in the manual): ``"kinematic"`` (1.0's: motors jump, nothing
         falls) or ``"dynamic"``, with options ``gravity``, ``substeps``,
-        ``solver_iterations``, ``friction``, ``density`` (left out: the defaults)."""
+        ``solver_iterations``, ``solver_tolerance``, ``friction``, ``density`` (left out:
+        the defaults)."""
         wire = {_camel(name): value for name, value in options.items()}
         self.call(SCENE_ID, "setPhysics", (mode, wire) if wire else (mode,))
 

@@ -193,8 +193,8 @@ class PhysicsWorld:
     def remove_tree(self, root: str) -> None:
         """Take the tree of ``root`` out of the world."""
         built = self._trees.pop(root)
-        if built.mount is not None and self.dynamics is not None:
-            self.dynamics.forget(built.mount)
+        if self.dynamics is not None:
+            self.dynamics.removed(built.body, built.mount)
         for key in built.tree.parts():
             del self._where[key], self._padding[key]
         del self._keys_of[built.body]

@@ -96,7 +96,8 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
         "mode": st.sampled_from(["kinematic", "dynamic"]),
         "options": st.fixed_dictionaries({}, optional={
             "gravity": numbers(-20, 20), "substeps": st.integers(1, 3),
-            "solverIterations": st.integers(1, 60), "friction": numbers(0, 2),
+            "solverIterations": st.integers(1, 60), "solverTolerance": numbers(0, 1),
+            "friction": numbers(0, 2),
             "density": numbers(1, 5000)}),
         "mass": numbers(0.01, 1000), "friction": numbers(0, 3), "torque": numbers(0, 1e5),
         "transforms": st.dictionaries(st.sampled_from(refs), st.lists(numbers(-1, 1), min_size=7, max_size=7)

@@ -27,6 +27,7 @@ def test_options_left_out_take_their_defaults_and_the_wire_form_round_trips():
     ("dynamic", {"friction": True}, WrongType, "friction"),
     ("dynamic", {"gravity": math.inf}, WrongType, "gravity"),
     ("dynamic", {"density": 0.5}, OutOfRange, "density"),
+    ("dynamic", {"solverTolerance": 2}, OutOfRange, "solverTolerance must be within [0.0, 1.0]"),
 ])
 def test_bad_options_are_refused_naming_what_was_wrong(mode, options, error, words):
     with pytest.raises(error) as refused:
