@@ -18,7 +18,8 @@ from pydantic import BaseModel
 
 from ..core.model.robot import Robot
 from ..core.model.sensor import Sensor
-from ..core.protocol import reports
+from ..core.physics.urdf_file import file_stem
+from ..core.protocol import reports, robot_files
 from ..core.protocol.messages import PROTOCOL_VERSION
 from ..core.protocol.scene_document import check_document_bytes, export_scene
 from ..core.scene.scene import Scene
@@ -43,6 +44,8 @@ class ErrorBody(BaseModel):
 
 NOT_FOUND: dict[int | str, dict[str, Any]] = {
     404: {"model": ErrorBody, "description": "No such scene (or robot, sensor, object)"}}
+FILE_OR_NOT_FOUND: dict[int | str, dict[str, Any]] = {
+    **NOT_FOUND, 200: {"content": {"application/octet-stream": {}}, "description": "The file"}}
 
 
 def error_response(error: VPError, status: int) -> JSONResponse:
@@ -159,6 +162,28 @@ async def robot_list(request: Request, scene: str) -> Response:
             summary="A robot: position, rotation, parts and motors in motor order")
 async def robot_detail(request: Request, scene: str, robot_id: str) -> Response:
     return await _read(request, scene, _robot, robot_id)
+
+
+@router.get("/scenes/{scene}/robots/{robot_id}/urdf", responses=FILE_OR_NOT_FOUND, response_class=Response,
+            summary="A robot as a URDF zip: robot.urdf (links, joints, limits, inertials) and its meshes")
+async def robot_urdf(request: Request, scene: str, robot_id: str) -> Response:
+    """Written from the tree the physics compiles; the base at the file's origin (load it
+    at the robot's position and rotation), joints named by their motors' ids."""
+    return await _file(request, scene, robot_files.robot_urdf, robot_id, "application/zip", "zip")
+
+
+@router.get("/scenes/{scene}/robots/{robot_id}/glb", responses=FILE_OR_NOT_FOUND, response_class=Response,
+            summary="A robot's look as a GLB: its parts' meshes, colours and poses as they are now")
+async def robot_glb(request: Request, scene: str, robot_id: str) -> Response:
+    return await _file(request, scene, robot_files.robot_glb, robot_id, "model/gltf-binary", "glb")
+
+
+async def _file(request: Request, scene: str, write: Callable[..., bytes], robot_id: str,
+                media_type: str, suffix: str) -> Response:
+    """A file written in the scene's process, sent as a download named after the robot."""
+    body = await _hub(request, scene).runner.call("read", write, (robot_id,))
+    return Response(body, media_type=media_type, headers={
+        "Content-Disposition": f'attachment; filename="{file_stem(robot_id)}.{suffix}"'})
 
 
 @router.get("/scenes/{scene}/sensors/{sensor_id:path}", responses=NOT_FOUND, response_class=Response,

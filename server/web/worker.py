@@ -17,7 +17,8 @@ keep)``
 ``("leave", cid)``                        the client's objects deleted (seen in frames)
                                           after ``leaveGraceSeconds``, unless it comes
                                           back (joins as the same client) or keeps them
-``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)``
+``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)`` (a
+                                          function's bytes are the body as they are)
 ``("import", n, body, replace)``          ``("reply", n, ok, JSON summary or VPError)``:
                                           the document's bytes parsed and checked here,
                                           the scene replaced (every client gets a warning
@@ -241,7 +242,8 @@ class SceneWorker:
     def _read(self, number: int, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
         try:
             result = function(self.scene, *args)
-            reply: tuple[Any, ...] = ("reply", number, True, encode(encode_numbers(result)))
+            body = result if isinstance(result, bytes) else encode(encode_numbers(result))
+            reply: tuple[Any, ...] = ("reply", number, True, body)
         except VPError as error:
             reply = ("reply", number, False, error)
         except Exception:

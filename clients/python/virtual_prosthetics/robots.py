@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
-from . import objects
+from . import http_api, objects
 from .objects import Node, Part, Shown
 from .session import Session
 
@@ -48,6 +49,25 @@ class Robot(Shown):
         """Manual ``setRotation(x, y, z, order='XYZ')``: Euler angles; returns the robot."""
         self._call("setRotation", x, y, z, order)
         return self
+
+    def export_urdf(self, path: str | Path) -> Path:
+        """Write the robot as a URDF zip to ``path`` (not in the manual): ``{id}/robot.urdf``
+        with links, joints (named by the motors' ids), limits, torques and inertials, and
+        its meshes beside it; its base at the file's origin. Returns the path."""
+        return self._export("urdf", path)
+
+    def export_glb(self, path: str | Path) -> Path:
+        """Write the robot's look, as it is now, as a GLB file to ``path`` (not in the
+        manual): its parts' meshes with their colours and world poses. Returns the path."""
+        return self._export("glb", path)
+
+    def _export(self, kind: str, path: str | Path) -> Path:
+        self._scene.sync()  # the file shows this client's every earlier change
+        data = http_api.request(self._scene, http_api.scene_path(self._scene, "robots", self.id, kind),
+                                f"export_{kind}")
+        target = Path(path)
+        target.write_bytes(data)
+        return target
 
     def add_gui(self, title: str = "Robot") -> None:
         """Manual ``addGUI(title)``: a motor panel in every viewer."""

@@ -2,6 +2,12 @@
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
+import zipfile
+
+import pytest
+import trimesh
+
 import virtual_prosthetics as vp
 
 
@@ -22,3 +28,26 @@ def test_a_hand_is_built_by_chained_calls_as_in_1_0(scene):
     assert isinstance(hand, vp.EdgedHand)
     scene.sync()
     assert hand.get_position() == [-2, 0.5, 0]
+
+
+def test_a_robot_exports_to_urdf_and_glb_files(scene, tmp_path):
+    hand = vp.RoundHand(True).set_position(0, 2, 0)
+    hand.flex_fingers(0.5)  # made and moved just now: the files show it
+    urdf = hand.export_urdf(tmp_path / "hand.zip")
+    with zipfile.ZipFile(urdf) as archive:
+        robot = ET.fromstring(archive.read(f"{hand.id}/robot.urdf"))
+        assert all(f"{hand.id}/{m.get('filename')}" in archive.namelist()
+                   for m in robot.iter("mesh"))
+    assert [j.get("name") for j in robot.findall("joint") if j.get("type") != "fixed"] == \
+        [m.id for m in hand.get_motors()]
+    look = trimesh.load(hand.export_glb(tmp_path / "hand.glb"))
+    assert len(look.geometry) == 16 and look.bounds[0][1] > 0.5  # the palm and 15 segments, raised
+
+
+def test_a_file_of_a_robot_deleted_is_refused_by_name(scene, tmp_path):
+    hand = vp.EdgedHand()
+    hand.delete()
+    with pytest.raises(vp.ServerError) as refused:
+        hand.export_glb(tmp_path / "x.glb")
+    assert refused.value.code == "unknown_object" and hand.id in refused.value.message
+    assert not (tmp_path / "x.glb").exists()

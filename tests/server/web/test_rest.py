@@ -70,12 +70,29 @@ def test_infinite_limits_are_strings_in_rest(server, scene_name):
     ("/api/scenes/default/robots/nobody.1", "unknown_object"),
     ("/api/scenes/default/sensors/nobody.1", "unknown_object"),
     ("/api/scenes/no-such-scene/contacts", "unknown_scene"),
+    ("/api/scenes/default/robots/nobody.1/urdf", "unknown_object"),
+    ("/api/scenes/no-such-scene/robots/nobody.1/glb", "unknown_scene"),
 ])
 def test_unknown_things_are_structured_404s(server, path, code):
     with pytest.raises(urllib.error.HTTPError) as caught:
         server.get(path)
     assert caught.value.code == 404
     assert json.loads(caught.value.read())["code"] == code
+
+
+def test_a_robot_downloads_as_a_urdf_zip_and_a_glb(server, scene_name):
+    with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
+        client = json.loads(ws.recv(timeout=10))["client"]
+        hand = f"{client}.1"
+        request_all(ws, [{"op": "create", "object": hand, "type": "AnthroHand", "args": [True]}])
+        for kind, media, check in (("urdf", "application/zip", lambda b: b[:2] == b"PK"),
+                                   ("glb", "model/gltf-binary", lambda b: b[:4] == b"glTF")):
+            url = f"{server.http}/api/scenes/{scene_name}/robots/{hand}/{kind}"
+            with urllib.request.urlopen(url, timeout=30) as answer:
+                body = answer.read()
+                assert answer.headers["Content-Type"] == media and check(body)
+                suffix = "zip" if kind == "urdf" else "glb"
+                assert answer.headers["Content-Disposition"] == f'attachment; filename="{hand}.{suffix}"'
 
 
 def test_sensor_readings_and_contacts(server, scene_name):

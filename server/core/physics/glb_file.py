@@ -1,0 +1,111 @@
+"""A robot's look as one GLB file: what takes a hand to Blender or any web page.
+
+Each physical part of the compiled tree (:mod:`.articulation`) is one mesh, named by the
+part's id, placed where the server has it (world pose, metres, +Y up as glTF wants) and
+coloured as a viewer colours it (glTF's linear components): spheres, boxes and hulls in the part's colour; a mesh
+file's part with the file's own vertex colours after its ``recolor`` calls; page
+triangles as drawn. trimesh writes the file (binary glTF 2.0); the black edges a viewer
+draws on the edged parts are not in it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Sequence
+
+import numpy as np
+import trimesh
+
+from ..kit.math3d import Pose, to_matrix
+from .assets import AssetLibrary
+from .geometry import solid_points, triangle_arrays
+from .urdf_file import rgba
+
+SPHERE_SEGMENTS = 32  # around and from pole to pole: a multiple of 4 puts corners on the axes
+
+
+@dataclass(frozen=True)
+class DrawnPart:
+    """A part to draw: its id, geometry (as compiled), world pose and recolours."""
+
+    id: str
+    geometry: dict[str, Any]
+    pose: Pose
+    recolors: Sequence[Sequence[Any]] = ()
+
+
+def glb_bytes(parts: Sequence[DrawnPart], assets: AssetLibrary) -> bytes:
+    """The binary glTF of ``parts``, each a mesh at its pose."""
+    scene = trimesh.Scene()
+    for part in parts:
+        scene.add_geometry(part_mesh(part, assets), node_name=part.id, geom_name=part.id,
+                           transform=_matrix(part.pose))
+    return scene.export(file_type="glb")
+
+
+def part_mesh(part: DrawnPart, assets: AssetLibrary) -> trimesh.Trimesh:
+    """The coloured mesh of one part, in its own frame."""
+    geometry = part.geometry
+    kind = geometry["kind"]
+    if kind == "mesh":
+        return _file_mesh(geometry, part.recolors, assets)
+    if kind == "sphere":
+        mesh = trimesh.creation.uv_sphere(geometry["radius"], count=(SPHERE_SEGMENTS, SPHERE_SEGMENTS))
+    elif kind == "box":
+        mesh = trimesh.creation.box(extents=geometry["size"])
+    elif kind == "triangles":
+        mesh = trimesh.Trimesh(*triangle_arrays(geometry), process=False)
+    else:  # hulls, cylinders (three.js draws a cylinder as the hull of its corners)
+        mesh = trimesh.convex.convex_hull(np.asarray(solid_points(geometry), float))
+    mesh.visual = trimesh.visual.ColorVisuals(mesh, face_colors=_rgba8(linear(geometry.get("color"))))
+    return mesh
+
+
+def _file_mesh(geometry: dict[str, Any], recolors: Sequence[Sequence[Any]],
+               assets: AssetLibrary) -> trimesh.Trimesh:
+    """A mesh file's triangles and vertex colours, placed as the part places them."""
+    assets.mesh(geometry["url"])  # the file checked (and refused) as a part's file is
+    path, _ = assets.locate(geometry["url"])
+    mesh = trimesh.load(str(path), force="mesh", process=False)
+    colors = np.asarray(mesh.visual.vertex_colors, float)[:, :4] / 255 \
+        if mesh.visual.kind == "vertex" else None
+    mirror = np.array([-1.0, 1.0, 1.0]) if geometry["mirror"] else 1.0
+    vertices = (np.asarray(mesh.vertices) * mirror + np.asarray(geometry["offset"])) \
+        * np.asarray(geometry.get("scale", (1.0, 1.0, 1.0)))
+    faces = np.asarray(mesh.faces)[:, ::-1] if geometry["mirror"] else mesh.faces  # outside out
+    placed = trimesh.Trimesh(vertices, faces, process=False)
+    if colors is not None:
+        placed.visual = trimesh.visual.ColorVisuals(placed, vertex_colors=_rgba8(_recolored(colors, recolors)))
+    return placed
+
+
+def _recolored(colors: np.ndarray, recolors: Sequence[Sequence[Any]]) -> np.ndarray:
+    """The viewer's recolor: each vertex within eps of ``from`` (every component) takes
+    ``to``, in the order they were called; [r, g, b] are the file's own components."""
+    out = colors.copy()
+    for source, target, eps in recolors:
+        near = np.all(np.abs(out[:, :3] - linear(source)[:3]) <= eps, axis=1)
+        out[near, :3] = linear(target)[:3]
+    return out
+
+
+def linear(color: Any) -> np.ndarray:
+    """A part colour in glTF's (and three.js's) linear components: CSS colours are sRGB,
+    [r, g, b] already linear (a mesh file's own, as recolor takes them)."""
+    values = np.asarray(rgba(color))
+    if isinstance(color, (list, tuple)):
+        return values
+    srgb = values[:3]
+    values[:3] = np.where(srgb <= 0.04045, srgb / 12.92, ((srgb + 0.055) / 1.055) ** 2.4)
+    return values
+
+
+def _rgba8(color: Sequence[float] | np.ndarray) -> np.ndarray:
+    return np.clip(np.round(np.asarray(color) * 255), 0, 255).astype(np.uint8)
+
+
+def _matrix(pose: Pose) -> np.ndarray:
+    matrix = np.eye(4)
+    matrix[:3, :3] = to_matrix(pose[1])
+    matrix[:3, 3] = pose[0]
+    return matrix

@@ -1,0 +1,162 @@
+"""A robot as files other tools open: each hand's URDF loads back into PyBullet with every
+part where the server has it, and its GLB opens in trimesh with the hand's bounds."""
+
+import io
+import random
+import zipfile
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pybullet
+import pytest
+import trimesh
+from scipy.spatial.transform import Rotation
+
+from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
+from server.core.model.motor import MotorZ
+from server.core.model.parts import Ball, Box
+from server.core.model.robot import Robot
+from server.core.physics.assets import BUNDLED_DIR
+from server.core.protocol.robot_files import robot_glb, robot_urdf
+from server.errors import UnknownObject
+
+HANDS = [EdgedHand, RoundHand, AnthroHand]
+
+
+def _posed(scene, kind):
+    """A hand turned and moved off the origin, every motor at a random angle in its range."""
+    hand = kind(scene, "h", True)
+    hand.set_position((1, 2, 3))
+    hand.set_rotation(0.3, -0.5, 1.1)
+    draw = random.Random(7)
+    for motor in hand.get_motors():
+        motor.set_angle(draw.uniform(max(motor.min, -1.2), min(motor.max, 1.2)))
+    scene.tick(1 / 60)
+    return hand
+
+
+def _unzipped(data, folder):
+    zipfile.ZipFile(io.BytesIO(data)).extractall(folder)
+    return folder / "h" / "robot.urdf"
+
+
+@pytest.mark.parametrize("kind", HANDS)
+def test_a_hands_urdf_loads_into_pybullet_with_every_part_where_the_server_has_it(scene, kind, tmp_path):
+    hand = _posed(scene, kind)
+    urdf = _unzipped(robot_urdf(scene, "h"), tmp_path)
+    client = pybullet.connect(pybullet.DIRECT)
+    try:
+        body = pybullet.loadURDF(str(urdf), hand.position, hand.quaternion, useFixedBase=True,
+                                 physicsClientId=client)
+        links = {}
+        for j in range(pybullet.getNumJoints(body, physicsClientId=client)):
+            info = pybullet.getJointInfo(body, j, physicsClientId=client)
+            links[info[12].decode()] = j
+            if info[2] == pybullet.JOINT_REVOLUTE:  # named by its motor
+                pybullet.resetJointState(body, j, scene.nodes[info[1].decode()].get_angle(),
+                                         physicsClientId=client)
+        placed = _visual_origins(urdf)
+        parts = [p for p in hand.get_parts() if p.physical]
+        assert set(placed) == {p.id for p in parts}
+        for part in parts:
+            state = pybullet.getLinkState(body, links[part.id], computeForwardKinematics=True,
+                                          physicsClientId=client)
+            offset, _ = placed[part.id]
+            where = np.asarray(state[4]) + Rotation.from_quat(state[5]).apply(offset)
+            assert where == pytest.approx(part.world_pose()[0], abs=1e-6), part.id
+    finally:
+        pybullet.disconnect(client)
+
+
+def _visual_origins(urdf):
+    """Each link's visual origin, read as any URDF reader reads it."""
+    found = {}
+    for link in ET.parse(urdf).getroot().findall("link"):
+        origin = link.find("visual/origin")
+        if origin is not None:
+            found[link.get("name")] = ([float(v) for v in origin.get("xyz").split()],
+                                       [float(v) for v in origin.get("rpy").split()])
+    return found
+
+
+def test_the_urdf_has_limits_torques_inertials_and_mesh_files(scene, tmp_path):
+    hand = EdgedHand(scene, "h", True)
+    hand.get_motors()[3].set_max_torque(1234)
+    urdf = _unzipped(robot_urdf(scene, "h"), tmp_path)
+    robot = ET.parse(urdf).getroot()
+    joints = {j.get("name"): j for j in robot.findall("joint") if j.get("type") != "fixed"}
+    motors = hand.get_motors()
+    assert list(joints) == [m.id for m in motors]  # every motor, in motor order
+    limit = joints[motors[3].id].find("limit")
+    assert float(limit.get("effort")) == 1234
+    assert (float(limit.get("lower")), float(limit.get("upper"))) == (motors[3].min, motors[3].max)
+    for link in robot.findall("link"):
+        assert float(link.find("inertial/mass").get("value")) > 0
+        mesh = link.find("collision/geometry/mesh")
+        if mesh is not None:  # a hull Bullet collides with, as a file beside the URDF
+            hull = trimesh.load(urdf.parent / mesh.get("filename"))
+            assert hull.is_watertight and hull.is_convex
+
+
+def test_a_palm_weighs_its_volume_times_the_density_at_its_centre(scene, tmp_path):
+    robot = Robot(scene, "h")
+    box = Box(scene, "b", 2, 1, 0.5)
+    box.attach_to_slot(robot)
+    scene.set_physics("dynamic", {"density": 300})
+    link = [l for l in ET.parse(_unzipped(robot_urdf(scene, "h"), tmp_path)).getroot()
+            .findall("link") if l.get("name") == "b"][0]
+    assert float(link.find("inertial/mass").get("value")) == pytest.approx(2 * 1 * 0.5 * 300)
+    assert float(link.find("inertial/inertia").get("ixx")) == pytest.approx(300 / 12 * (1 + 0.25))
+
+
+def test_an_unlimited_motor_is_a_continuous_joint(scene, tmp_path):
+    robot = Robot(scene, "h")
+    motor = MotorZ(scene, "m")
+    motor.attach_to_slot(robot)
+    Ball(scene, "b", 0.3).attach_to_slot(motor)
+    robot_joints = ET.parse(_unzipped(robot_urdf(scene, "h"), tmp_path)).getroot().findall("joint")
+    (joint,) = [j for j in robot_joints if j.get("name") == "m"]
+    assert joint.get("type") == ("continuous" if motor.min == -np.inf else "revolute")
+
+
+@pytest.mark.parametrize("kind", HANDS)
+def test_a_hands_glb_opens_in_trimesh_with_the_hands_bounds(scene, kind):
+    hand = _posed(scene, kind)
+    opened = trimesh.load(io.BytesIO(robot_glb(scene, "h")), file_type="glb")
+    parts = [p for p in hand.get_parts() if p.physical]
+    assert set(opened.graph.nodes_geometry) == {p.id for p in parts}
+    corners = np.concatenate([_drawn_corners(p) for p in parts])
+    assert opened.bounds == pytest.approx(np.array([corners.min(axis=0), corners.max(axis=0)]), abs=1e-4)
+
+
+def _drawn_corners(part):
+    """The points a viewer draws a part through, in the world: a hull's corners, or its
+    mesh file's vertices placed as the part places them."""
+    geometry = part.geometry()
+    if geometry["kind"] == "mesh":
+        mesh = trimesh.load(BUNDLED_DIR / geometry["url"].rsplit("/", 1)[1], force="mesh")
+        points = np.asarray(mesh.vertices) * ([-1, 1, 1] if geometry["mirror"] else 1) + geometry["offset"]
+    else:
+        points = np.asarray(geometry["points"])
+    position, quaternion = part.world_pose()
+    return Rotation.from_quat(quaternion).apply(points) + position
+
+
+def test_the_glb_colours_parts_as_the_viewer_does(scene):
+    hand = RoundHand(scene, "h", True)  # its files' blue recoloured grey: [0.3, 0.3, 0.3]
+    robot = Robot(scene, "r")
+    Box(scene, "b", 1, 1, 1, "steelblue").attach_to_slot(robot)
+    palm = trimesh.load(io.BytesIO(robot_glb(scene, "h")), file_type="glb").geometry[hand.get_parts()[0].id]
+    colours = {tuple(c) for c in np.asarray(palm.visual.vertex_colors)[:, :3].tolist()}
+    assert (76, 76, 76) in colours and (0, 54, 255) not in colours  # 0.3 × 255
+    box = trimesh.load(io.BytesIO(robot_glb(scene, "r")), file_type="glb").geometry["b"]
+    # CSS colours are sRGB; glTF's (and three.js's) are linear: steelblue is (70, 130, 180)
+    assert {tuple(c) for c in np.asarray(box.visual.vertex_colors)[:, :3].tolist()} == {(16, 57, 116)}
+
+
+def test_an_unknown_robot_is_refused_by_name(scene):
+    Ball(scene, "b", 1)
+    for name in ("nobody", "b"):
+        with pytest.raises(UnknownObject) as refused:
+            robot_urdf(scene, name)
+        assert name in refused.value.message
