@@ -13,7 +13,8 @@ Hierarchy::
     │   ├── UnknownMethod        unknown_method call of a method the type lacks
     │   ├── UnknownObject        unknown_object an id no object in the scene has
     │   ├── UnknownScene         unknown_scene  a scene name that is not served
-    │   └── UnknownAsset         unknown_asset  a mesh file that is not bundled or uploaded
+    │   ├── UnknownAsset         unknown_asset  a mesh file that is not bundled or uploaded
+    │   └── UnknownRecording     unknown_recording a recording id the server does not hold
     ├── ArgumentError            arguments of a create or call
     │   ├── BadArguments         bad_arguments  wrong number of arguments
     │   ├── WrongType            wrong_type     an argument of the wrong kind
@@ -23,9 +24,13 @@ Hierarchy::
     │   ├── DuplicateId          duplicate_id   an id already (or once) in use
     │   ├── ForeignId            foreign_id     an id without this client's prefix
     │   ├── Cycle                cycle          attaching a node below itself
-    │   └── NotPaused            not_paused     stepping a scene whose clock runs
+    │   ├── NotPaused            not_paused     stepping a scene whose clock runs
+    │   └── RecordingBusy        recording_busy starting a second recording of a scene, or
+    │                                           downloading one still being recorded
     ├── Forbidden                forbidden      a viewer asked to change something
     ├── LimitExceeded            limit_exceeded a documented limit was reached
+    ├── StorageFailure           storage_failure a file the server must write cannot be
+    │                                           (a full disk, a folder it may not write)
     └── InternalError            internal       a server fault (a bug): reported, not hidden
 
 The wire form (``{"op": "error", "id", "code", "message", "details"}``) is defined in
@@ -150,6 +155,10 @@ class UnknownScene(LookupFailure):
     code = "unknown_scene"
 
 
+class UnknownRecording(LookupFailure):
+    code = "unknown_recording"
+
+
 class UnknownAsset(LookupFailure):
     code = "unknown_asset"
 
@@ -194,6 +203,10 @@ class NotPaused(ConflictError):
     code = "not_paused"
 
 
+class RecordingBusy(ConflictError):
+    code = "recording_busy"
+
+
 class Forbidden(VPError):
     code = "forbidden"
 
@@ -206,13 +219,17 @@ class LimitExceeded(VPError):
     code = "limit_exceeded"
 
 
+class StorageFailure(VPError):
+    code = "storage_failure"
+
+
 class InternalError(VPError):
     code = "internal"
 
 
 ERROR_CODES: tuple[str, ...] = tuple(
     cls.code for cls in (BadJSON, BadMessage, UnknownOp, TooLarge, UnknownType, UnknownMethod,
-                         UnknownObject, UnknownScene, UnknownAsset, BadArguments, WrongType,
-                         OutOfRange, BadAsset, DuplicateId, ForeignId, Cycle, NotPaused, Forbidden,
-                         LimitExceeded, InternalError)
+                         UnknownObject, UnknownScene, UnknownAsset, UnknownRecording, BadArguments,
+                         WrongType, OutOfRange, BadAsset, DuplicateId, ForeignId, Cycle, NotPaused,
+                         RecordingBusy, Forbidden, LimitExceeded, StorageFailure, InternalError)
 )

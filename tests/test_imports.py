@@ -68,7 +68,7 @@ def test_the_server_has_no_import_circle():
 
 
 # server/core's layers, lowest first: each may import those before it, never one after
-LAYERS = ["kit", "physics", "model", "scene", "protocol"]
+LAYERS = ["kit", "physics", "model", "scene", "protocol", "recording"]
 NO_IO = {"fastapi", "starlette", "asyncio", "websockets", "uvicorn", "socket", "server.web"}
 
 

@@ -17,8 +17,9 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.kit.limits import DEFAULT, Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import Forbidden, InternalError, LimitExceeded, LookupFailure, TooLarge, VPError
-from . import assets, heap, rest, socket
+from ..errors import (Forbidden, InternalError, LimitExceeded, LookupFailure, RecordingBusy,
+                      StorageFailure, TooLarge, VPError)
+from . import assets, heap, recording_routes, rest, socket
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed
 from .cors import PageOrigins
 from .connection_limits import LoopErrorLog
@@ -28,7 +29,7 @@ from .state_dir import StateDir
 
 HTTP_CODES = {404: "not_found", 405: "method_not_allowed"}
 HTTP_STATUS: dict[type[VPError], int] = {LookupFailure: 404, Forbidden: 403, TooLarge: 413,
-                                         LimitExceeded: 429}
+                                         LimitExceeded: 429, RecordingBusy: 409, StorageFailure: 507}
 
 
 def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None = None,
@@ -66,6 +67,7 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     app.state.access = access
     app.state.started = time.monotonic()
     app.include_router(rest.router, dependencies=[Depends(viewing_allowed)])
+    app.include_router(recording_routes.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(assets.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(socket.router)
     _answer_errors(app)

@@ -26,6 +26,7 @@ from . import heap
 from .offload import Offload
 from .runner import PREDECESSOR_SECONDS, SceneRunner
 from .scene_hub import SceneHub
+from .recordings import Recordings
 from .state_dir import SCENE_NAME, SceneStore, StateDir
 from .worker import SERVER_OWNER, SceneSetup
 
@@ -71,6 +72,7 @@ class Hubs:
         self._clients = state.clients_reserved if state is not None else 0
         self._reserved = self._clients
         self._reserve(self._clients)
+        self.recordings = Recordings(state.root / "recordings" if state is not None else None)
 
     def get(self, name: str) -> SceneHub | None:
         """The hub of an existing scene."""
@@ -98,13 +100,14 @@ class Hubs:
             store = self.state.store(name) if self.state is not None else None
             hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
                                                self.assets, self._setups.get(name), store,
-                                               self.reserve, self._ended)
+                                               self.reserve, self._ended, self.recordings.ended)
             hub.runner.start(after=self._stopping.pop(name, None))
         return hub
 
     def _ended(self, hub: SceneHub, failed: bool) -> None:
         """A scene's process ended: the server's own scenes start again by themselves (after
         a pause that grows while they keep failing); others when a client comes back."""
+        self.recordings.scene_ended(hub.name)
         if not failed or (hub.name not in self._setups and hub.name != DEFAULT_SCENE):
             return
         low, high = RESTART_SECONDS
@@ -244,4 +247,5 @@ class Hubs:
         self._stopping.clear()
         self.offload.close()
         await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])
+        self.recordings.close()  # after the processes finished their files
         return sorted({runner.name for runner in runners if runner.unsaved})

@@ -61,7 +61,7 @@ def _hubs(request: Request) -> Hubs:
     return request.app.state.hubs
 
 
-def _hub(request: Request, scene: str) -> SceneHub:
+def hub_of(request: Request, scene: str) -> SceneHub:
     """A running scene's hub; a saved scene that is not running starts (from its file)."""
     hubs = _hubs(request)
     hub = hubs.get(scene)
@@ -98,7 +98,7 @@ async def read_body(request: Request, limit: int, name: str, what: str) -> bytes
 async def _read(request: Request, scene: str, report: Callable[..., Any],
                 *args: Any) -> Response:
     """``report(scene, *args)``, computed and encoded as JSON in the scene's process."""
-    body = await _hub(request, scene).runner.call("read", report, args)
+    body = await hub_of(request, scene).runner.call("read", report, args)
     return Response(body, media_type="application/json")
 
 
@@ -144,7 +144,7 @@ async def scenes(request: Request, saved: bool = False) -> list[dict[str, Any]]:
 
 @router.get("/scenes/{scene}", responses=NOT_FOUND, summary="One scene: clock, counts, camera, physics")
 async def scene_detail(request: Request, scene: str) -> dict[str, Any]:
-    return await _summary(_hub(request, scene), wait=True)
+    return await _summary(hub_of(request, scene), wait=True)
 
 
 @router.get("/scenes/{scene}/snapshot", responses=NOT_FOUND, summary="The whole scene, as the WebSocket snapshot",
@@ -181,7 +181,7 @@ async def robot_glb(request: Request, scene: str, robot_id: str) -> Response:
 async def _file(request: Request, scene: str, write: Callable[..., bytes], robot_id: str,
                 media_type: str, suffix: str) -> Response:
     """A file written in the scene's process, sent as a download named after the robot."""
-    body = await _hub(request, scene).runner.call("read", write, (robot_id,))
+    body = await hub_of(request, scene).runner.call("read", write, (robot_id,))
     return Response(body, media_type=media_type, headers={
         "Content-Disposition": f'attachment; filename="{file_stem(robot_id)}.{suffix}"'})
 
@@ -207,7 +207,7 @@ async def export(request: Request, scene: str,
     """Structure, angles, poses, names, recolours, owners and the uploaded mesh files it
     uses, by content hash (``assets=embed``: with their bytes, so that any server can
     import it; ``refer``: by hash alone). No clock: an unchanged scene gives the same bytes."""
-    body = await _hub(request, scene).runner.call("read", _export, (assets == "embed",))
+    body = await hub_of(request, scene).runner.call("read", _export, (assets == "embed",))
     return Response(body, media_type="application/json",
                     headers={"Content-Disposition": f'attachment; filename="{scene}.json"'})
 
@@ -241,7 +241,7 @@ async def import_(request: Request, scene: str, replace: bool = False) -> JSONRe
         hubs.state is not None and scene in hubs.state.saved_scenes())
     if made:  # checked before a scene's process is started for it (in the checking process)
         await hubs.offload.run(check_document_bytes, body)
-    hub = _hub(request, scene) if not made else hubs.open(scene)
+    hub = hub_of(request, scene) if not made else hubs.open(scene)
     try:
         async with hub.importing():  # no newcomer gets an id the document brings meanwhile
             summary = json.loads(await hub.runner.call("import", body, replace))

@@ -77,7 +77,8 @@ class SceneHub:
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                  setup: SceneSetup | None = None, store: SceneStore | None = None,
                  owners: Callable[[list[str]], None] = lambda owners: None,
-                 ended: Callable[[SceneHub, bool], None] = lambda hub, failed: None) -> None:
+                 ended: Callable[[SceneHub, bool], None] = lambda hub, failed: None,
+                 recorded: Callable[[str], None] = lambda recording: None) -> None:
         self.name = name
         self.members: dict[int, Connection] = {}  # joined, admitted or not yet
         self.connections: set[Connection] = set()  # admitted: they get every frame
@@ -89,7 +90,7 @@ class SceneHub:
         self.figures: dict[str, Any] | None = None  # its last metrics, for when it is silent
         self.summary: dict[str, Any] | None = None  # its last counts, likewise
         self.saving: dict[str, Any] = {}  # what its process last said of its files
-        self._owners, self._on_end = owners, ended
+        self._owners, self._on_end, self._recorded = owners, ended, recorded
         self._open = asyncio.Event()  # made (restored), and no import under way
         self._imports = 0
         self._arriving = 0  # connections waiting for it to settle
@@ -170,6 +171,8 @@ class SceneHub:
                 self._owners(event[1])
                 if not self._imports:
                     self._open.set()
+            elif kind == "recorded":  # a recording stopped by itself (a limit, the scene's end)
+                self._recorded(event[1]["id"])
             elif kind == "ended":
                 self._ended(event[1])
 

@@ -5,6 +5,7 @@
     DIR/scenes/<scene>.journal   the changes made since that document was written
                                  (server.web.scene_store)
     DIR/assets/                  uploaded mesh files (unless --assets-dir names another folder)
+    DIR/recordings/              recordings of scenes, MCAP files (server.web.recordings)
     DIR/server.json              the key resume keys are signed with, and how far client ids
                                  have been handed out (ids are never handed out twice)
 

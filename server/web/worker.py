@@ -26,6 +26,11 @@ keep)``
                                           clients here own; owners not connected get a
                                           grace period, as if they had just left
 ``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
+``("record", n, id, path)``               ``("reply", n, ok, {"id", …} or VPError)``: a
+                                          recording into ``path`` (recording_file) starts
+``("unrecord", n, id)``                   ``("reply", n, ok, what it holds)``: it stops
+a recording that stopped itself (a limit, ``("recorded", what it holds, why)``
+or the scene's end)
 ``("stop",)``                             the process ends (its scene saved first; exit
                                           code SAVE_FAILED if its changes could not be)
 once made (or restored)                   ``("ready", owners)``: the owners of its objects
@@ -40,6 +45,7 @@ import signal
 import sys
 import time
 from collections import deque
+from pathlib import Path
 from multiprocessing.connection import Connection as Pipe
 from typing import Any, Callable
 
@@ -53,9 +59,10 @@ from ..core.protocol.messages import encode
 from ..core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
 from ..core.protocol.session import Session
 from ..core.scene.scene import Scene
-from ..errors import InternalError, VPError
+from ..errors import InternalError, RecordingBusy, UnknownRecording, VPError
 from . import heap
 from .outbox import Outgoing
+from .recording_file import RecordingFile
 from .saving import SceneSaver
 from .scene_metrics import SceneMetrics
 from .scene_store import SceneStore
@@ -82,6 +89,7 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
     try:
         worker.run()
     finally:
+        worker.end_recording("the scene stopped")
         durable = worker.saver.close()  # the server stopped it, or the server is gone
         scene.close()
     if not durable:
@@ -107,6 +115,7 @@ class SceneWorker:
         self._left: set[str] = set()  # of those, the clients that were connected here
         self._store = store
         self._notices: list[Outgoing] = []  # warnings for every client, sent with the next tick
+        self.recording: RecordingFile | None = None
         self.saver = SceneSaver(scene, store, self._tell,
                                 lambda report: self._events.append(("saving", report)))
 
@@ -208,6 +217,8 @@ class SceneWorker:
     def _text(self, cid: int, text: str | bytes) -> None:
         session = self._sessions.get(cid)
         now = time.monotonic()
+        if session is not None and self.recording is not None:
+            self.recording.recorder.request(session.client_id, text, self.scene.time)
         answers = [] if session is None else [
             Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
         self.metrics.served(now, len(answers))
@@ -349,15 +360,52 @@ class SceneWorker:
     def _stop(self) -> None:
         self._stopping = True
 
+    def _record(self, number: int, recording_id: str, path: str) -> None:
+        if self.recording is not None:
+            error = RecordingBusy(f"scene {self.scene.name!r} is being recorded already "
+                                  f"({self.recording.id}); stop that recording first",
+                                  recording=self.recording.id)
+            self._events.append(("reply", number, False, error))
+            return
+        try:
+            self.recording = RecordingFile(recording_id, Path(path), self.scene, self.scene.limits)
+        except VPError as error:
+            self._events.append(("reply", number, False, error))
+            return
+        self._events.append(("reply", number, True, {"id": recording_id, "scene": self.scene.name,
+                                                     "sceneTime": self.scene.time}))
+
+    def _unrecord(self, number: int, recording_id: str) -> None:
+        if self.recording is None or self.recording.id != recording_id:
+            error = UnknownRecording(f"scene {self.scene.name!r} is not recording {recording_id!r}",
+                                     recording=recording_id)
+            self._events.append(("reply", number, False, error))
+            return
+        self._events.append(("reply", number, True, self._end_recording("stopped")))
+
+    def end_recording(self, reason: str) -> None:
+        """Stop the recording, if there is one, telling the server why."""
+        if self.recording is not None:
+            summary = self._end_recording(reason)
+            self._events.append(("recorded", summary))
+            self._flush()
+
+    def _end_recording(self, reason: str) -> dict[str, Any]:
+        recording, self.recording = self.recording, None
+        assert recording is not None
+        return recording.stop(reason)
+
     def _tick(self, dt: float) -> None:
         """Run the animator, advance the scene and send its messages to every client."""
         started = time.perf_counter()
         try:
             if self._animator is not None:
                 self._animator(self.scene, self.scene.time + dt)
-            messages = self._notices + self._resynced() + \
-                [Outgoing.of(m) for m in self.scene.tick(dt)]
+            ticked = self.scene.tick(dt)
+            messages = self._notices + self._resynced() + [Outgoing.of(m) for m in ticked]
             self._notices = []
+            if self.recording is not None and self.recording.tick(ticked, self.scene):
+                self.end_recording(self.recording.recorder.stopped or "")
         except Exception:  # the scene kept what it had not sent; clients resync later
             self.metrics.tick_failures += 1
             self._resync = True

@@ -57,6 +57,9 @@ class Limits:
     assets: int = 1_000                   # files kept
     # a scene document (POST /api/scenes/{scene}/import), its files' bytes included
     document_bytes: int = 64 << 20
+    # a recording (POST /api/scenes/{scene}/recordings): it stops itself at either
+    recording_bytes: int = 256 << 20      # its file
+    recording_seconds: int = 3_600        # scene time it covers
 
     def wire(self) -> dict[str, int]:
         """The limits by wire name, as ``hello`` carries them."""

@@ -1,0 +1,159 @@
+"""A scene's history as an MCAP file: everything viewers were sent and every request
+clients made, each at its time, in chunks compressed with zstd (the ``mcap`` package).
+
+Channels (JSON messages, each with the JSON Schema of what it carries):
+
+- ``/vp/snapshot``: the whole scene (the protocol's ``snapshot``) when the recording
+  starts and every SNAPSHOT_EVERY seconds of scene time after: a replay seeks to the last
+  one before a time and applies the ticks after it (MCAP's chunk index finds both
+  without reading the file from its start).
+- ``/vp/ticks``: each tick's messages as viewers get them (``added``, ``frame``,
+  ``removed``): poses, angles, contacts, watched readings, forces.
+- ``/vp/requests``: each text a client sent (``client``, ``text``), applied or refused.
+- ``/sensors/<id>``: one channel per watched sensor, its reading each time it changed
+  (``distance``, ``touch``, ``force``…, as the protocol's ``reading``): what a plot reads.
+
+Log times are the scene's clock, counted from the wall time at which the recording
+started (a paused scene's steps are as far apart as its clock says, not as the wall's).
+Bounded: the recording stops itself at ``max_bytes`` of file or ``max_seconds`` of scene
+time, and says which.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import IO, Any, Callable, Mapping
+
+from mcap.writer import CompressionType, Writer
+
+from ..protocol.messages import encode, schema
+
+SNAPSHOT_EVERY = 5.0  # seconds of scene time between the snapshots a seek starts from
+CHUNK_BYTES = 256 * 1024  # MCAP chunk size: the most a stop at max_bytes can run over
+PROFILE = "virtual-prosthetics"
+
+def _standalone(root: dict[str, Any]) -> dict[str, Any]:
+    """``root`` with the protocol's definitions it refers to (and only those)."""
+    defs, wanted, todo = schema()["$defs"], {}, [root]
+    while todo:
+        text = json.dumps(todo.pop())
+        for name in defs:
+            if f'"#/$defs/{name}"' in text and name not in wanted:
+                wanted[name] = defs[name]
+                todo.append(defs[name])
+    return {**root, "$defs": wanted}
+
+
+SCHEMAS = {  # each channel's messages, as Foxglove and any JSON Schema reader read them
+    "snapshot": _standalone({"$ref": "#/$defs/snapshot"}),
+    "reading": _standalone({"$ref": "#/$defs/reading"}),
+    "ticks": _standalone({"type": "object", "required": ["messages"], "properties": {"messages": {
+        "type": "array", "items": {"anyOf": [{"$ref": "#/$defs/added"}, {"$ref": "#/$defs/frame"},
+                                             {"$ref": "#/$defs/removed"}]}}}}),
+    "request": {"type": "object", "required": ["client", "text"], "properties": {
+        "client": {"type": "string"}, "text": {"type": "string", "description": "as sent"}}},
+}
+
+
+@dataclass(frozen=True)
+class RecordingLimits:
+    """How much one recording may hold (flags: ``--limit recordingBytes=N``,
+    ``--limit recordingSeconds=N``)."""
+
+    max_bytes: int
+    max_seconds: float
+
+
+class Recorder:
+    """One recording of one scene into ``stream`` (a binary file open for writing)."""
+
+    def __init__(self, stream: IO[bytes], scene: str, wall_ns: int, scene_time: float,
+                 limits: RecordingLimits) -> None:
+        self._stream, self._limits = stream, limits
+        self._wall_ns, self._start = wall_ns, scene_time
+        self._writer = Writer(stream, chunk_size=CHUNK_BYTES, compression=CompressionType.ZSTD)
+        self._writer.start(profile=PROFILE)
+        self._writer.add_metadata("recording", {"scene": scene, "startedNs": str(wall_ns),
+                                                "sceneTime": repr(scene_time)})
+        self._channels: dict[str, int] = {}
+        self._schema_ids: dict[str, int] = {}
+        self._sequence = 0
+        self._last_snapshot = -SNAPSHOT_EVERY
+        self.stopped: str | None = None  # why it stopped, once it has
+        self.counts = {"ticks": 0, "requests": 0, "snapshots": 0, "readings": 0}
+
+    @property
+    def size(self) -> int:
+        """Bytes written so far (a chunk being filled is not counted until it is full)."""
+        return self._stream.tell()
+
+    @property
+    def seconds(self) -> float:
+        """Scene time recorded so far."""
+        return self._last - self._start if self._sequence else 0.0
+
+    def snapshot(self, snapshot: Mapping[str, Any], scene_time: float) -> None:
+        """The whole scene as it is at ``scene_time`` (the recording's first message)."""
+        self._write("/vp/snapshot", "snapshot", snapshot, scene_time)
+        self._last_snapshot = scene_time
+        self.counts["snapshots"] += 1
+
+    def request(self, client_id: str, text: str | bytes, scene_time: float) -> None:
+        """A text a client sent (before it is applied)."""
+        if isinstance(text, bytes):
+            text = text.decode("utf-8", "replace")
+        self._write("/vp/requests", "request", {"client": client_id, "text": text}, scene_time)
+        self.counts["requests"] += 1
+
+    def tick(self, messages: list[Mapping[str, Any]], scene_time: float,
+             snapshot: Callable[[], Mapping[str, Any]]) -> str | None:
+        """A tick's messages; a snapshot first when one is due. The reason the recording
+        stopped, when a limit stopped it now."""
+        if self.stopped:
+            return None
+        if scene_time - self._last_snapshot >= SNAPSHOT_EVERY:
+            self.snapshot(snapshot(), scene_time)
+        self._write("/vp/ticks", "ticks", {"messages": messages}, scene_time)
+        self.counts["ticks"] += 1
+        for message in messages:
+            for sensor, reading in (message.get("sensors") or {}).items():
+                self._write(f"/sensors/{sensor}", "reading", reading, scene_time)
+                self.counts["readings"] += 1
+        return self._over()
+
+    def finish(self, reason: str) -> dict[str, Any]:
+        """End the file (its index and summary written) and say how it ended."""
+        self.stopped = self.stopped or reason
+        self._writer.add_metadata("stopped", {"reason": self.stopped})
+        self._writer.finish()
+        return self.summary()
+
+    def summary(self) -> dict[str, Any]:
+        """What the recording holds so far."""
+        return {"bytes": self.size, "seconds": round(self.seconds, 6), **self.counts,
+                "stopped": self.stopped}
+
+    def _over(self) -> str | None:
+        limits = self._limits
+        if self.size + CHUNK_BYTES > limits.max_bytes:
+            self.stopped = f"it reached {limits.max_bytes} bytes, the most a recording holds " \
+                           f"(--limit recordingBytes=N)"
+        elif self.seconds >= limits.max_seconds:
+            self.stopped = f"it reached {limits.max_seconds:g} s of scene time, the most a " \
+                           f"recording holds (--limit recordingSeconds=N)"
+        return self.stopped
+
+    def _write(self, topic: str, schema: str, value: Any, scene_time: float) -> None:
+        channel = self._channels.get(topic)
+        if channel is None:
+            if schema not in self._schema_ids:
+                self._schema_ids[schema] = self._writer.register_schema(
+                    f"vp.{schema}", "jsonschema", json.dumps(SCHEMAS[schema]).encode())
+            channel = self._channels[topic] = self._writer.register_channel(
+                topic, "json", self._schema_ids[schema])
+        at = self._wall_ns + round((scene_time - self._start) * 1e9)
+        self._writer.add_message(channel, log_time=at, publish_time=at,
+                                 data=encode(value).encode(), sequence=self._sequence)
+        self._sequence += 1
+        self._last = scene_time

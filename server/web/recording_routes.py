@@ -1,0 +1,67 @@
+"""REST routes of recordings: start one of a scene, stop it, list them, download one.
+
+A scene's process writes its recording (:mod:`server.web.recording_file`); these routes
+ask it to start and stop, and serve the finished files (:mod:`server.web.recordings`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import APIRouter, Request
+from fastapi.responses import FileResponse, JSONResponse
+
+from .access import changing_allowed
+from .hub import Hubs
+from .rest import NOT_FOUND, ErrorBody, hub_of
+
+router = APIRouter(prefix="/api")
+BUSY: dict[int | str, dict[str, Any]] = {
+    **NOT_FOUND, 409: {"model": ErrorBody, "description": "Recording already, or still (recording_busy)"},
+    403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"}}
+
+
+def _hubs(request: Request) -> Hubs:
+    return request.app.state.hubs
+
+
+@router.post("/scenes/{scene}/recordings", status_code=201, responses=BUSY,
+             summary="Start recording a scene (one recording at a time): answers its id")
+async def start(request: Request, scene: str) -> dict[str, Any]:
+    """Everything viewers are sent and every request clients make, with their times, into
+    an MCAP file, until ``POST /api/recordings/{id}/stop``, a limit (``recordingBytes``,
+    ``recordingSeconds``) or the scene's end. Needs the control token, as imports do."""
+    changing_allowed(request)
+    hubs = _hubs(request)
+    hub = hub_of(request, scene)
+    recording_id, path = hubs.recordings.new(scene)
+    answer = await hub.runner.call("record", recording_id, str(path))
+    hubs.recordings.started(recording_id, scene)
+    return answer
+
+
+@router.post("/recordings/{recording_id}/stop", responses=BUSY,
+             summary="Stop a recording: what it holds (bytes, seconds, ticks, requests, readings)")
+async def stop(request: Request, recording_id: str) -> dict[str, Any]:
+    changing_allowed(request)
+    recordings = _hubs(request).recordings
+    recordings.path(recording_id)  # unknown_recording for what was never made
+    scene = recordings.active.get(recording_id)
+    if scene is None:
+        return recordings.describe(recording_id)  # stopped already: as it is
+    answer = await hub_of(request, scene).runner.call("unrecord", recording_id)
+    recordings.ended(recording_id)
+    return answer
+
+
+@router.get("/recordings", summary="Every recording, newest first: its scene, state, size, "
+                                   "start, duration and messages")
+async def listing(request: Request) -> list[dict[str, Any]]:
+    return _hubs(request).recordings.listing()
+
+
+@router.get("/recordings/{recording_id}", responses=BUSY, response_class=FileResponse,
+            summary="A finished recording's MCAP file (Foxglove opens it)")
+async def download(request: Request, recording_id: str) -> FileResponse:
+    path = _hubs(request).recordings.finished(recording_id)
+    return FileResponse(path, media_type="application/octet-stream", filename=path.name)

@@ -1,0 +1,119 @@
+"""The server's recordings: MCAP files in one folder (``--state-dir``'s ``recordings/``, or
+a temporary folder that goes with the server), and which scene is filling which.
+
+A recording's id names its file: ``<scene>-<UTC time>-<4 hex digits>.mcap``. Scene
+processes write the files (:mod:`server.web.recording_file`); this side hands out ids,
+lists the files with what each holds (read from its MCAP summary, once per version of the
+file) and hands finished ones out.
+"""
+
+from __future__ import annotations
+
+import re
+import secrets
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from mcap.reader import make_reader
+
+from ..errors import RecordingBusy, UnknownRecording
+
+RECORDING_ID = re.compile(r"[A-Za-z0-9_-]{1,64}-\d{8}T\d{6}Z-[0-9a-f]{4}")
+SUFFIX = ".mcap"
+
+
+class Recordings:
+    """Recordings in ``folder`` (None: a temporary one, removed when the server stops)."""
+
+    def __init__(self, folder: Path | None = None) -> None:
+        self._temporary = tempfile.TemporaryDirectory(prefix="vp-recordings-") if folder is None else None
+        self.folder = Path(self._temporary.name) if self._temporary is not None else folder
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)  # type: ignore[union-attr]
+        except OSError:  # the state folder's problem, reported there; recording says it too
+            pass
+        self.active: dict[str, str] = {}  # recording id -> scene filling it
+        self._read: dict[str, tuple[tuple[int, int], dict[str, Any]]] = {}  # id -> (version, summary)
+
+    def close(self) -> None:
+        """The temporary folder goes (a state folder's stay)."""
+        if self._temporary is not None:
+            self._temporary.cleanup()
+
+    def new(self, scene: str) -> tuple[str, Path]:
+        """A new recording's id and the path of its file."""
+        stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
+        recording_id = f"{scene}-{stamp}-{secrets.token_hex(2)}"
+        return recording_id, self.folder / f"{recording_id}{SUFFIX}"  # type: ignore[operator]
+
+    def started(self, recording_id: str, scene: str) -> None:
+        self.active[recording_id] = scene
+
+    def ended(self, recording_id: str) -> None:
+        """It stopped (asked to, at a limit, or with its scene)."""
+        self.active.pop(recording_id, None)
+
+    def scene_ended(self, scene: str) -> None:
+        """Its scene's process is gone: what it was recording is as far as it got."""
+        for recording_id in [r for r, s in self.active.items() if s == scene]:
+            self.ended(recording_id)
+
+    def path(self, recording_id: str) -> Path:
+        """The file of a recording (``unknown_recording`` for an id the server has not)."""
+        path = self.folder / f"{recording_id}{SUFFIX}"  # type: ignore[operator]
+        if not RECORDING_ID.fullmatch(recording_id) or not path.is_file():
+            raise UnknownRecording(f"no recording {recording_id[:80]!r}", recording=recording_id[:80])
+        return path
+
+    def finished(self, recording_id: str) -> Path:
+        """The file of a recording that has stopped (``recording_busy`` while it runs)."""
+        path = self.path(recording_id)
+        if recording_id in self.active:
+            raise RecordingBusy(f"recording {recording_id} is still running; stop it first "
+                                f"(POST /api/recordings/{recording_id}/stop)", recording=recording_id)
+        return path
+
+    def listing(self) -> list[dict[str, Any]]:
+        """Every recording, newest first: id, scene, state, bytes, and for a finished one
+        its start, duration and message counts."""
+        found = []
+        for path in sorted(self.folder.glob(f"*{SUFFIX}"), reverse=True):  # type: ignore[union-attr]
+            recording_id = path.name[:-len(SUFFIX)]
+            if RECORDING_ID.fullmatch(recording_id):
+                found.append(self.describe(recording_id))
+        return found
+
+    def describe(self, recording_id: str) -> dict[str, Any]:
+        """What one recording holds."""
+        path = self.path(recording_id)
+        stat = path.stat()
+        entry = {"id": recording_id, "scene": recording_id.rsplit("-", 2)[0], "bytes": stat.st_size}
+        if recording_id in self.active:
+            return {**entry, "state": "recording"}
+        version = (stat.st_size, stat.st_mtime_ns)
+        cached = self._read.get(recording_id)
+        if cached is None or cached[0] != version:
+            cached = self._read[recording_id] = (version, _summary(path))
+        return {**entry, **cached[1]}
+
+
+def _summary(path: Path) -> dict[str, Any]:
+    """What a finished file's MCAP summary says (a file cut short: ``damaged``)."""
+    try:
+        with open(path, "rb") as stream:
+            reader = make_reader(stream)
+            summary = reader.get_summary()
+            metadata = {m.name: m.metadata for m in reader.iter_metadata()}
+    except Exception:  # the mcap reader raises many kinds for a file without its end
+        return {"state": "damaged"}
+    statistics = summary.statistics if summary is not None else None
+    if statistics is None:
+        return {"state": "damaged"}
+    channels = {c.id: c.topic for c in summary.channels.values()}  # type: ignore[union-attr]
+    counts = {channels[k]: v for k, v in statistics.channel_message_counts.items()}
+    return {"state": "stopped", "stopped": metadata.get("stopped", {}).get("reason"),
+            "startedNs": statistics.message_start_time,
+            "seconds": (statistics.message_end_time - statistics.message_start_time) / 1e9,
+            "messages": counts}
