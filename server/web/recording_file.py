@@ -27,14 +27,14 @@ class RecordingFile:
             raise RecordingBusy(f"a recording {recording_id!r} exists already", recording=recording_id) from None
         except OSError as error:
             raise StorageFailure(f"the recording cannot be written ({error.strerror})") from None
-        self.recorder = Recorder(self._file, scene.name, time.time_ns(), scene.time,
+        self.recorder = Recorder(self._file, scene, time.time_ns(),
                                  RecordingLimits(limits.recording_bytes, limits.recording_seconds))
-        self.recorder.snapshot(scene.snapshot(), scene.time)
+        self.scene = scene
 
     def stop(self, reason: str) -> dict[str, Any]:
         """Finish and close the file; what it holds, and why it stopped."""
         try:
-            return {"id": self.id, **self.recorder.finish(reason)}
+            return {"id": self.id, **self.recorder.finish(reason, self.scene)}
         except Exception:  # a full disk: the file stays as far as it got
             log.exception("recording %s did not finish", self.id)
             return {"id": self.id, "stopped": f"{reason}; its file could not be finished"}
@@ -43,4 +43,4 @@ class RecordingFile:
 
     def tick(self, messages: list[Mapping[str, Any]], scene: Scene) -> str | None:
         """Record a tick's messages; the reason it stopped when a limit stopped it."""
-        return self.recorder.tick(messages, scene.time, scene.snapshot)
+        return self.recorder.tick(messages, scene)

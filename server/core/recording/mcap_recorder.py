@@ -12,6 +12,9 @@ Channels (JSON messages, each with the JSON Schema of what it carries):
 - ``/vp/requests``: each text a client sent (``client``, ``text``), applied or refused.
 - ``/sensors/<id>``: one channel per watched sensor, its reading each time it changed
   (``distance``, ``touch``, ``force``…, as the protocol's ``reading``): what a plot reads.
+- ``/scene`` and ``/tf``: the physical parts as Foxglove draws them (:mod:`.foxglove`):
+  every part anew when the recording starts and at most once a second while parts come
+  and go; where the parts that moved are, each tick, and all of them with each snapshot.
 
 Log times are the scene's clock, counted from the wall time at which the recording
 started (a paused scene's steps are as far apart as its clock says, not as the wall's).
@@ -23,13 +26,17 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from typing import IO, Any, Callable, Mapping
+from typing import IO, Any, Mapping
 
 from mcap.writer import CompressionType, Writer
 
 from ..protocol.messages import encode, schema
+from ..model.node import Node
+from ..scene.scene import Scene
+from . import foxglove
 
 SNAPSHOT_EVERY = 5.0  # seconds of scene time between the snapshots a seek starts from
+SCENE_EVERY = 1.0  # seconds of scene time at least between two /scene messages
 CHUNK_BYTES = 256 * 1024  # MCAP chunk size: the most a stop at max_bytes can run over
 PROFILE = "virtual-prosthetics"
 
@@ -51,6 +58,7 @@ SCHEMAS = {  # each channel's messages, as Foxglove and any JSON Schema reader r
     "ticks": _standalone({"type": "object", "required": ["messages"], "properties": {"messages": {
         "type": "array", "items": {"anyOf": [{"$ref": "#/$defs/added"}, {"$ref": "#/$defs/frame"},
                                              {"$ref": "#/$defs/removed"}]}}}}),
+    "scene": foxglove.SCENE_SCHEMA, "transforms": foxglove.TRANSFORMS_SCHEMA,
     "request": {"type": "object", "required": ["client", "text"], "properties": {
         "client": {"type": "string"}, "text": {"type": "string", "description": "as sent"}}},
 }
@@ -68,20 +76,24 @@ class RecordingLimits:
 class Recorder:
     """One recording of one scene into ``stream`` (a binary file open for writing)."""
 
-    def __init__(self, stream: IO[bytes], scene: str, wall_ns: int, scene_time: float,
-                 limits: RecordingLimits) -> None:
+    def __init__(self, stream: IO[bytes], scene: Scene, wall_ns: int, limits: RecordingLimits) -> None:
         self._stream, self._limits = stream, limits
-        self._wall_ns, self._start = wall_ns, scene_time
+        self._wall_ns, self._start = wall_ns, scene.time
         self._writer = Writer(stream, chunk_size=CHUNK_BYTES, compression=CompressionType.ZSTD)
         self._writer.start(profile=PROFILE)
-        self._writer.add_metadata("recording", {"scene": scene, "startedNs": str(wall_ns),
-                                                "sceneTime": repr(scene_time)})
+        self._writer.add_metadata("recording", {"scene": scene.name, "startedNs": str(wall_ns),
+                                                "sceneTime": repr(scene.time)})
         self._channels: dict[str, int] = {}
         self._schema_ids: dict[str, int] = {}
         self._sequence = 0
         self._last_snapshot = -SNAPSHOT_EVERY
         self.stopped: str | None = None  # why it stopped, once it has
         self.counts = {"ticks": 0, "requests": 0, "snapshots": 0, "readings": 0}
+        self._drawn_at = -SCENE_EVERY  # scene time of the last /scene
+        self._redraw = False  # parts came or went since
+        self._parts_below: dict[str, list[Node]] = {}  # moved node -> its parts (foxglove.moved)
+        self._snapshot(scene)
+        self._draw(scene)
 
     @property
     def size(self) -> int:
@@ -93,11 +105,18 @@ class Recorder:
         """Scene time recorded so far."""
         return self._last - self._start if self._sequence else 0.0
 
-    def snapshot(self, snapshot: Mapping[str, Any], scene_time: float) -> None:
-        """The whole scene as it is at ``scene_time`` (the recording's first message)."""
-        self._write("/vp/snapshot", "snapshot", snapshot, scene_time)
-        self._last_snapshot = scene_time
+    def _snapshot(self, scene: Scene) -> None:
+        """The whole scene as it is now, and where every part is."""
+        self._write("/vp/snapshot", "snapshot", scene.snapshot(), scene.time)
+        self._write("/tf", "transforms", foxglove.transforms(foxglove.drawn(scene), self._ns(scene.time)),
+                    scene.time)
+        self._last_snapshot = scene.time
         self.counts["snapshots"] += 1
+
+    def _draw(self, scene: Scene) -> None:
+        self._write("/scene", "scene", foxglove.scene_update(scene, self._ns(scene.time), scene.assets),
+                    scene.time)
+        self._drawn_at, self._redraw = scene.time, False
 
     def request(self, client_id: str, text: str | bytes, scene_time: float) -> None:
         """A text a client sent (before it is applied)."""
@@ -106,24 +125,34 @@ class Recorder:
         self._write("/vp/requests", "request", {"client": client_id, "text": text}, scene_time)
         self.counts["requests"] += 1
 
-    def tick(self, messages: list[Mapping[str, Any]], scene_time: float,
-             snapshot: Callable[[], Mapping[str, Any]]) -> str | None:
-        """A tick's messages; a snapshot first when one is due. The reason the recording
-        stopped, when a limit stopped it now."""
+    def tick(self, messages: list[Mapping[str, Any]], scene: Scene) -> str | None:
+        """A tick's messages (the scene as they leave it); a snapshot first when one is
+        due. The reason the recording stopped, when a limit stopped it now."""
         if self.stopped:
             return None
-        if scene_time - self._last_snapshot >= SNAPSHOT_EVERY:
-            self.snapshot(snapshot(), scene_time)
-        self._write("/vp/ticks", "ticks", {"messages": messages}, scene_time)
+        now = scene.time
+        if now - self._last_snapshot >= SNAPSHOT_EVERY:
+            self._snapshot(scene)
+        self._write("/vp/ticks", "ticks", {"messages": messages}, now)
         self.counts["ticks"] += 1
         for message in messages:
+            if message["op"] in ("added", "removed") or message.get("updates"):
+                self._redraw = True
+                self._parts_below.clear()
             for sensor, reading in (message.get("sensors") or {}).items():
-                self._write(f"/sensors/{sensor}", "reading", reading, scene_time)
+                self._write(f"/sensors/{sensor}", "reading", reading, now)
                 self.counts["readings"] += 1
+        if self._redraw and now - self._drawn_at >= SCENE_EVERY:
+            self._draw(scene)
+        moved = foxglove.moved(scene, messages, self._parts_below)
+        if moved:
+            self._write("/tf", "transforms", foxglove.transforms(moved, self._ns(now)), now)
         return self._over()
 
-    def finish(self, reason: str) -> dict[str, Any]:
+    def finish(self, reason: str, scene: Scene) -> dict[str, Any]:
         """End the file (its index and summary written) and say how it ended."""
+        if self._redraw and not self.stopped:
+            self._draw(scene)
         self.stopped = self.stopped or reason
         self._writer.add_metadata("stopped", {"reason": self.stopped})
         self._writer.finish()
@@ -148,12 +177,18 @@ class Recorder:
         channel = self._channels.get(topic)
         if channel is None:
             if schema not in self._schema_ids:
+                name = SCHEMAS[schema].get("title", f"vp.{schema}")  # Foxglove's by their names
                 self._schema_ids[schema] = self._writer.register_schema(
-                    f"vp.{schema}", "jsonschema", json.dumps(SCHEMAS[schema]).encode())
+                    name, "jsonschema", json.dumps(SCHEMAS[schema]).encode())
             channel = self._channels[topic] = self._writer.register_channel(
                 topic, "json", self._schema_ids[schema])
-        at = self._wall_ns + round((scene_time - self._start) * 1e9)
+        at = self._ns(scene_time)
         self._writer.add_message(channel, log_time=at, publish_time=at,
                                  data=encode(value).encode(), sequence=self._sequence)
         self._sequence += 1
         self._last = scene_time
+
+    def _ns(self, scene_time: float) -> int:
+        """The log time of a scene time: nanoseconds since 1970, counted from the wall
+        time the recording started at."""
+        return self._wall_ns + round((scene_time - self._start) * 1e9)

@@ -18,13 +18,12 @@ def _recorded(scene, limits, seconds):
     """Record ``seconds`` of a hand flexing; the recorder (finished) and the file's messages."""
     hand = EdgedHand(scene, "h", True)
     stream = io.BytesIO()
-    recorder = Recorder(stream, scene.name, WALL, scene.time, limits)
-    recorder.snapshot(scene.snapshot(), scene.time)
+    recorder = Recorder(stream, scene, WALL, limits)
     for k in range(round(seconds / TICK)):
         hand.flex_fingers((k % 60) / 60)
-        if recorder.tick(scene.tick(TICK), scene.time, scene.snapshot):
+        if recorder.tick(scene.tick(TICK), scene):
             break
-    recorder.finish("stopped")
+    recorder.finish("stopped", scene)
     reader = make_reader(io.BytesIO(stream.getvalue()))
     return recorder, [(c.topic, m.log_time, json.loads(m.data)) for _, c, m in reader.iter_messages()]
 
