@@ -51,7 +51,9 @@ export async function connect({ url, scene: name = 'default', role = 'controller
 	const key = token ?? globalThis.process?.env?.VP_TOKEN ?? null;
 	const session = await openSession(sceneUrl(server, { scene: name, role, token: key, keep }), CLASSES, onMessage);
 	session.meshes = new PageMeshes(session, () => [scene, session.root]);
-	session.meshFiles = meshFilesFor(server.replace(/^ws/, 'http'), key);
+	session.http = server.replace(/^ws/, 'http');   // its REST side (recordings, mesh files)
+	session.token = key;
+	session.meshFiles = meshFilesFor(session.http, key);
 	setCurrentSession(session);
 	keepSyncing(session);
 	if (!IN_BROWSER) closeOnSignals();

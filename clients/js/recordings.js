@@ -1,0 +1,64 @@
+// Not in 1.0: recordings of the scene, made by the server (MCAP: Foxglove opens them).
+//   const rec = await startRecording();  …  await rec.stop();  await rec.save('trial.mcap');
+// save writes the file in Node and downloads it in a browser. The server is asked over
+// REST (POST /api/scenes/{scene}/recordings and /api/recordings/{id}…) with the session's token.
+
+import { ServerError } from './errors.js';
+import { currentSession } from './session.js';
+
+export class Recording {
+	constructor(session, id) {
+		this.session = session;
+		this.id = id;
+		this.summary = null;   // what it holds, once stopped
+	}
+
+	// Stop it (this client's earlier changes in it first); what it holds: bytes, seconds,
+	// ticks, requests, readings, and why it stopped.
+	async stop() {
+		await this.session.sync();
+		this.summary = await (await serverCall(this.session, `/api/recordings/${this.id}/stop`, 'stopRecording', 'POST')).json();
+		return this.summary;
+	}
+
+	// The MCAP file's bytes (stopping the recording first if it runs).
+	async bytes() {
+		if (!this.summary) await this.stop();
+		const answer = await serverCall(this.session, `/api/recordings/${this.id}`, 'saveRecording');
+		return new Uint8Array(await answer.arrayBuffer());
+	}
+
+	// Node: the file at `path`; a browser: a download named `path`.
+	async save(path = `${this.id}.mcap`) {
+		const data = await this.bytes();
+		if (globalThis.document) {
+			const link = Object.assign(document.createElement('a'), {
+				href: URL.createObjectURL(new Blob([data])), download: path });
+			link.click();
+			setTimeout(() => URL.revokeObjectURL(link.href), 0);
+		} else {
+			const { writeFile } = await import('node:fs/promises');
+			await writeFile(path, data);
+		}
+		return path;
+	}
+}
+
+// Start recording the current scene: every frame, request and watched reading from now.
+export async function startRecording(session = currentSession()) {
+	await session.sync();   // what this client did before is in the scene it starts from
+	const path = `/api/scenes/${encodeURIComponent(session.hello.scene)}/recordings`;
+	const answer = await (await serverCall(session, path, 'startRecording', 'POST')).json();
+	return new Recording(session, answer.id);
+}
+
+// A REST answer of the session's server; its refusal as the ServerError the WebSocket gives.
+async function serverCall(session, path, request, method = 'GET') {
+	const headers = session.token ? { Authorization: `Bearer ${session.token}` } : {};
+	const answer = await fetch(new URL(path, session.http), { method, headers });
+	if (!answer.ok) {
+		const body = await answer.json().catch(() => ({}));
+		throw new ServerError(body.code ?? 'http_error', body.message ?? answer.statusText, request, body.details ?? {});
+	}
+	return answer;
+}
