@@ -127,6 +127,11 @@ def figure_table(found: dict[str, Any]) -> list[str]:
         rows.append(f"| dynamic mode: a tick of {dyn['hands']} hands flexing and {dyn['objects']} objects "
                     f"{label}, 5 substeps | {_ms(dyn[key].median)} | {_ms(dyn[key].p95)} | "
                     f"one tick period: {_ms(PERIOD_MS)} | {dyn[key].median / PERIOD_MS:.2f}× |")
+    rec = found["recording"]
+    rows.append(f"| recording hands-{rec['hands']} with every motor turning every tick: the recorder's time "
+                f"a tick (its MCAP file: {rec['mb_per_minute']:.1f} MB a minute) | {_ms(rec['record_ms'].median)} | "
+                f"{_ms(rec['record_ms'].p95)} | one tick period: {_ms(PERIOD_MS)} | "
+                f"{rec['record_ms'].median / PERIOD_MS:.2f}× |")
     two = found["two_scenes"]
     rows.append(f"| two scenes of hands-{two['hands']} driven at once: ticks/s | "
                 f"{' and '.join(f'{t:.1f}' for t in two['ticks_per_second'])} | tick p95 "

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import chaos, core, idle_scenes, live, scenes
+from . import chaos, core, idle_scenes, live, recording, scenes
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -45,6 +45,7 @@ class Sizes:
     idle_scenes: int
     hands_most: int  # driven from outside by one client: the 100 hands
     dynamic: tuple[int, int, int, int]  # hands, free objects, ticks while they fall, ticks at rest
+    recorded_ticks: int  # of hands-10 recorded
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -52,12 +53,12 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
              document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
-             dynamic=(10, 50, 240, 300))
+             dynamic=(10, 50, 240, 300), recorded_ticks=1200)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
               document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4,
-              dynamic=(2, 4, 3, 3))
+              dynamic=(2, 4, 3, 3), recorded_ticks=5)
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -79,6 +80,7 @@ def measure(sizes: Sizes) -> dict[str, Any]:
         "documents": lambda: [core.documents(count, sizes.document_rounds)
                               for count in (small, large)],
         "dynamic": lambda: core.dynamic(*sizes.dynamic),
+        "recording": lambda: recording.recording(small, sizes.recorded_ticks),
     }
     for name, step in steps.items():
         found[name] = _timed(name, step)
@@ -124,6 +126,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "frame_bytes_two_hands": found["frames"]["frame_bytes"].median,
         "max_hands_60hz": found["max_hands"]["max_hands"],
         "dynamic_hands10_objects50_tick_ms": found["dynamic"]["tick_ms"].median,
+        "recording_hands10_mb_per_minute": found["recording"]["mb_per_minute"],
         "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],
         "hands100_outside_ticks_per_s": found["outside"][2]["ticks_per_second"],
         "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),
