@@ -65,6 +65,7 @@ class Hubs:
         self._stopping: dict[str, SceneRunner] = {}  # removed scenes whose process may run on
         self.removed = 0
         self.offload = Offload()  # reading saved files and checking uploads, off this process
+        self.resimulations = Offload()  # recordings run again (minutes, maybe): a process of their own
         self._setups: dict[str, SceneSetup] = {}
         self._restarts: dict[str, float] = {}  # a failed setup scene's next pause
         # signs resume keys: valid until a restart, or for good with a state folder
@@ -246,6 +247,7 @@ class Hubs:
         runners += self._stopping.values()  # removed a moment ago: their last saves
         self._stopping.clear()
         self.offload.close()
+        self.resimulations.close()
         await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])
         self.recordings.close()  # after the processes finished their files
         return sorted({runner.name for runner in runners if runner.unsaved})

@@ -11,6 +11,8 @@ from typing import Any
 from fastapi import APIRouter, Request
 from fastapi.responses import FileResponse, JSONResponse
 
+from ..core.recording.resimulate import resimulate_file
+from ..errors import OutOfRange
 from .access import changing_allowed
 from .hub import Hubs
 from .rest import NOT_FOUND, ErrorBody, hub_of
@@ -52,6 +54,21 @@ async def stop(request: Request, recording_id: str) -> dict[str, Any]:
     answer = await hub_of(request, scene).runner.call("unrecord", recording_id)
     recordings.ended(recording_id)
     return answer
+
+
+@router.post("/recordings/{recording_id}/resimulate", responses=BUSY,
+             summary="Run a recording's requests again in a new scene; where the run differs")
+async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0) -> dict[str, Any]:
+    """The scene the recording started from is made anew, its requests are applied and its
+    ticks ticked as recorded, in a process of its own; the report counts the ticks that
+    differ by more than ``tolerance`` and lists the first differences (``tick``, ``time``,
+    ``field``, ``id``, ``recorded``, ``now``). Kinematic mode: none."""
+    changing_allowed(request)  # minutes of a core, maybe
+    hubs = _hubs(request)
+    path = hubs.recordings.finished(recording_id)
+    if not 0 <= tolerance <= 1e6:
+        raise OutOfRange(f"tolerance must be within [0, 1000000], got {tolerance}", argument="tolerance")
+    return await hubs.resimulations.run(resimulate_file, str(path), hubs.limits, hubs.assets, tolerance)
 
 
 @router.get("/recordings", summary="Every recording, newest first: its scene, state, size, "

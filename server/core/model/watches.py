@@ -33,6 +33,10 @@ class Watches:
         """The watched sensors, in the order they were first watched."""
         return list(self._watchers)
 
+    def holders(self) -> dict[str, list[str]]:
+        """Who watches each watched sensor (clients' ids, or the laser's)."""
+        return {sensor: sorted(holders) for sensor, holders in self._watchers.items()}
+
     def add(self, sensor_id: str, watcher: str) -> None:
         """``watcher`` watches the sensor (again: no change)."""
         holders = self._watchers.get(sensor_id)

@@ -3,6 +3,9 @@ clients made, each at its time, in chunks compressed with zstd (the ``mcap`` pac
 
 Channels (JSON messages, each with the JSON Schema of what it carries):
 
+- ``/vp/document``: the scene when the recording starts as a scene document (what
+  ``/export`` gives, uploaded meshes included) with the sensors' watchers: what a
+  re-simulation starts from (:mod:`.resimulate`).
 - ``/vp/snapshot``: the whole scene (the protocol's ``snapshot``) when the recording
   starts and every SNAPSHOT_EVERY seconds of scene time after: a replay seeks to the last
   one before a time and applies the ticks after it (MCAP's chunk index finds both
@@ -31,6 +34,7 @@ from typing import IO, Any, Mapping
 from mcap.writer import CompressionType, Writer
 
 from ..protocol.messages import encode, schema
+from ..protocol.scene_document import export_scene
 from ..model.node import Node
 from ..scene.scene import Scene
 from . import foxglove
@@ -58,6 +62,9 @@ SCHEMAS = {  # each channel's messages, as Foxglove and any JSON Schema reader r
     "ticks": _standalone({"type": "object", "required": ["messages"], "properties": {"messages": {
         "type": "array", "items": {"anyOf": [{"$ref": "#/$defs/added"}, {"$ref": "#/$defs/frame"},
                                              {"$ref": "#/$defs/removed"}]}}}}),
+    "document": _standalone({"type": "object", "required": ["document", "watchers"], "properties": {
+        "document": {"$ref": "#/$defs/sceneDocument"},
+        "watchers": {"type": "object", "additionalProperties": {"type": "array", "items": {"type": "string"}}}}}),
     "scene": foxglove.SCENE_SCHEMA, "transforms": foxglove.TRANSFORMS_SCHEMA,
     "request": {"type": "object", "required": ["client", "text"], "properties": {
         "client": {"type": "string"}, "text": {"type": "string", "description": "as sent"}}},
@@ -92,6 +99,8 @@ class Recorder:
         self._drawn_at = -SCENE_EVERY  # scene time of the last /scene
         self._redraw = False  # parts came or went since
         self._parts_below: dict[str, list[Node]] = {}  # moved node -> its parts (foxglove.moved)
+        self._write("/vp/document", "document", {"document": export_scene(scene),
+                                                 "watchers": scene.watches.holders()}, scene.time)
         self._snapshot(scene)
         self._draw(scene)
 

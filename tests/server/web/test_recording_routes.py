@@ -108,6 +108,9 @@ def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server,
     assert len(readings) == len(carried) and len({r["distance"] for _, r in readings}) > 1
     for (log_time, reading), (time, frame) in zip(readings, carried):
         assert scene_time(log_time) == pytest.approx(time) and reading == frame["sensors"][sensor]
+    _, again = _post(server, f"/api/recordings/{started['id']}/resimulate")  # kinematic: exactly
+    assert (again["ticks"], again["requests"]) == (len(frames), len(texts))
+    assert again["ticksDiffering"] == 0, again["differences"][:3]
 
 
 def test_one_recording_at_a_time_and_none_downloaded_before_it_stops(server, scene_name):
