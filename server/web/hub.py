@@ -66,6 +66,7 @@ class Hubs:
         self.removed = 0
         self.offload = Offload()  # reading saved files and checking uploads, off this process
         self.resimulations = Offload()  # recordings run again (minutes, maybe): a process of their own
+        self.replays = Offload()  # recordings read for players (JSON parsing: not in this process)
         self._setups: dict[str, SceneSetup] = {}
         self._restarts: dict[str, float] = {}  # a failed setup scene's next pause
         # signs resume keys: valid until a restart, or for good with a state folder
@@ -248,6 +249,7 @@ class Hubs:
         self._stopping.clear()
         self.offload.close()
         self.resimulations.close()
+        self.replays.close()
         await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])
         self.recordings.close()  # after the processes finished their files
         return sorted({runner.name for runner in runners if runner.unsaved})

@@ -6,11 +6,13 @@ ask it to start and stop, and serve the finished files (:mod:`server.web.recordi
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from fastapi import APIRouter, Request
 from fastapi.responses import FileResponse, JSONResponse
 
+from ..core.recording import replay
 from ..core.recording.resimulate import resimulate_file
 from ..errors import OutOfRange
 from .access import changing_allowed
@@ -18,6 +20,7 @@ from .hub import Hubs
 from .rest import NOT_FOUND, ErrorBody, hub_of
 
 router = APIRouter(prefix="/api")
+WINDOW_SECONDS = 10.0  # of ticks one request may ask for (a player asks for the next second)
 BUSY: dict[int | str, dict[str, Any]] = {
     **NOT_FOUND, 409: {"model": ErrorBody, "description": "Recording already, or still (recording_busy)"},
     403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"}}
@@ -69,6 +72,34 @@ async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0
     if not 0 <= tolerance <= 1e6:
         raise OutOfRange(f"tolerance must be within [0, 1000000], got {tolerance}", argument="tolerance")
     return await hubs.resimulations.run(resimulate_file, str(path), hubs.limits, hubs.assets, tolerance)
+
+
+@router.get("/recordings/{recording_id}/at", responses=BUSY,
+            summary="A recording at a time (s from its start): a snapshot and one folded frame")
+async def at(request: Request, recording_id: str, time: float = 0.0) -> dict[str, Any]:
+    """What a player shows after a seek: ``time`` (clamped), ``duration`` and the
+    ``messages`` that make the scene as it was then."""
+    hubs = _hubs(request)
+    path = hubs.recordings.finished(recording_id)
+    return await hubs.replays.run(replay.seek, str(path), _seconds(time, "time"))
+
+
+@router.get("/recordings/{recording_id}/ticks", responses=BUSY,
+            summary="A recording's ticks in (after, until], at most 10 s of them: [time, messages] each")
+async def ticks(request: Request, recording_id: str, after: float, until: float) -> dict[str, Any]:
+    hubs = _hubs(request)
+    path = hubs.recordings.finished(recording_id)
+    start, end = _seconds(after, "after"), _seconds(until, "until")
+    if not 0 <= end - start <= WINDOW_SECONDS:
+        raise OutOfRange(f"until - after must be within [0, {WINDOW_SECONDS}] s, got {end - start:g}",
+                         argument="until")
+    return await hubs.replays.run(replay.window, str(path), start, end)
+
+
+def _seconds(value: float, name: str) -> float:
+    if not math.isfinite(value) or not -1e9 <= value <= 1e9:
+        raise OutOfRange(f"{name} must be a number of seconds, got {value}", argument=name)
+    return value
 
 
 @router.get("/recordings", summary="Every recording, newest first: its scene, state, size, "

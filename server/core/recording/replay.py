@@ -12,6 +12,8 @@ Times here are seconds from the recording's start (its first message).
 from __future__ import annotations
 
 import json
+import os
+from functools import lru_cache
 from typing import IO, Any, Iterator
 
 from mcap.reader import SeekingReader, make_reader
@@ -57,6 +59,13 @@ class Replay:
         return fold([m for taken, tick in self._messages(TICKS, start, end) if taken > start
                      for m in tick["messages"]])
 
+    def ticks(self, after: float, until: float) -> list[tuple[float, list[dict[str, Any]]]]:
+        """Each tick after ``after`` up to ``until`` (seconds) with its messages, as they
+        were sent: what a player applies one by one, at their times."""
+        start, end = self._ns(after), self._ns(until)
+        return [((taken - self.start_ns) / 1e9, tick["messages"])
+                for taken, tick in self._messages(TICKS, start, end) if taken > start]
+
     def ticks_after(self, seconds: float, count: int) -> list[float]:
         """The times of the next ``count`` ticks after ``seconds`` (stepping frame by frame)."""
         times = []
@@ -75,6 +84,31 @@ class Replay:
         for _, _, message in self._reader.iter_messages(topics=[topic], starting_at=start,
                                                         ending_at=end, reverse=reverse):
             yield message.log_time, json.loads(message.data)
+
+
+@lru_cache(maxsize=8)
+def _opened(path: str, version: tuple[int, int]) -> Replay:
+    return Replay(open(path, "rb"))  # noqa: SIM115 (kept open while cached; a file per recording)
+
+
+def opened(path: str) -> Replay:
+    """The replay of the recording at ``path``, read once per version of the file in this
+    process (a player asks for the next second many times)."""
+    stat = os.stat(path)
+    return _opened(path, (stat.st_size, stat.st_mtime_ns))
+
+
+def seek(path: str, seconds: float) -> dict[str, Any]:
+    """The recording at ``path`` at ``seconds``: its time, duration and the messages that
+    show the scene then (what ``GET /api/recordings/{id}/at`` answers)."""
+    replay = opened(path)
+    clamped = min(max(0.0, seconds), replay.duration)
+    return {"time": clamped, "duration": replay.duration, "messages": replay.at(clamped)}
+
+
+def window(path: str, after: float, until: float) -> dict[str, Any]:
+    """The ticks of the recording at ``path`` in (after, until] (``…/ticks``)."""
+    return {"ticks": [[time, messages] for time, messages in opened(path).ticks(after, until)]}
 
 
 def fold(messages: list[dict[str, Any]]) -> list[dict[str, Any]]:

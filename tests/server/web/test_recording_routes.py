@@ -108,6 +108,14 @@ def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server,
     assert len(readings) == len(carried) and len({r["distance"] for _, r in readings}) > 1
     for (log_time, reading), (time, frame) in zip(readings, carried):
         assert scene_time(log_time) == pytest.approx(time) and reading == frame["sensors"][sensor]
+    base = f"/api/recordings/{started['id']}"
+    end = server.get(f"{base}/at?time=1000000")
+    assert end["time"] == end["duration"] == pytest.approx(listed["seconds"])
+    assert [m["op"] for m in end["messages"]][0] == "snapshot"
+    window = server.get(f"{base}/ticks?after=0&until={end['duration']}")["ticks"]
+    assert [m["seq"] for _, tick in window for m in tick if m["op"] == "frame"] == seqs  # each, in order
+    assert [t for t, _ in window] == sorted(t for t, _ in window) and window[-1][0] == end["duration"]
+    _refused(lambda: server.get(f"{base}/ticks?after=0&until=11"), 400, "out_of_range")
     _, again = _post(server, f"/api/recordings/{started['id']}/resimulate")  # kinematic: exactly
     assert (again["ticks"], again["requests"]) == (len(frames), len(texts))
     assert again["ticksDiffering"] == 0, again["differences"][:3]

@@ -2,12 +2,21 @@
 
 import { Connection } from './connection.js';
 import { readOptions, socketUrl } from './options.js';
+import { Replay, mountTimeline } from './replay.js';
 import { mountViewer } from './viewer.js';
 
 const options = readOptions();
-let connection = null;
-const viewer = mountViewer({ options, request: (message) => connection.request(message) });
-connection = new Connection(socketUrl(options), {
-	onMessage: (message) => viewer.receive(message),
-	onState: (state) => viewer.setState(state),
-});
+if (options.recording) {   // a recording, played here (read-only: motor panels change nothing)
+	const viewer = mountViewer({ options, request: () => Promise.reject(new Error('a recording cannot be changed')) });
+	const replay = new Replay(options.recording, (message) => viewer.receive(message));
+	mountTimeline(replay);
+	window.VP.replay = replay;
+	replay.open().then(() => viewer.setState('replay'), (error) => viewer.setState(`replay failed: ${error.message}`));
+} else {
+	let connection = null;
+	const viewer = mountViewer({ options, request: (message) => connection.request(message) });
+	connection = new Connection(socketUrl(options), {
+		onMessage: (message) => viewer.receive(message),
+		onState: (state) => viewer.setState(state),
+	});
+}

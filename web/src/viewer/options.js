@@ -1,6 +1,7 @@
 // The viewer's URL options: /view?scene=NAME&role=viewer|controller&touch-color=red
 //   &debug-physics&show-slots&engine=NAME&token=TOKEN (a server that asks for one)
 //   &physics=dynamic|kinematic (a page: the scene's physics once connected)
+//   /view?recording=ID: a recording played (replay.js) instead of a live scene
 
 export function readOptions(search = window.location.search) {
 	const params = new URLSearchParams(search);
@@ -14,6 +15,7 @@ export function readOptions(search = window.location.search) {
 		engine: params.get('engine') || null,
 		token: params.get('token') || null,
 		physics: ['dynamic', 'kinematic'].includes(params.get('physics')) ? params.get('physics') : null,
+		recording: params.get('recording') || null,   // play a recording instead of a scene
 	};
 }
 

@@ -6,9 +6,10 @@ const COUNT_EVERY = 2000;   // ms between asks for the scene's client count
 
 export class StatusLine {
 	// pictures(): how many pictures the viewer has drawn so far
-	constructor(element, scene, watchLink = null, pictures = () => 0) {
+	constructor(element, scene, watchLink = null, pictures = () => 0, recording = null) {
 		this.element = element;
 		this.scene = scene;
+		this.recording = recording;   // the recording played, if one is
 		this.watchLink = watchLink;   // a page's own scene: where others can watch it
 		this.state = 'connecting';
 		this.fps = null;   // until a second of frames has been counted
@@ -58,6 +59,7 @@ export class StatusLine {
 	}
 
 	async countClients() {
+		if (this.recording) return;   // a recording has no clients
 		try {
 			const response = await fetch(new URL(`/api/scenes/${encodeURIComponent(this.scene)}`, import.meta.url));
 			if (response.ok) {
@@ -72,7 +74,8 @@ export class StatusLine {
 	}
 
 	show() {
-		const parts = [this.state, `scene ${this.scene}`, `${this.fps ?? '…'} frames/s`, `${this.pps ?? '…'} pictures/s`];
+		const parts = [this.state, this.recording ? `recording ${this.recording}` : `scene ${this.scene}`,
+			`${this.fps ?? '…'} frames/s`, `${this.pps ?? '…'} pictures/s`];
 		if (this.mode === 'dynamic') parts.splice(2, 0, 'dynamic');
 		if (this.paused) parts.splice(2, 0, 'paused by a script');
 		if (this.clients) {
@@ -86,6 +89,6 @@ export class StatusLine {
 			const link = Object.assign(document.createElement('a'), { href: this.watchLink, textContent: 'watch link', target: '_blank' });
 			this.element.append(' · ', link);
 		}
-		this.element.classList.toggle('down', this.state !== 'connected');
+		this.element.classList.toggle('down', !['connected', 'replay'].includes(this.state));
 	}
 }

@@ -52,7 +52,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		overlays: new Overlays(tree, options),
 		lasers: new Lasers(tree, stage.scene),
 		hook: installInspection(stage, tree, motion),
-		status: new StatusLine(status, options.scene, watchLink, () => stage.pictures),
+		status: new StatusLine(status, options.scene, watchLink, () => stage.pictures, options.recording),
 	};
 	const logo = new Logo(stage.scene);
 	const handlers = makeHandlers(view);

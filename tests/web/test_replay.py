@@ -1,0 +1,77 @@
+"""A recording played in the viewer (/view?recording=ID): seeking shows the robot where it
+was at that time, playing moves the timeline on, and a tick at a time steps it."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import pytest
+
+import virtual_prosthetics as vp
+
+from .conftest import open_viewer, wait_until
+from .picture import Picture, background_like, project, reddish
+
+CAMERA = ((4, 4, 7), (0, 1, 0))  # the default camera: position, target
+ANGLES = (0.0, -1.0, 1.0)
+
+
+def _recorded(server, scene):
+    """A red box on a motor held at each of ANGLES for 0.8 s, recorded; the recording's id
+    and, for each angle, a time in the recording when the box stood at it."""
+    robot = vp.Robot()
+    motor = vp.MotorZ(-2, 2)
+    box = vp.Box(0.3, 1, 0.3, "red")
+    robot.attach_chain(motor)
+    box.attach_to_slot(motor)
+    box.set_position(0, 0.5, 0)
+    rec = vp.start_recording()
+    for angle in ANGLES:
+        motor.set_angle(angle)
+        scene.sync()
+        time.sleep(0.8)
+    rec.stop()
+    ticks = server.get(f"/api/recordings/{rec.id}/ticks?after=0&until={rec.summary['seconds']}")["ticks"]
+    turned = [t for t, messages in ticks for m in messages if m["op"] == "frame" and robot.id in m.get("angles", {})]
+    assert len(turned) == 2, turned  # to -1, then to 1
+    ends = [0.0, *turned, rec.summary["seconds"]]
+    return rec.id, motor, [(a + b) / 2 for a, b in zip(ends, ends[1:])]
+
+
+def test_seeking_shows_the_robot_where_it_was_then(browser, pages, server, scene, scene_name, tmp_path):
+    recording, motor, times = _recorded(server, scene)
+    page = open_viewer(browser, pages, server, f"recording={recording}")
+    wait_until(page, "(id) => VP.objects.has(id)", motor.id)
+    for k in (2, 0, 1):  # out of order: each seek stands alone
+        page.evaluate("(t) => VP.replay.seek(t)", times[k])
+        wait_until(page, "([id, a]) => VP.angle(id) === a && VP.shownAngle(id) === a && VP.drawn()",
+                   [motor.id, ANGLES[k]])
+        png = page.screenshot()
+        (tmp_path / f"seek{k}.png").write_bytes(png)
+        picture = Picture(png)
+        top = (0.5 * math.sin(-ANGLES[k]), 0.5 * math.cos(ANGLES[k]), 0)  # the box's middle
+        assert reddish(picture.at(project(top, *CAMERA, picture.size))), (k, picture.at(project(top, *CAMERA, picture.size)))
+        elsewhere = (0.5 * math.sin(ANGLES[k]), 0.5 * math.cos(ANGLES[k]), 0) if ANGLES[k] else (0.6, 0.4, 0)
+        assert background_like(picture.at(project(elsewhere, *CAMERA, picture.size)))
+    label = page.evaluate("() => document.querySelector('#timeline span').textContent")
+    assert label.startswith(f"{times[1]:.2f} / ")
+    assert "recording" in page.evaluate("() => document.getElementById('status').textContent")
+
+
+def test_playing_and_stepping_move_the_timeline(browser, pages, server, scene, scene_name):
+    recording, motor, times = _recorded(server, scene)
+    page = open_viewer(browser, pages, server, f"recording={recording}")
+    wait_until(page, "(id) => VP.objects.has(id)", motor.id)
+    page.select_option("#timeline select", "2")
+    page.click("#timeline button[title='play / pause']")
+    wait_until(page, "([id, a]) => VP.angle(id) === a", [motor.id, ANGLES[2]], timeout=10_000)
+    wait_until(page, "() => !VP.replay.playing && VP.replay.time === VP.replay.duration")  # played to the end
+    page.evaluate("(t) => VP.replay.seek(t)", times[0])
+    wait_until(page, "(t) => VP.replay.time === t", times[0])
+    before = page.evaluate("() => VP.seq")
+    page.click("#timeline button[title='a tick forwards']")
+    wait_until(page, "(seq) => VP.seq === seq + 1", before)
+    assert page.evaluate("() => VP.replay.time") > times[0]
+    page.click("#timeline button[title='a tick back']")
+    wait_until(page, "(seq) => VP.seq <= seq", before)
