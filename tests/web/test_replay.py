@@ -75,3 +75,25 @@ def test_playing_and_stepping_move_the_timeline(browser, pages, server, scene, s
     assert page.evaluate("() => VP.replay.time") > times[0]
     page.click("#timeline button[title='a tick back']")
     wait_until(page, "(seq) => VP.seq <= seq", before)
+
+
+def test_a_controllers_viewer_records_the_scene_and_offers_the_replay(browser, pages, server, scene, scene_name):
+    hand = vp.EdgedHand(True)
+    scene.sync()
+    page = open_viewer(browser, pages, server, f"scene={scene_name}&role=controller")
+    assert open_viewer(browser, pages, server, f"scene={scene_name}").query_selector("#recorder") is None
+    page.click("#recorder button")
+    wait_until(page, "() => document.querySelector('#recorder button').textContent.includes('Stop')")
+    for k in range(10):
+        hand.flex_fingers(k / 10)
+        scene.sync()
+    time.sleep(0.5)
+    page.click("#recorder button")
+    wait_until(page, "() => document.querySelector('#recorder a') !== null")
+    replay_link = page.evaluate("() => document.querySelector('#recorder a').getAttribute('href')")
+    recording = replay_link.split("recording=")[1]
+    listed = {r["id"]: r for r in server.get("/api/recordings")}[recording]
+    assert listed["state"] == "stopped" and listed["scene"] == scene_name
+    assert listed["messages"]["/vp/ticks"] > 10
+    player = open_viewer(browser, pages, server, replay_link.split("?")[1])
+    wait_until(player, "(id) => VP.objects.has(id)", hand.id)

@@ -2,6 +2,7 @@
 
 import { Connection } from './connection.js';
 import { readOptions, socketUrl } from './options.js';
+import { mountRecorder } from './recorder.js';
 import { Replay, mountTimeline } from './replay.js';
 import { mountViewer } from './viewer.js';
 
@@ -19,4 +20,5 @@ if (options.recording) {   // a recording, played here (read-only: motor panels 
 		onMessage: (message) => viewer.receive(message),
 		onState: (state) => viewer.setState(state),
 	});
+	if (options.role === 'controller') mountRecorder(options);
 }
