@@ -45,7 +45,8 @@ class Sizes:
     idle_scenes: int
     hands_most: int  # driven from outside by one client: the 100 hands
     dynamic: tuple[int, int, int, int]  # hands, free objects, ticks while they fall, ticks at rest
-    recorded_ticks: int  # of hands-10 recorded
+    recorded_ticks: int  # of hands-10 recorded (10 minutes: the seek figure's recording)
+    seeks: int  # to random times of it
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -53,12 +54,12 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
              document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
-             dynamic=(10, 50, 240, 300), recorded_ticks=1200)
+             dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
               document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4,
-              dynamic=(2, 4, 3, 3), recorded_ticks=5)
+              dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2)
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -80,7 +81,7 @@ def measure(sizes: Sizes) -> dict[str, Any]:
         "documents": lambda: [core.documents(count, sizes.document_rounds)
                               for count in (small, large)],
         "dynamic": lambda: core.dynamic(*sizes.dynamic),
-        "recording": lambda: recording.recording(small, sizes.recorded_ticks),
+        "recording": lambda: recording.recording(small, sizes.recorded_ticks, sizes.seeks),
     }
     for name, step in steps.items():
         found[name] = _timed(name, step)
@@ -127,6 +128,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "max_hands_60hz": found["max_hands"]["max_hands"],
         "dynamic_hands10_objects50_tick_ms": found["dynamic"]["tick_ms"].median,
         "recording_hands10_mb_per_minute": found["recording"]["mb_per_minute"],
+        "recording_seek_ms_max": found["recording"]["seek_max_ms"],
         "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],
         "hands100_outside_ticks_per_s": found["outside"][2]["ticks_per_second"],
         "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),

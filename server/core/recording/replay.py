@@ -27,6 +27,7 @@ class Replay:
     """The recording in ``stream`` (a seekable binary file, finished)."""
 
     def __init__(self, stream: IO[bytes]) -> None:
+        stream.seek(0)
         self._reader: SeekingReader = make_reader(stream)  # type: ignore[assignment]
         summary = self._reader.get_summary()
         if summary is None or summary.statistics is None:
