@@ -1,7 +1,7 @@
 """ES modules served with their bare imports resolved (``'three'`` → ``/vendor/three/…``).
 
 A 1.0 page has no import map: it only imports ``/client/virtual-prosthetics.js``. That
-module, the viewer and three.js's add-ons import ``three`` and ``lil-gui`` by name, so the
+module, the viewer and three.js's add-ons import ``three``, ``lil-gui`` and ``uplot`` by name, so the
 server rewrites those names in the JavaScript it serves, once per file version. The map
 is the one place that says where each package lives.
 """
@@ -22,8 +22,9 @@ IMPORT_MAP = {
     "three": "/vendor/three/build/three.module.js",
     "three/addons/": "/vendor/three/examples/jsm/",
     "lil-gui": "/vendor/lil-gui/dist/lil-gui.esm.js",
+    "uplot": "/vendor/uplot/dist/uPlot.esm.js",
 }
-_BARE = re.compile(r"""(\bfrom\s*|\bimport\s*\(\s*|\bimport\s+)(['"])(three(?:/addons/[^'"]*)?|lil-gui)\2""")
+_BARE = re.compile(r"""(\bfrom\s*|\bimport\s*\(\s*|\bimport\s+)(['"])(three(?:/addons/[^'"]*)?|lil-gui|uplot)\2""")
 
 
 def resolve(specifier: str) -> str:
@@ -34,7 +35,7 @@ def resolve(specifier: str) -> str:
 
 
 def rewrite(source: str) -> str:
-    """``source`` with every bare import of three, its add-ons and lil-gui resolved."""
+    """``source`` with every bare import of three, its add-ons, lil-gui and uPlot resolved."""
     return _BARE.sub(lambda m: f"{m[1]}{m[2]}{resolve(m[3])}{m[2]}", source)
 
 

@@ -20,7 +20,7 @@ log = logging.getLogger(__name__)
 
 WEB = Path(__file__).resolve().parents[2] / "web"
 CLIENT = WEB.parent / "clients" / "js"
-VENDOR = {"three": CLIENT / "node_modules" / "three", "lil-gui": CLIENT / "node_modules" / "lil-gui"}
+VENDOR = {name: CLIENT / "node_modules" / name for name in ("three", "lil-gui", "uplot")}
 
 
 def mount_pages(app: FastAPI) -> None:

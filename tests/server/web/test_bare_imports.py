@@ -7,13 +7,13 @@ import httpx
 from server.web.bare_imports import IMPORT_MAP, rewrite
 
 
-def test_bare_imports_of_three_lil_gui_and_addons_are_resolved():
-    source = ("import * as THREE from 'three';\nimport GUI from \"lil-gui\";\n"
+def test_bare_imports_of_three_lil_gui_uplot_and_addons_are_resolved():
+    source = ("import * as THREE from 'three';\nimport GUI from \"lil-gui\";\nimport uPlot from 'uplot';\n"
               "export * from 'three';\nimport { OrbitControls } from 'three/addons/controls/OrbitControls.js';\n"
               "const m = await import('three');\nimport { x } from './three.js';\n")
     out = rewrite(source)
     assert f"from '{IMPORT_MAP['three']}'" in out and f'from "{IMPORT_MAP["lil-gui"]}"' in out
-    assert f"export * from '{IMPORT_MAP['three']}'" in out
+    assert f"export * from '{IMPORT_MAP['three']}'" in out and f"from '{IMPORT_MAP['uplot']}'" in out
     assert "'/vendor/three/examples/jsm/controls/OrbitControls.js'" in out
     assert f"import('{IMPORT_MAP['three']}')" in out
     assert "from './three.js'" in out       # relative imports stay as they are

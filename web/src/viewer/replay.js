@@ -22,6 +22,17 @@ export class Replay {
 		this.fetching = null;
 		this.generation = 0;     // a seek makes what is on its way stale
 		this.last = null;        // the frame's clock when the cursor last moved
+		this.origin = null;      // the scene's time when the recording started
+	}
+
+	// The scene's time where the player stands (what frames and plots count in).
+	sceneTime() {
+		return this.origin === null ? null : this.origin + this.time;
+	}
+
+	// The recording's [start, end] in the scene's time.
+	span() {
+		return this.origin === null ? null : [this.origin, this.origin + this.duration];
 	}
 
 	async open() {
@@ -42,6 +53,7 @@ export class Replay {
 		const found = await this.get(`at?time=${seconds}`);
 		if (generation !== this.generation) return;
 		this.duration = found.duration;
+		if (found.time === 0) this.origin = found.messages[0].time;   // the snapshot it began with
 		for (const message of found.messages) this.receive(message);
 		this.time = this.fetched = found.time;
 		this.buffer = [];

@@ -11,6 +11,7 @@ import { Logo } from './logo.js';
 import { Motion } from './motion.js';
 import { Overlays } from './overlays.js';
 import { MotorPanels } from './panel.js';
+import { Plots } from './plots.js';
 import { Stage } from './stage.js';
 import { StatusLine } from './status.js';
 import { SceneTree } from './tree.js';
@@ -35,7 +36,11 @@ function linkStylesheet() {
 // options: readOptions()'s; request(message) → promise of the answer's result;
 // guiFor(robotId): a lil-gui panel the page made for that robot (else one is made); watchLink: shown in the
 // status line (a page's own scene); drawnElsewhere(id): true for the SceneMeshes a page draws itself.
-export function mountViewer({ options, request, guiFor, watchLink = null, drawnElsewhere }) {
+// cursor(), span(): where a recording's player stands and the recording's [start, end]
+// (scene time), for the plots; null live.
+// plotting: a Plots button (the viewer page's; a 1.0 page keeps its own look).
+export function mountViewer({ options, request, guiFor, watchLink = null, drawnElsewhere, cursor = () => null,
+	span = () => null, plotting = false }) {
 	linkStylesheet();
 	const status = element('status', 'div', 'status');
 	const gestureBox = element('gesture', 'pre', 'gesture');
@@ -54,6 +59,12 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		hook: installInspection(stage, tree, motion),
 		status: new StatusLine(status, options.scene, watchLink, () => stage.pictures, options.recording),
 	};
+	const plots = new Plots({ motorsOf: (robot) => tree.objects.get(robot)?.userData.node.motors, cursor, span });
+	view.hook.plots = plots;
+	if (plotting) {
+		const plotButton = Object.assign(element('plot-button', 'button', 'plot-button'), { textContent: 'Plots' });
+		plotButton.addEventListener('click', () => plots.open());
+	}
 	const logo = new Logo(stage.scene);
 	const handlers = makeHandlers(view);
 	const panels = new MotorPanels(tree, {
@@ -81,6 +92,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		receive: (message) => {
 			dispatch(handlers, message);
 			view.hook.handled(message);
+			plots.receive(message);
 		},
 		setState: (state) => view.status.setState(state),
 	};

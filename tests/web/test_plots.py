@@ -1,0 +1,79 @@
+"""Plots in the viewer: a watched sensor's distance and a motor's angle on one uPlot
+chart, with the values the frames carried; the CSV holds them; over a recording the
+chart follows the player's time."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+import virtual_prosthetics as vp
+
+from .conftest import open_viewer, wait_until
+
+
+def _sensor_over_a_moving_box(scene):
+    sensor = vp.Sensor()
+    sensor.set_position(0, 4, 0)
+    sensor.set_rotation(3.14159, 0, 0)  # looking down
+    sensor.watch()
+    box = vp.Box(1, 1, 1, "red")
+    robot = vp.Robot()
+    motor = vp.MotorZ(-2, 2)
+    robot.attach_chain(motor)
+    scene.sync()
+    return sensor, box, motor
+
+
+def _move(scene, box, motor, steps=30):
+    for k in range(steps):
+        box.set_position(0, k / 10, 0)  # the box rises under the sensor: distance shrinks
+        motor.set_angle(k / 30)
+        scene.sync()
+        time.sleep(1 / 30)
+
+
+def test_a_sensors_distance_and_a_motors_angle_are_plotted_live_and_given_as_csv(
+        browser, pages, server, scene, scene_name, tmp_path):
+    sensor, box, motor = _sensor_over_a_moving_box(scene)
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    page.click("#plot-button")
+    _move(scene, box, motor)
+    wait_until(page, "(name) => VP.plots.series.has(name)", f"{sensor.id} distance")
+    page.evaluate("(name) => VP.plots.choose(name)", f"{motor.id} angle")
+    page.wait_for_timeout(300)
+    chosen = page.evaluate("() => VP.plots.chosen")
+    assert chosen == [f"{sensor.id} distance", f"{motor.id} angle"]
+    distances = page.evaluate("(name) => [...VP.plots.series.get(name).values()]", f"{sensor.id} distance")
+    assert len(set(distances)) > 5 and distances == sorted(distances, reverse=True)  # it came closer
+    assert distances[-1] == pytest.approx(sensor.sense_distance(), abs=1e-9)
+    drawn = page.evaluate("() => VP.plots.plot.data")
+    assert len(drawn) == 3 and len(drawn[0]) > 5  # times and the two series, drawn
+    csv = page.evaluate("() => VP.plots.csv()").splitlines()
+    assert csv[0] == f"time,{sensor.id} distance,{motor.id} angle" and len(csv) > 5
+    angles = [float(row.split(",")[2]) for row in csv[1:] if row.split(",")[2]]
+    assert angles[-1] == pytest.approx(29 / 30)
+    (tmp_path / "plots.png").write_bytes(page.screenshot())
+
+
+def test_over_a_recording_the_chart_follows_the_player(browser, pages, server, scene, scene_name):
+    sensor, box, motor = _sensor_over_a_moving_box(scene)
+    rec = vp.start_recording()
+    _move(scene, box, motor)
+    rec.stop()
+    page = open_viewer(browser, pages, server, f"recording={rec.id}")
+    page.click("#plot-button")
+    page.select_option("#timeline select", "5")
+    page.click("#timeline button[title='play / pause']")
+    wait_until(page, "() => !VP.replay.playing && VP.replay.time === VP.replay.duration")
+    name = f"{sensor.id} distance"
+    wait_until(page, "(name) => VP.plots.series.get(name)?.size > 10", name)
+    cursor, (start, end) = page.evaluate("() => [VP.plots.cursor(), VP.plots.span()]")
+    assert cursor == pytest.approx(end) and end - start == pytest.approx(page.evaluate("() => VP.replay.duration"))
+    scale = page.evaluate("() => [VP.plots.plot.scales.x.min, VP.plots.plot.scales.x.max]")
+    assert scale == pytest.approx([start, end])  # the chart spans the recording, the line at its end
+    times = page.evaluate("() => VP.plots.plot.data[0]")
+    assert start <= times[0] and times[-1] <= cursor
+    page.evaluate("(t) => VP.replay.seek(t)", 0.2)
+    wait_until(page, "(t) => Math.abs(VP.plots.cursor() - VP.plots.span()[0] - t) < 1e-9", 0.2)

@@ -1,0 +1,167 @@
+// Plots of what the frames carry, drawn with uPlot (npm: made for streaming time series):
+// every watched sensor's distance, touch and force, and every motor's angle, any of them
+// on one chart against the scene's time. Live, the chart shows the last WINDOW seconds;
+// over a recording (cursor(): the player's time) it shows what was played, with a line
+// where the player stands. CSV gives the chart's time window as a file.
+
+import uPlot from 'uplot';
+import { eachAngle } from '/client/pose.js';
+
+const WINDOW = 30;          // s of scene time shown live
+const KEEP = 20000;         // samples kept a series (older ones go)
+const DRAW_EVERY = 100;     // ms between redraws (a chart redrawn at 60 Hz costs the picture)
+const READINGS = ['distance', 'touch', 'force'];
+const COLORS = ['#d62728', '#1f77b4', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
+const STYLESHEET = '/vendor/uplot/dist/uPlot.min.css';
+
+export class Plots {
+	// motorsOf(robotId): its motor ids in order; cursor(): the player's scene time (a
+	// recording) or null; span(): the recording's [start, end] in scene time (null live)
+	constructor({ motorsOf, cursor = () => null, span = () => null }) {
+		this.motorsOf = motorsOf;
+		this.cursor = cursor;
+		this.span = span;
+		this.series = new Map();   // name -> Map(time -> value)
+		this.chosen = [];          // names plotted, in order
+		this.element = null;
+		this.plot = null;
+		this.dirty = false;
+		this.listed = 0;
+		this.touched = false;      // until someone ticks a series, the first distance is plotted
+	}
+
+	// Called with every message the viewer gets.
+	receive(message) {
+		if (message.op === 'snapshot' && this.cursor() === null) this.clear();
+		if (message.op !== 'frame') return;
+		const at = message.time;
+		for (const [sensor, reading] of Object.entries(message.sensors ?? {})) {
+			for (const field of READINGS) {
+				const value = reading[field];
+				if (value !== undefined) this.add(`${sensor} ${field}`, at, typeof value === 'number' ? value : null);
+			}
+		}
+		for (const [motor, angle] of eachAngle(message.angles, this.motorsOf)) this.add(`${motor} angle`, at, angle);
+	}
+
+	add(name, at, value) {
+		let samples = this.series.get(name);
+		if (!samples) this.series.set(name, samples = new Map());
+		samples.set(at, value);
+		if (samples.size > KEEP) samples.delete(samples.keys().next().value);
+		this.dirty = true;
+	}
+
+	clear() {
+		for (const samples of this.series.values()) samples.clear();
+		this.dirty = true;
+	}
+
+	// The panel: a list of series to tick, the chart and CSV.
+	open() {
+		if (this.element) return (this.element.hidden = !this.element.hidden);
+		if (![...document.styleSheets].some((sheet) => sheet.href?.endsWith(STYLESHEET))) {
+			document.head.append(Object.assign(document.createElement('link'), { rel: 'stylesheet', href: STYLESHEET }));
+		}
+		this.element = Object.assign(document.createElement('div'), { id: 'plots', className: 'plots' });
+		this.list = Object.assign(document.createElement('div'), { className: 'series' });
+		this.chart = document.createElement('div');
+		const csv = Object.assign(document.createElement('button'), { textContent: 'CSV', title: 'the chart\'s time window as a CSV file' });
+		csv.addEventListener('click', () => this.download());
+		this.element.append(this.list, this.chart, csv);
+		document.body.append(this.element);
+		setInterval(() => this.draw(), DRAW_EVERY);
+		this.rebuild();
+	}
+
+	choose(name, on = true) {
+		this.touched = true;
+		this.chosen = on ? [...new Set([...this.chosen, name])] : this.chosen.filter((n) => n !== name);
+		this.rebuild();
+	}
+
+	rebuild() {
+		this.plot?.destroy();
+		this.plot = new uPlot({
+			width: 460, height: 220, legend: { live: false },
+			scales: { x: { time: false, range: (u, min, max) => this.span() ?? [min, max] } },
+			series: [{ label: 's' }, ...this.chosen.map((label, k) => ({ label, stroke: COLORS[k % COLORS.length], spanGaps: true }))],
+			axes: [{ label: 'scene time (s)' }, {}],
+			hooks: { draw: [(u) => this.drawCursor(u)] },
+		}, this.data(), this.chart);
+		this.listSeries(true);
+	}
+
+	// The ticks: one per series seen so far (new ones appear as frames bring them).
+	listSeries(force = false) {
+		if (!force && this.series.size === this.listed) return;
+		this.listed = this.series.size;
+		const first = [...this.series.keys()].sort().find((name) => name.endsWith(' distance'));
+		if (!this.touched && !this.chosen.length && first) {
+			this.chosen = [first];
+			return this.rebuild();
+		}
+		this.list.replaceChildren(...[...this.series.keys()].sort().map((name) => {
+			const box = Object.assign(document.createElement('input'), { type: 'checkbox', checked: this.chosen.includes(name) });
+			box.addEventListener('change', () => this.choose(name, box.checked));
+			const label = document.createElement('label');
+			label.append(box, ` ${name}`);
+			return label;
+		}));
+	}
+
+	// [times, ...values] for uPlot: every time any chosen series has, in order, within the window.
+	data() {
+		const times = new Set();
+		for (const name of this.chosen) for (const at of this.series.get(name)?.keys() ?? []) times.add(at);
+		let ordered = [...times].sort((a, b) => a - b);
+		if (this.cursor() === null && ordered.length) ordered = ordered.filter((at) => at >= ordered[ordered.length - 1] - WINDOW);
+		return [ordered, ...this.chosen.map((name) => {
+			const samples = this.series.get(name) ?? new Map();
+			return ordered.map((at) => samples.get(at) ?? null);
+		})];
+	}
+
+	draw() {
+		if (!this.element || this.element.hidden) return;
+		this.listSeries();
+		if (this.dirty) {
+			this.dirty = false;
+			this.plot.setData(this.data());
+		} else if (this.cursor() !== null) {
+			this.plot.redraw(false, false);   // the player's line moves
+		}
+	}
+
+	drawCursor(u) {
+		const at = this.cursor();
+		if (at === null) return;
+		const x = u.valToPos(at, 'x', true);
+		const { ctx, bbox } = u;
+		ctx.save();
+		ctx.strokeStyle = '#333';
+		ctx.beginPath();
+		ctx.moveTo(x, bbox.top);
+		ctx.lineTo(x, bbox.top + bbox.height);
+		ctx.stroke();
+		ctx.restore();
+	}
+
+	// The chart's visible time window of the chosen series as CSV text.
+	csv() {
+		const [times, ...columns] = this.data();
+		const { min = -Infinity, max = Infinity } = this.plot?.scales.x ?? {};
+		const rows = [['time', ...this.chosen].join(',')];
+		times.forEach((at, k) => {
+			if (at >= min && at <= max) rows.push([at, ...columns.map((column) => column[k] ?? '')].join(','));
+		});
+		return `${rows.join('\n')}\n`;
+	}
+
+	download() {
+		const link = Object.assign(document.createElement('a'), {
+			href: URL.createObjectURL(new Blob([this.csv()], { type: 'text/csv' })), download: 'readings.csv' });
+		link.click();
+		setTimeout(() => URL.revokeObjectURL(link.href), 0);
+	}
+}
