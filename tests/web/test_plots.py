@@ -77,3 +77,21 @@ def test_over_a_recording_the_chart_follows_the_player(browser, pages, server, s
     assert start <= times[0] and times[-1] <= cursor
     page.evaluate("(t) => VP.replay.seek(t)", 0.2)
     wait_until(page, "(t) => Math.abs(VP.plots.cursor() - VP.plots.span()[0] - t) < 1e-9", 0.2)
+
+
+def test_the_heat_map_makes_a_pressed_part_glow_and_only_it(browser, pages, server, scene, scene_name):
+    box = vp.Box(1, 1, 1, "steelblue")
+    box.set_position(0, 1, 0)  # it falls and lies on the ground: pressed by its weight
+    robot = vp.Robot()
+    held = vp.Ball(0.3, "orange")
+    held.attach_to_slot(robot)
+    robot.set_position(3, 2, 0)  # held at its mount, touching nothing
+    vp.set_physics("dynamic")
+    scene.sync()
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    page.click("#plot-button")
+    page.check("#heat")
+    wait_until(page, "(id) => VP.heat.shown(id) > 0.5", box.id)
+    assert page.evaluate("(id) => VP.heat.shown(id)", held.id) == 0
+    page.uncheck("#heat")
+    wait_until(page, "(id) => VP.heat.shown(id) === 0", box.id)

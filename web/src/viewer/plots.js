@@ -17,8 +17,10 @@ const STYLESHEET = '/vendor/uplot/dist/uPlot.min.css';
 export class Plots {
 	// motorsOf(robotId): its motor ids in order; cursor(): the player's scene time (a
 	// recording) or null; span(): the recording's [start, end] in scene time (null live)
-	constructor({ motorsOf, cursor = () => null, span = () => null }) {
+	// heat(on): the heat map on the robots (heat.js) on or off
+	constructor({ motorsOf, cursor = () => null, span = () => null, heat = () => {} }) {
 		this.motorsOf = motorsOf;
+		this.heat = heat;
 		this.cursor = cursor;
 		this.span = span;
 		this.series = new Map();   // name -> Map(time -> value)
@@ -68,7 +70,11 @@ export class Plots {
 		this.chart = document.createElement('div');
 		const csv = Object.assign(document.createElement('button'), { textContent: 'CSV', title: 'the chart\'s time window as a CSV file' });
 		csv.addEventListener('click', () => this.download());
-		this.element.append(this.list, this.chart, csv);
+		const heat = Object.assign(document.createElement('input'), { type: 'checkbox', id: 'heat' });
+		heat.addEventListener('change', () => this.heat(heat.checked));
+		const heatLabel = Object.assign(document.createElement('label'), { title: 'parts glow red with the force on them, sensor pads with their touch' });
+		heatLabel.append(heat, ' heat map on the robots');
+		this.element.append(this.list, this.chart, csv, heatLabel);
 		document.body.append(this.element);
 		setInterval(() => this.draw(), DRAW_EVERY);
 		this.rebuild();

@@ -11,6 +11,7 @@ import { Logo } from './logo.js';
 import { Motion } from './motion.js';
 import { Overlays } from './overlays.js';
 import { MotorPanels } from './panel.js';
+import { Heat } from './heat.js';
 import { Plots } from './plots.js';
 import { Stage } from './stage.js';
 import { StatusLine } from './status.js';
@@ -59,8 +60,10 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		hook: installInspection(stage, tree, motion),
 		status: new StatusLine(status, options.scene, watchLink, () => stage.pictures, options.recording),
 	};
-	const plots = new Plots({ motorsOf: (robot) => tree.objects.get(robot)?.userData.node.motors, cursor, span });
-	view.hook.plots = plots;
+	const heat = new Heat(tree, () => stage.invalidate());
+	const plots = new Plots({ motorsOf: (robot) => tree.objects.get(robot)?.userData.node.motors, cursor, span,
+		heat: (on) => heat.toggle(on) });
+	Object.assign(view.hook, { plots, heat });
 	if (plotting) {
 		const plotButton = Object.assign(element('plot-button', 'button', 'plot-button'), { textContent: 'Plots' });
 		plotButton.addEventListener('click', () => plots.open());
@@ -93,6 +96,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 			dispatch(handlers, message);
 			view.hook.handled(message);
 			plots.receive(message);
+			heat.receive(message);
 		},
 		setState: (state) => view.status.setState(state),
 	};
