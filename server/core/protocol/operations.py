@@ -40,6 +40,7 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
     "number": lambda target, value: encode_numbers(float(value)),
     "numbers": lambda target, value: encode_numbers([float(v) for v in value]),
     "point": lambda target, value: list(value),
+    "physics": lambda target, value: value,  # already its wire form (Physics.wire)
 }
 
 

@@ -5,7 +5,8 @@ import dataclasses
 import pytest
 
 from server.core.kit.limits import DEFAULT
-from server.core.protocol.operations import Operations
+from server.core.protocol import api
+from server.core.protocol.operations import RESULTS, Operations
 from server.core.scene.scene import Scene
 from server.errors import LimitExceeded, OutOfRange, UnknownMethod, UnknownType
 
@@ -26,6 +27,14 @@ def test_results_travel_as_refs_numbers_and_points(ops):
     ops.create("c1.3", "Sensor", [])
     ops.call("c1.3", "setPosition", [0, 1, 0])  # looking up, at nothing
     assert ops.call("c1.3", "senseDistance", []) == "Infinity"
+
+
+def test_every_kind_of_result_the_table_names_travels(ops):
+    kinds = {method.returns for spec in api.TYPES.values() for method in spec.methods}
+    assert kinds <= set(RESULTS), kinds - set(RESULTS)  # getPhysics was an internal error
+    ops.call("scene", "setPhysics", ["dynamic", {"gravity": 5}])
+    physics = ops.call("scene", "getPhysics", [])
+    assert physics["mode"] == "dynamic" and physics["gravity"] == 5
 
 
 def test_an_unknown_type_or_method_is_refused_with_what_there_is(ops):
