@@ -1,9 +1,12 @@
 // Not in 1.0: recordings of the scene, made by the server (MCAP: Foxglove opens them).
 //   const rec = await startRecording();  …  await rec.stop();  await rec.save('trial.mcap');
-// save writes the file in Node and downloads it in a browser. The server is asked over
-// REST (POST /api/scenes/{scene}/recordings and /api/recordings/{id}…) with the session's token.
+// save writes the file in Node and downloads it in a browser. Starting is the scene call
+// startRecording (stopRecording() stops the scene's recording, whoever started it); a
+// Recording is stopped by its id and fetched over REST (/api/recordings/{id}…) with the
+// session's token.
 
 import { ServerError } from './errors.js';
+import { SCENE_ID } from './runtime.js';
 import { currentSession } from './session.js';
 
 export class Recording {
@@ -44,12 +47,15 @@ export class Recording {
 	}
 }
 
-// Start recording the current scene: every frame, request and watched reading from now.
+// Start recording the current scene: every frame, request and watched reading from now
+// (after this client's earlier requests).
 export async function startRecording(session = currentSession()) {
-	await session.sync();   // what this client did before is in the scene it starts from
-	const path = `/api/scenes/${encodeURIComponent(session.hello.scene)}/recordings`;
-	const answer = await (await serverCall(session, path, 'startRecording', 'POST')).json();
-	return new Recording(session, answer.id);
+	return new Recording(session, await session.call(SCENE_ID, 'startRecording', [], { wait: true }));
+}
+
+// Stop the scene's recording, whoever started it; what it holds.
+export async function stopRecording(session = currentSession()) {
+	return session.call(SCENE_ID, 'stopRecording', [], { wait: true });
 }
 
 // A REST answer of the session's server; its refusal as the ServerError the WebSocket gives.

@@ -15,7 +15,7 @@ import { openSession } from './transport.js';
 export const VERSION = '0.1.0';   // this client's (package.json; a test keeps them equal)
 export const IN_BROWSER = typeof window !== 'undefined' && typeof document !== 'undefined';
 const STARTED = performance.now();
-const SCENE_ID = 'scene';
+export const SCENE_ID = 'scene';   // the id scene calls are made on
 
 export const CLASSES = Object.freeze({
 	Slot: objects.Slot, Part: objects.Part, Motor: objects.Motor, MotorX: objects.MotorX,

@@ -13,7 +13,7 @@ export { AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, G
 export { AnthroHand, EdgedHand, RoundHand, Robot } from './robot.js';
 export { Sensor } from './sensor.js';
 export { ConnectionLost, ProtocolError, ServerError, VPError } from './errors.js';
-export { Recording, startRecording } from './recordings.js';
+export { Recording, startRecording, stopRecording } from './recordings.js';
 export { VERSION, close, connect, getPhysics, getScene, getTime, pause, resume, setAnimation,
 	setCameraPosition, setCameraTarget, setPhysics, step, sync } from './runtime.js';
 

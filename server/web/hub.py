@@ -102,7 +102,7 @@ class Hubs:
             store = self.state.store(name) if self.state is not None else None
             hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
                                                self.assets, self._setups.get(name), store,
-                                               self.reserve, self._ended, self.recordings.ended)
+                                               self.reserve, self._ended, self.recordings)
             hub.runner.start(after=self._stopping.pop(name, None))
         return hub
 

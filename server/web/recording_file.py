@@ -1,35 +1,37 @@
-"""A scene's recording as its process keeps it: the MCAP file open for writing and the
-recorder filling it (:mod:`server.core.recording.mcap_recorder`)."""
+"""A scene's recordings as its process keeps them: the MCAP file open for writing and the
+recorder filling it (:mod:`server.core.recording.mcap_recorder`), one at a time, started by
+REST (the server names it) or by a client's ``startRecording`` (named here)."""
 
 from __future__ import annotations
 
 import logging
 import time
 from pathlib import Path
-from typing import IO, Any, Mapping
+from typing import IO, Any, Callable, Mapping
 
-from ..core.kit.limits import Limits
 from ..core.recording.mcap_recorder import Recorder, RecordingLimits
 from ..core.scene.scene import Scene
-from ..errors import RecordingBusy, StorageFailure
+from ..errors import RecordingBusy, StorageFailure, UnknownRecording
+from .recordings import new_recording
 
 log = logging.getLogger(__name__)
+Event = tuple[Any, ...]
 
 
 class RecordingFile:
     """Recording ``id`` of ``scene`` into ``path``: started at once, with a snapshot."""
 
-    def __init__(self, recording_id: str, path: Path, scene: Scene, limits: Limits) -> None:
-        self.id, self.path = recording_id, path
+    def __init__(self, recording_id: str, path: Path, scene: Scene) -> None:
+        self.id, self.path, self.scene = recording_id, path, scene
         try:
             self._file: IO[bytes] = open(path, "xb")  # never over another recording
         except FileExistsError:
             raise RecordingBusy(f"a recording {recording_id!r} exists already", recording=recording_id) from None
         except OSError as error:
             raise StorageFailure(f"the recording cannot be written ({error.strerror})") from None
+        limits = scene.limits
         self.recorder = Recorder(self._file, scene, time.time_ns(),
                                  RecordingLimits(limits.recording_bytes, limits.recording_seconds))
-        self.scene = scene
 
     def stop(self, reason: str) -> dict[str, Any]:
         """Finish and close the file; what it holds, and why it stopped."""
@@ -41,6 +43,53 @@ class RecordingFile:
         finally:
             self._file.close()
 
-    def tick(self, messages: list[Mapping[str, Any]], scene: Scene) -> str | None:
-        """Record a tick's messages; the reason it stopped when a limit stopped it."""
-        return self.recorder.tick(messages, scene)
+
+class SceneRecordings:
+    """The scene's recorder (its ``RecordingControl``): at most one recording at a time;
+    ``tell`` sends the server ``("recording", id)`` when a client started one and
+    ``("recorded", what it holds)`` whenever one ends."""
+
+    def __init__(self, scene: Scene, folder: Path | None, tell: Callable[[Event], None]) -> None:
+        self.scene, self.folder, self._tell = scene, folder, tell
+        self.current: RecordingFile | None = None
+
+    def start(self, client: str) -> str:
+        """A client's ``startRecording``: a new recording, named here."""
+        if self.folder is None:
+            raise StorageFailure("this server keeps no recordings")
+        recording_id, path = new_recording(self.folder, self.scene.name)
+        self.begin(recording_id, path)
+        self._tell(("recording", recording_id))
+        return recording_id
+
+    def stop(self) -> dict[str, Any]:
+        """A client's ``stopRecording``: what the recording holds."""
+        if self.current is None:
+            raise UnknownRecording(f"scene {self.scene.name!r} is not being recorded")
+        return self.end("stopped")
+
+    def begin(self, recording_id: str, path: Path) -> None:
+        if self.current is not None:
+            raise RecordingBusy(f"scene {self.scene.name!r} is being recorded already "
+                                f"({self.current.id}); stop that recording first",
+                                recording=self.current.id)
+        self.current = RecordingFile(recording_id, path, self.scene)
+
+    def end(self, reason: str) -> dict[str, Any]:
+        """Stop the recording there is; what it holds (the server is told too)."""
+        recording, self.current = self.current, None
+        assert recording is not None
+        summary = recording.stop(reason)
+        self._tell(("recorded", summary))
+        return summary
+
+    def request(self, client_id: str, text: str | bytes) -> None:
+        if self.current is not None:
+            self.current.recorder.request(client_id, text, self.scene.time)
+
+    def tick(self, messages: list[Mapping[str, Any]]) -> None:
+        """Record a tick's messages; a limit reached ends the recording."""
+        if self.current is not None:
+            stopped = self.current.recorder.tick(messages, self.scene)
+            if stopped:
+                self.end(stopped)

@@ -44,9 +44,7 @@ class Recordings:
 
     def new(self, scene: str) -> tuple[str, Path]:
         """A new recording's id and the path of its file."""
-        stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
-        recording_id = f"{scene}-{stamp}-{secrets.token_hex(2)}"
-        return recording_id, self.folder / f"{recording_id}{SUFFIX}"  # type: ignore[operator]
+        return new_recording(self.folder, scene)  # type: ignore[arg-type]
 
     def started(self, recording_id: str, scene: str) -> None:
         self.active[recording_id] = scene
@@ -97,6 +95,13 @@ class Recordings:
         if cached is None or cached[0] != version:
             cached = self._read[recording_id] = (version, _summary(path))
         return {**entry, **cached[1]}
+
+
+def new_recording(folder: Path, scene: str) -> tuple[str, Path]:
+    """A new recording's id (``<scene>-<UTC time>-<4 hex digits>``) and its file in ``folder``."""
+    stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
+    recording_id = f"{scene}-{stamp}-{secrets.token_hex(2)}"
+    return recording_id, folder / f"{recording_id}{SUFFIX}"
 
 
 def _summary(path: Path) -> dict[str, Any]:

@@ -16,6 +16,7 @@ import queue
 import sys
 import threading
 import time
+from pathlib import Path
 from typing import Any, Callable
 
 from ..core.kit.limits import Limits
@@ -43,7 +44,7 @@ class SceneRunner:
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                  setup: worker.SceneSetup | None, deliver: Deliver,
-                 store: SceneStore | None = None) -> None:
+                 store: SceneStore | None = None, recordings: Path | None = None) -> None:
         self.name = name
         self.tick_rate = tick_rate
         self._deliver = deliver
@@ -51,7 +52,8 @@ class SceneRunner:
         self._pipe, child = CONTEXT.Pipe()
         self._process = CONTEXT.Process(
             target=worker.serve, name=f"scene-{name}", daemon=True,
-            args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store))
+            args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store,
+                  recordings))
         self._child = child
         self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
         self._replies: dict[int, asyncio.Future[Any]] = {}

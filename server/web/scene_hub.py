@@ -20,6 +20,7 @@ from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
 from ..errors import UnknownScene
 from .outbox import Outbox, Outgoing, SlowConsumer
+from .recordings import Recordings
 from .runner import SceneRunner
 from .scene_store import SceneStore
 from .worker import SceneSetup
@@ -78,7 +79,7 @@ class SceneHub:
                  setup: SceneSetup | None = None, store: SceneStore | None = None,
                  owners: Callable[[list[str]], None] = lambda owners: None,
                  ended: Callable[[SceneHub, bool], None] = lambda hub, failed: None,
-                 recorded: Callable[[str], None] = lambda recording: None) -> None:
+                 recordings: Recordings | None = None) -> None:
         self.name = name
         self.members: dict[int, Connection] = {}  # joined, admitted or not yet
         self.connections: set[Connection] = set()  # admitted: they get every frame
@@ -90,11 +91,12 @@ class SceneHub:
         self.figures: dict[str, Any] | None = None  # its last metrics, for when it is silent
         self.summary: dict[str, Any] | None = None  # its last counts, likewise
         self.saving: dict[str, Any] = {}  # what its process last said of its files
-        self._owners, self._on_end, self._recorded = owners, ended, recorded
+        self._owners, self._on_end, self._recordings = owners, ended, recordings
         self._open = asyncio.Event()  # made (restored), and no import under way
         self._imports = 0
         self._arriving = 0  # connections waiting for it to settle
-        self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events, store)
+        self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events, store,
+                                  recordings.folder if recordings is not None else None)
 
     @property
     def tick_rate(self) -> float:
@@ -171,8 +173,10 @@ class SceneHub:
                 self._owners(event[1])
                 if not self._imports:
                     self._open.set()
-            elif kind == "recorded":  # a recording stopped by itself (a limit, the scene's end)
-                self._recorded(event[1]["id"])
+            elif kind == "recording" and self._recordings is not None:  # a client started one
+                self._recordings.started(event[1], self.name)
+            elif kind == "recorded" and self._recordings is not None:
+                self._recordings.ended(event[1]["id"])
             elif kind == "ended":
                 self._ended(event[1])
 

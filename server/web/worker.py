@@ -29,8 +29,9 @@ keep)``
 ``("record", n, id, path)``               ``("reply", n, ok, {"id", …} or VPError)``: a
                                           recording into ``path`` (recording_file) starts
 ``("unrecord", n, id)``                   ``("reply", n, ok, what it holds)``: it stops
-a recording that stopped itself (a limit, ``("recorded", what it holds, why)``
-or the scene's end)
+a client's ``startRecording``             ``("recording", id)`` (recording_file)
+any recording's end (asked, a limit,      ``("recorded", what it holds, why)``
+the scene's end)
 ``("stop",)``                             the process ends (its scene saved first; exit
                                           code SAVE_FAILED if its changes could not be)
 once made (or restored)                   ``("ready", owners)``: the owners of its objects
@@ -59,10 +60,10 @@ from ..core.protocol.messages import encode
 from ..core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
 from ..core.protocol.session import Session
 from ..core.scene.scene import Scene
-from ..errors import InternalError, RecordingBusy, UnknownRecording, VPError
+from ..errors import InternalError, UnknownRecording, VPError
 from . import heap
 from .outbox import Outgoing
-from .recording_file import RecordingFile
+from .recording_file import SceneRecordings
 from .saving import SceneSaver
 from .scene_metrics import SceneMetrics
 from .scene_store import SceneStore
@@ -76,20 +77,23 @@ SAVE_FAILED = 75  # exit code of a scene's process that stopped with changes it 
 
 
 def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
-          setup: SceneSetup | None, log_level: int, store: SceneStore | None = None) -> None:
+          setup: SceneSetup | None, log_level: int, store: SceneStore | None = None,
+          recordings: Path | None = None) -> None:
     """The process's main function: make the scene (as ``setup`` makes it, then as its
     saved document says, when there is one), then serve it."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
     logging.basicConfig(level=log_level)
     scene = Scene(name, limits, assets)
-    worker = SceneWorker(pipe, scene, tick_rate, store)
+    worker = SceneWorker(pipe, scene, tick_rate, store, recordings)
     worker.prepare(setup)
     worker.ready()
     heap.settle()
     try:
         worker.run()
     finally:
-        worker.end_recording("the scene stopped")
+        if worker.recordings.current is not None:
+            worker.recordings.end("the scene stopped")
+            worker.flush()  # the server hears of it
         durable = worker.saver.close()  # the server stopped it, or the server is gone
         scene.close()
     if not durable:
@@ -100,7 +104,7 @@ class SceneWorker:
     """The loop of a scene's process: commands in arrival order, a tick whenever due."""
 
     def __init__(self, pipe: Pipe, scene: Scene, tick_rate: float,
-                 store: SceneStore | None = None) -> None:
+                 store: SceneStore | None = None, recordings: Path | None = None) -> None:
         self.scene = scene
         self.tick_rate = tick_rate
         self.metrics = SceneMetrics()
@@ -115,7 +119,8 @@ class SceneWorker:
         self._left: set[str] = set()  # of those, the clients that were connected here
         self._store = store
         self._notices: list[Outgoing] = []  # warnings for every client, sent with the next tick
-        self.recording: RecordingFile | None = None
+        self.recordings = SceneRecordings(scene, recordings, lambda event: self._events.append(event))
+        scene.recorder = self.recordings  # a client's startRecording and stopRecording
         self.saver = SceneSaver(scene, store, self._tell,
                                 lambda report: self._events.append(("saving", report)))
 
@@ -189,6 +194,10 @@ class SceneWorker:
             return False
         return True
 
+    def flush(self) -> None:
+        """Send the events made so far."""
+        self._flush()
+
     def _flush(self) -> None:
         self.saver.commit()  # changes are on the disk before their answers leave
         if self._events:
@@ -217,8 +226,8 @@ class SceneWorker:
     def _text(self, cid: int, text: str | bytes) -> None:
         session = self._sessions.get(cid)
         now = time.monotonic()
-        if session is not None and self.recording is not None:
-            self.recording.recorder.request(session.client_id, text, self.scene.time)
+        if session is not None:
+            self.recordings.request(session.client_id, text)
         answers = [] if session is None else [
             Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
         self.metrics.served(now, len(answers))
@@ -361,14 +370,8 @@ class SceneWorker:
         self._stopping = True
 
     def _record(self, number: int, recording_id: str, path: str) -> None:
-        if self.recording is not None:
-            error = RecordingBusy(f"scene {self.scene.name!r} is being recorded already "
-                                  f"({self.recording.id}); stop that recording first",
-                                  recording=self.recording.id)
-            self._events.append(("reply", number, False, error))
-            return
         try:
-            self.recording = RecordingFile(recording_id, Path(path), self.scene, self.scene.limits)
+            self.recordings.begin(recording_id, Path(path))
         except VPError as error:
             self._events.append(("reply", number, False, error))
             return
@@ -376,24 +379,13 @@ class SceneWorker:
                                                      "sceneTime": self.scene.time}))
 
     def _unrecord(self, number: int, recording_id: str) -> None:
-        if self.recording is None or self.recording.id != recording_id:
+        current = self.recordings.current
+        if current is None or current.id != recording_id:
             error = UnknownRecording(f"scene {self.scene.name!r} is not recording {recording_id!r}",
                                      recording=recording_id)
             self._events.append(("reply", number, False, error))
             return
-        self._events.append(("reply", number, True, self._end_recording("stopped")))
-
-    def end_recording(self, reason: str) -> None:
-        """Stop the recording, if there is one, telling the server why."""
-        if self.recording is not None:
-            summary = self._end_recording(reason)
-            self._events.append(("recorded", summary))
-            self._flush()
-
-    def _end_recording(self, reason: str) -> dict[str, Any]:
-        recording, self.recording = self.recording, None
-        assert recording is not None
-        return recording.stop(reason)
+        self._events.append(("reply", number, True, self.recordings.end("stopped")))
 
     def _tick(self, dt: float) -> None:
         """Run the animator, advance the scene and send its messages to every client."""
@@ -404,8 +396,7 @@ class SceneWorker:
             ticked = self.scene.tick(dt)
             messages = self._notices + self._resynced() + [Outgoing.of(m) for m in ticked]
             self._notices = []
-            if self.recording is not None and self.recording.tick(ticked, self.scene):
-                self.end_recording(self.recording.recorder.stopped or "")
+            self.recordings.tick(ticked)
         except Exception:  # the scene kept what it had not sent; clients resync later
             self.metrics.tick_failures += 1
             self._resync = True

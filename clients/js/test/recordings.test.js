@@ -15,7 +15,7 @@ test('a script records its trial and saves the MCAP file', { skip: !URL_ && 'nee
 	await Prosthetic.connect({ url: URL_, scene: `js-recordings-${process.pid}` });
 	try {
 		const hand = new Prosthetic.EdgedHand(true);
-		const rec = await Prosthetic.startRecording();
+		const rec = await Prosthetic.startRecording();   // the scene call: no token, no REST
 		await assert.rejects(Prosthetic.startRecording(), (error) => error.code === 'recording_busy' && error.serverMessage.includes(rec.id));
 		for (let k = 0; k < 20; k++) {
 			hand.flexFingers(k / 20);

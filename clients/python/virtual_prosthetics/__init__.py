@@ -16,7 +16,7 @@ from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm
                       GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
                       RoundPalm, SceneMesh, Slot)
 from .robots import AnthroHand, EdgedHand, RoundHand, Robot
-from .recordings import Recording, start_recording
+from .recordings import Recording, start_recording, stop_recording
 from .runtime import connect, get_time, run, set_animation
 from .sensor import Sensor
 from .session import Session, current_session
@@ -74,5 +74,5 @@ __all__ = [
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset",
-    "set_physics", "get_physics", "pause", "resume", "step", "Recording", "start_recording",
+    "set_physics", "get_physics", "pause", "resume", "step", "Recording", "start_recording", "stop_recording",
 ]

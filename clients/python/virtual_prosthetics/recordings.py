@@ -1,6 +1,7 @@
 """Recordings of a session's scene (not in the manual): ``rec = vp.start_recording()``,
 ``rec.stop()``, ``rec.save("trial.mcap")``. The server writes them (MCAP: Foxglove opens
-them, the ``mcap`` package reads them); this asks it over REST, with the session's token."""
+them, the ``mcap`` package reads them). Starting is the scene call ``startRecording``;
+stopping one by its id and fetching its file go over REST, with the session's token."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from . import http_api
-from .session import Session, current_session
+from .session import SCENE_ID, Session, current_session
 
 
 class Recording:
@@ -37,9 +38,14 @@ class Recording:
 
 
 def start_recording(scene: Session | None = None) -> Recording:
-    """Start recording the scene of ``scene`` (the current session by default): every
-    frame, request and watched reading from now, with their times, until :meth:`Recording.stop`."""
+    """Manual-style ``startRecording()``: record the scene of ``scene`` (the current session
+    by default), every frame, request and watched reading from now (after this client's
+    earlier requests), with their times, until :meth:`Recording.stop`."""
     session = scene or current_session()
-    session.sync()  # what this client did before is in the scene the recording starts from
-    answer = http_api.request(session, http_api.scene_path(session, "recordings"), "start_recording", b"")
-    return Recording(session, json.loads(answer)["id"])
+    return Recording(session, session.call(SCENE_ID, "startRecording", wait=True))
+
+
+def stop_recording(scene: Session | None = None) -> dict[str, Any]:
+    """``stopRecording()``: stop the recording of the scene, whoever started it; what it
+    holds (as :meth:`Recording.stop` answers)."""
+    return (scene or current_session()).call(SCENE_ID, "stopRecording", wait=True)

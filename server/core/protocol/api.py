@@ -139,6 +139,9 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("pause", client=True),
         Method("resume"),
         Method("step", (Param("ticks", "ticks", 1),)),
+        # not in the manual: recordings (server.core.recording), kept by the server
+        Method("startRecording", client=True, returns="string"),
+        Method("stopRecording", returns="recording"),
     )),
     TypeSpec("Slot", None, (Param("position", "point", ORIGIN),),
              (POSITION, ROTATION, QUATERNION, SCALE)),

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import logging
 from contextlib import AbstractContextManager
-from typing import Any
+from typing import Any, Protocol
 
-from ...errors import LimitExceeded
+from ...errors import LimitExceeded, StorageFailure
 from ..kit.ids import IdBook
 from ..kit.journal import Journal
 from ..kit.limits import DEFAULT, Limits
@@ -37,6 +37,14 @@ _POSE_FIELDS = ("position", "quaternion", "angle", "flipped", "scale")
 _BODY_FIELDS = ("mass", "friction", "static")  # a tree's body is built again with them
 
 
+class RecordingControl(Protocol):
+    """What records a scene: its server's process (a scene run bare has none)."""
+
+    def start(self, client: str) -> str: ...  # a new recording's id
+
+    def stop(self) -> dict[str, Any]: ...  # what the recording holds
+
+
 class Scene:
     """Robots and parts in one PyBullet world, with time, sequence number and camera.
 
@@ -52,6 +60,7 @@ class Scene:
         self.registry = Registry(name, limits, self.journal)
         self.nodes = self.registry.nodes
         self.assets = assets or AssetLibrary()
+        self.recorder: RecordingControl | None = None  # set by the process serving it
         self.bodies = SceneBodies(self.nodes, limits, self.assets, name)
         self.feed = ChangeFeed()
         self.camera = Camera(self.journal, self.feed.camera_moved)
@@ -335,4 +344,18 @@ class Scene:
     def step(self, ticks: int) -> None:
         """``step(ticks)``: advance a paused scene by whole ticks, taken before the answer."""
         self.clock.step(ticks)
+
+    def start_recording(self, client: str) -> str:
+        """``startRecording()`` (not in the manual): the server records the scene from now
+        (server.core.recording); the recording's id."""
+        return self._recorder().start(client)
+
+    def stop_recording(self) -> dict[str, Any]:
+        """``stopRecording()``: the recording stops; what it holds."""
+        return self._recorder().stop()
+
+    def _recorder(self) -> RecordingControl:
+        if self.recorder is None:
+            raise StorageFailure("this scene keeps no recordings: it runs outside a server")
+        return self.recorder
 

@@ -38,3 +38,26 @@ def test_a_second_recording_of_the_scene_is_refused_while_one_runs(scene):
         vp.start_recording()
     assert refused.value.code == "recording_busy" and rec.id in refused.value.message
     rec.stop()
+
+
+def test_the_scene_calls_start_and_stop_a_recording_and_a_viewer_may_not(server, scene, scene_name):
+    rec = vp.start_recording()  # startRecording over the WebSocket: no token, no REST
+    listed = {r["id"]: r for r in scene_list(server)}
+    assert listed[rec.id]["state"] == "recording" and listed[rec.id]["scene"] == scene_name
+    viewer = vp.Session(server.ws, scene=scene_name, role="viewer")  # (not made the current one)
+    try:
+        with pytest.raises(vp.ServerError) as refused:
+            vp.stop_recording(viewer)
+        assert refused.value.code == "forbidden"
+    finally:
+        viewer.close()
+    summary = vp.stop_recording(scene)
+    assert summary["id"] == rec.id and summary["stopped"] == "stopped"
+    assert {r["id"]: r for r in scene_list(server)}[rec.id]["state"] == "stopped"
+    with pytest.raises(vp.ServerError) as refused:
+        vp.stop_recording(scene)
+    assert refused.value.code == "unknown_recording"
+
+
+def scene_list(server):
+    return server.get("/api/recordings")

@@ -7,7 +7,7 @@ from server.core.model.motor import MotorZ
 from server.core.model.parts import Ball, Box, EdgedFinger, EdgedPalm
 from server.core.model.sensor import Sensor
 from server.core.model.robot import Robot
-from server.errors import DuplicateId, OutOfRange
+from server.errors import DuplicateId, OutOfRange, StorageFailure
 
 
 def frame_of(messages):
@@ -137,3 +137,10 @@ def test_a_client_that_leaves_takes_what_it_made_and_did_not_keep(scene):
     assert scene.remove_client("c1") == ["c1.3", "c1.2", "c1.1"]   # newest first
     assert sorted(scene.nodes) == ["c1.4", "c2.1"]
     assert "c1" not in scene.ids.wire()   # its ids are never handed out again
+
+
+def test_a_scene_run_outside_a_server_says_it_keeps_no_recordings(scene):
+    for call in (lambda: scene.start_recording("c1"), scene.stop_recording):
+        with pytest.raises(StorageFailure) as refused:
+            call()
+        assert "outside a server" in refused.value.message
