@@ -33,7 +33,13 @@ def _recorded(server, scene):
         time.sleep(0.8)
     rec.stop()
     ticks = server.get(f"/api/recordings/{rec.id}/ticks?after=0&until={rec.summary['seconds']}")["ticks"]
-    turned = [t for t, messages in ticks for m in messages if m["op"] == "frame" and robot.id in m.get("angles", {})]
+    turned, held = [], ANGLES[0]  # when the angle changed (the robot's first frame names it too)
+    for t, messages in ticks:
+        for m in messages:
+            angle = m.get("angles", {}).get(robot.id, [held])[0] if m["op"] == "frame" else held
+            if angle != held:
+                turned.append(t)
+                held = angle
     assert len(turned) == 2, turned  # to -1, then to 1
     ends = [0.0, *turned, rec.summary["seconds"]]
     return rec.id, motor, [(a + b) / 2 for a, b in zip(ends, ends[1:])]
