@@ -7,6 +7,7 @@ from typing import Iterator
 import pytest
 from playwright.sync_api import Browser, Page, sync_playwright
 
+import virtual_prosthetics as vp
 from tests.clients.python.conftest import scene  # noqa: F401  (a fixture, shared)
 
 CHROMIUM = "/usr/bin/chromium"
@@ -66,3 +67,14 @@ def open_viewer(browser: Browser, pages: list[Page], server, query: str) -> Page
 def wait_until(page: Page, script: str, arg=None, timeout: float = 10_000) -> None:
     """Wait until a JavaScript predicate holds in the page."""
     page.wait_for_function(script, arg=arg, timeout=timeout)
+
+
+def red_box_on_a_motor() -> tuple[vp.Robot, vp.MotorZ, vp.Box]:
+    """A robot whose MotorZ (at the origin) carries a red box 1 high, standing up at angle 0."""
+    robot = vp.Robot()
+    motor = vp.MotorZ(-2, 2)
+    box = vp.Box(0.3, 1, 0.3, "red")
+    robot.attach_chain(motor)
+    box.attach_to_slot(motor)
+    box.set_position(0, 0.5, 0)
+    return robot, motor, box

@@ -29,6 +29,9 @@ def _unit(a):
     return [x / length for x in a]
 
 
+DEFAULT_CAMERA = ((4, 4, 7), (0, 1, 0))  # the viewer's camera unless a scene moves it: position, target
+
+
 def project(point: Sequence[float], eye: Sequence[float], target: Sequence[float],
             size: tuple[int, int]) -> tuple[int, int]:
     """The pixel where a world point appears for a camera at ``eye`` looking at ``target``."""

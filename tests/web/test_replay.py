@@ -10,22 +10,16 @@ import pytest
 
 import virtual_prosthetics as vp
 
-from .conftest import open_viewer, wait_until
-from .picture import Picture, background_like, project, reddish
+from .conftest import open_viewer, red_box_on_a_motor, wait_until
+from .picture import DEFAULT_CAMERA, Picture, background_like, project, reddish
 
-CAMERA = ((4, 4, 7), (0, 1, 0))  # the default camera: position, target
 ANGLES = (0.0, -1.0, 1.0)
 
 
 def _recorded(server, scene):
     """A red box on a motor held at each of ANGLES for 0.8 s, recorded; the recording's id
     and, for each angle, a time in the recording when the box stood at it."""
-    robot = vp.Robot()
-    motor = vp.MotorZ(-2, 2)
-    box = vp.Box(0.3, 1, 0.3, "red")
-    robot.attach_chain(motor)
-    box.attach_to_slot(motor)
-    box.set_position(0, 0.5, 0)
+    robot, motor, _ = red_box_on_a_motor()
     rec = vp.start_recording()
     for angle in ANGLES:
         motor.set_angle(angle)
@@ -57,9 +51,9 @@ def test_seeking_shows_the_robot_where_it_was_then(browser, pages, server, scene
         (tmp_path / f"seek{k}.png").write_bytes(png)
         picture = Picture(png)
         top = (0.5 * math.sin(-ANGLES[k]), 0.5 * math.cos(ANGLES[k]), 0)  # the box's middle
-        assert reddish(picture.at(project(top, *CAMERA, picture.size))), (k, picture.at(project(top, *CAMERA, picture.size)))
+        assert reddish(picture.at(project(top, *DEFAULT_CAMERA, picture.size))), (k, picture.at(project(top, *DEFAULT_CAMERA, picture.size)))
         elsewhere = (0.5 * math.sin(ANGLES[k]), 0.5 * math.cos(ANGLES[k]), 0) if ANGLES[k] else (0.6, 0.4, 0)
-        assert background_like(picture.at(project(elsewhere, *CAMERA, picture.size)))
+        assert background_like(picture.at(project(elsewhere, *DEFAULT_CAMERA, picture.size)))
     label = page.evaluate("() => document.querySelector('#timeline span').textContent")
     assert label.startswith(f"{times[1]:.2f} / ")
     assert "recording" in page.evaluate("() => document.getElementById('status').textContent")

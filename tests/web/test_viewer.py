@@ -9,10 +9,9 @@ import pytest
 import virtual_prosthetics as vp
 from tests.conftest import start_server, stop_server
 
-from .conftest import open_page, open_viewer, wait_until
-from .picture import Picture, background_like, project, reddish
+from .conftest import open_page, open_viewer, red_box_on_a_motor, wait_until
+from .picture import DEFAULT_CAMERA, Picture, background_like, project, reddish
 
-CAMERA = ((4, 4, 7), (0, 1, 0))  # the default camera: position, target
 
 
 def settled(page, motor_id, angle):
@@ -23,19 +22,14 @@ def settled(page, motor_id, angle):
 
 def test_three_viewers_follow_a_script_and_draw_the_robot_where_the_server_has_it(
         browser, pages, server, scene, scene_name):
-    robot = vp.Robot()
-    motor = vp.MotorZ(-2, 2)
-    box = vp.Box(0.3, 1, 0.3, "red")
-    robot.attach_chain(motor)
-    box.attach_to_slot(motor)
-    box.set_position(0, 0.5, 0)
+    robot, motor, box = red_box_on_a_motor()
     scene.sync()
     viewers = [open_viewer(browser, pages, server, f"scene={scene_name}") for _ in range(3)]
     for page in viewers:
         wait_until(page, "(id) => VP.objects.has(id)", box.id)
         settled(page, motor.id, 0.0)
     upright = Picture(viewers[0].screenshot())
-    standing = project((0, 0.5, 0), *CAMERA, upright.size)
+    standing = project((0, 0.5, 0), *DEFAULT_CAMERA, upright.size)
     assert reddish(upright.at(standing))
 
     motor.set_angle(-1.0)  # about Z: the box leans towards +X
@@ -51,7 +45,7 @@ def test_three_viewers_follow_a_script_and_draw_the_robot_where_the_server_has_i
     for page in viewers:
         settled(page, motor.id, -1.0)
         picture = Picture(page.screenshot())
-        leaning = project(box_now, *CAMERA, picture.size)  # where the server has the box
+        leaning = project(box_now, *DEFAULT_CAMERA, picture.size)  # where the server has the box
         assert reddish(picture.at(leaning)), picture.at(leaning)
         assert background_like(picture.at(standing)), picture.at(standing)
 
