@@ -128,6 +128,19 @@ class AssetLibrary:
         return _read_mesh(str(path), url, path.stat().st_mtime_ns, self.limits)
 
 
+def placed(geometry: dict[str, Any], vertices: np.ndarray,
+           triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A mesh file's vertices and triangles where a mesh part's ``geometry`` puts them:
+    mirrored in X (a right-hand part: two corners of each triangle swap back, so faces
+    still turn counter-clockwise seen from outside), raised by its offset, stretched by
+    its scale."""
+    mirror = geometry["mirror"]
+    vertices = (np.asarray(vertices, float) * ([-1.0, 1.0, 1.0] if mirror else 1.0)
+                + np.asarray(geometry["offset"])) * np.asarray(geometry.get("scale", (1.0, 1.0, 1.0)))
+    triangles = np.asarray(triangles)
+    return vertices, (triangles[:, [0, 2, 1]] if mirror else triangles)
+
+
 def plain_name(filename: str) -> str:
     """The bare file name in ``filename``, or :class:`Forbidden` when it points elsewhere."""
     name = filename

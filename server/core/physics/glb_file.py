@@ -11,13 +11,14 @@ draws on the edged parts are not in it.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any, Sequence
 
 import numpy as np
 import trimesh
 
 from ..kit.math3d import Pose, to_matrix
-from .assets import AssetLibrary
+from .assets import AssetLibrary, placed
 from .geometry import solid_points, triangle_arrays
 from .urdf_file import rgba
 
@@ -66,17 +67,22 @@ def _file_mesh(geometry: dict[str, Any], recolors: Sequence[Sequence[Any]],
     """A mesh file's triangles and vertex colours, placed as the part places them."""
     assets.mesh(geometry["url"])  # the file checked (and refused) as a part's file is
     path, _ = assets.locate(geometry["url"])
-    mesh = trimesh.load(str(path), force="mesh", process=False)
+    vertices, faces, colors = _coloured(str(path), path.stat().st_mtime_ns)
+    mesh = trimesh.Trimesh(*placed(geometry, vertices, faces), process=False)
+    if colors is not None:
+        mesh.visual = trimesh.visual.ColorVisuals(mesh, vertex_colors=_rgba8(_recolored(colors, recolors)))
+    return mesh
+
+
+@lru_cache(maxsize=16)
+def _coloured(path: str, version: int) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """A mesh file's vertices, triangles and vertex colours (0…1, None: it has none), read
+    once per version of the file: a recording's scene update draws a hand's fifteen
+    segments from three files."""
+    mesh = trimesh.load(path, force="mesh", process=False)
     colors = np.asarray(mesh.visual.vertex_colors, float)[:, :4] / 255 \
         if mesh.visual.kind == "vertex" else None
-    mirror = np.array([-1.0, 1.0, 1.0]) if geometry["mirror"] else 1.0
-    vertices = (np.asarray(mesh.vertices) * mirror + np.asarray(geometry["offset"])) \
-        * np.asarray(geometry.get("scale", (1.0, 1.0, 1.0)))
-    faces = np.asarray(mesh.faces)[:, ::-1] if geometry["mirror"] else mesh.faces  # outside out
-    placed = trimesh.Trimesh(vertices, faces, process=False)
-    if colors is not None:
-        placed.visual = trimesh.visual.ColorVisuals(placed, vertex_colors=_rgba8(_recolored(colors, recolors)))
-    return placed
+    return np.asarray(mesh.vertices), np.asarray(mesh.faces), colors
 
 
 def _recolored(colors: np.ndarray, recolors: Sequence[Sequence[Any]]) -> np.ndarray:

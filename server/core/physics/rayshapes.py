@@ -12,7 +12,7 @@ from typing import Any, Protocol, Sequence
 
 import numpy as np
 
-from .assets import AssetLibrary
+from .assets import AssetLibrary, placed
 from .geometry import cylinder_points, triangle_arrays
 from .hulls import convex_hull
 
@@ -117,20 +117,14 @@ def hull(points: Sequence[Sequence[float]]) -> Convex:
 
 
 class Triangles:
-    """A mesh's triangles, placed as a mesh part places its file (offset, mirror, scale)."""
+    """A mesh's triangles (counter-clockwise seen from outside)."""
 
-    def __init__(self, vertices: np.ndarray, triangles: np.ndarray,
-                 offset: Sequence[float] = (0.0, 0.0, 0.0), mirror: bool = False,
-                 scale: Sequence[float] = (1.0, 1.0, 1.0)) -> None:
-        placed = (vertices * ([-1.0, 1.0, 1.0] if mirror else 1.0) + np.asarray(offset)) \
-            * np.asarray(scale)
-        a, b, c = (placed[triangles[:, k]] for k in range(3))
-        if mirror:  # a mirror turns faces inside out: two corners swap back
-            b, c = c, b
+    def __init__(self, vertices: np.ndarray, triangles: np.ndarray) -> None:
+        a, b, c = (vertices[triangles[:, k]] for k in range(3))
         self.a, self.ab, self.ac = a, b - a, c - a
         self.normals = np.cross(self.ab, self.ac)  # outwards: faces turn counter-clockwise
-        self.centre = (placed.min(axis=0) + placed.max(axis=0)) / 2
-        self.radius = float(np.linalg.norm(placed - self.centre, axis=1).max())
+        self.centre = (vertices.min(axis=0) + vertices.max(axis=0)) / 2
+        self.radius = float(np.linalg.norm(vertices - self.centre, axis=1).max())
 
     def entries(self, origins: np.ndarray, directions: np.ndarray,
                 limits: Sequence[float]) -> np.ndarray:
@@ -173,6 +167,5 @@ def shape_of(geometry: dict[str, Any], assets: AssetLibrary) -> Shape:
         return Triangles(*triangle_arrays(geometry))
     if kind == "mesh":  # the drawn triangles, not the envelope that contacts use
         mesh = assets.mesh(geometry["url"])
-        return Triangles(mesh.vertices, mesh.triangles, geometry["offset"], geometry["mirror"],
-                         geometry.get("scale", (1.0, 1.0, 1.0)))
+        return Triangles(*placed(geometry, mesh.vertices, mesh.triangles))
     raise ValueError(f"rays do not meet geometry kind {kind!r}")

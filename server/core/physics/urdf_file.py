@@ -38,7 +38,7 @@ from scipy.spatial.transform import Rotation
 
 from ..kit.math3d import IDENTITY, Pose, compose
 from .articulation import NO_POSE, Articulation
-from .assets import AssetLibrary
+from .assets import AssetLibrary, placed
 from .dynamics import SHAPELESS_INERTIA, tree_masses
 from .geometry import centroid, solid_points, triangle_arrays
 
@@ -168,11 +168,7 @@ def drawn_mesh(geometry: dict[str, Any], assets: AssetLibrary) -> trimesh.Trimes
     if geometry["kind"] != "mesh":
         return None
     mesh = assets.mesh(geometry["url"])
-    mirror = np.array([-1.0, 1.0, 1.0]) if geometry["mirror"] else 1.0
-    vertices = (mesh.vertices * mirror + np.asarray(geometry["offset"])) \
-        * np.asarray(geometry.get("scale", (1.0, 1.0, 1.0)))
-    faces = mesh.triangles[:, ::-1] if geometry["mirror"] else mesh.triangles  # outside out
-    return trimesh.Trimesh(vertices, faces, process=False)
+    return trimesh.Trimesh(*placed(geometry, mesh.vertices, mesh.triangles), process=False)
 
 
 def _obj(mesh: trimesh.Trimesh) -> bytes:
