@@ -16,18 +16,13 @@ from ..core.recording import replay
 from ..core.recording.resimulate import resimulate_file
 from ..errors import OutOfRange
 from .access import changing_allowed
-from .hub import Hubs
-from .rest import NOT_FOUND, ErrorBody, hub_of
+from .rest import NOT_FOUND, ErrorBody, hub_of, hubs_of
 
 router = APIRouter(prefix="/api")
 WINDOW_SECONDS = 10.0  # of ticks one request may ask for (a player asks for the next second)
 BUSY: dict[int | str, dict[str, Any]] = {
     **NOT_FOUND, 409: {"model": ErrorBody, "description": "Recording already, or still (recording_busy)"},
     403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"}}
-
-
-def _hubs(request: Request) -> Hubs:
-    return request.app.state.hubs
 
 
 @router.post("/scenes/{scene}/recordings", status_code=201, responses=BUSY,
@@ -37,7 +32,7 @@ async def start(request: Request, scene: str) -> dict[str, Any]:
     an MCAP file, until ``POST /api/recordings/{id}/stop``, a limit (``recordingBytes``,
     ``recordingSeconds``) or the scene's end. Needs the control token, as imports do."""
     changing_allowed(request)
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     hub = hub_of(request, scene)
     recording_id, path = hubs.recordings.new(scene)
     answer = await hub.runner.call("record", recording_id, str(path))
@@ -49,7 +44,7 @@ async def start(request: Request, scene: str) -> dict[str, Any]:
              summary="Stop a recording: what it holds (bytes, seconds, ticks, requests, readings)")
 async def stop(request: Request, recording_id: str) -> dict[str, Any]:
     changing_allowed(request)
-    recordings = _hubs(request).recordings
+    recordings = hubs_of(request).recordings
     recordings.path(recording_id)  # unknown_recording for what was never made
     scene = recordings.active.get(recording_id)
     if scene is None:
@@ -67,7 +62,7 @@ async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0
     differ by more than ``tolerance`` and lists the first differences (``tick``, ``time``,
     ``field``, ``id``, ``recorded``, ``now``). Kinematic mode: none."""
     changing_allowed(request)  # minutes of a core, maybe
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     path = hubs.recordings.finished(recording_id)
     if not 0 <= tolerance <= 1e6:
         raise OutOfRange(f"tolerance must be within [0, 1000000], got {tolerance}", argument="tolerance")
@@ -79,7 +74,7 @@ async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0
 async def at(request: Request, recording_id: str, time: float = 0.0) -> dict[str, Any]:
     """What a player shows after a seek: ``time`` (clamped), ``duration`` and the
     ``messages`` that make the scene as it was then."""
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     path = hubs.recordings.finished(recording_id)
     return await hubs.replays.run(replay.seek, str(path), _seconds(time, "time"))
 
@@ -87,7 +82,7 @@ async def at(request: Request, recording_id: str, time: float = 0.0) -> dict[str
 @router.get("/recordings/{recording_id}/ticks", responses=BUSY,
             summary="A recording's ticks in (after, until], at most 10 s of them: [time, messages] each")
 async def ticks(request: Request, recording_id: str, after: float, until: float) -> dict[str, Any]:
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     path = hubs.recordings.finished(recording_id)
     start, end = _seconds(after, "after"), _seconds(until, "until")
     if not 0 <= end - start <= WINDOW_SECONDS:
@@ -105,11 +100,11 @@ def _seconds(value: float, name: str) -> float:
 @router.get("/recordings", summary="Every recording, newest first: its scene, state, size, "
                                    "start, duration and messages")
 async def listing(request: Request) -> list[dict[str, Any]]:
-    return _hubs(request).recordings.listing()
+    return hubs_of(request).recordings.listing()
 
 
 @router.get("/recordings/{recording_id}", responses=BUSY, response_class=FileResponse,
             summary="A finished recording's MCAP file (Foxglove opens it)")
 async def download(request: Request, recording_id: str) -> FileResponse:
-    path = _hubs(request).recordings.finished(recording_id)
+    path = hubs_of(request).recordings.finished(recording_id)
     return FileResponse(path, media_type="application/octet-stream", filename=path.name)

@@ -57,13 +57,14 @@ def error_response(error: VPError, status: int) -> JSONResponse:
     return JSONResponse(body, status_code=status)
 
 
-def _hubs(request: Request) -> Hubs:
+def hubs_of(request: Request) -> Hubs:
+    """The server's scenes (and recordings), as the app keeps them."""
     return request.app.state.hubs
 
 
 def hub_of(request: Request, scene: str) -> SceneHub:
     """A running scene's hub; a saved scene that is not running starts (from its file)."""
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     hub = hubs.get(scene)
     if hub is None and hubs.state is not None and scene in hubs.state.saved_scenes():
         hub = hubs.open(scene)
@@ -122,7 +123,7 @@ async def health(request: Request) -> dict[str, Any]:
     """``status`` is ``ok``, or ``degraded`` with ``problems`` saying what fails: a scene
     that failed or is silent, changes that cannot be saved, a state folder that cannot be
     written. Answered at once, without asking any scene."""
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     problems = hubs.problems()
     return {"status": "degraded" if problems else "ok", "problems": problems,
             "version": VERSION, "protocol": PROTOCOL_VERSION,
@@ -132,7 +133,7 @@ async def health(request: Request) -> dict[str, Any]:
 @router.get("/scenes", summary="Every running scene with its robot and client counts "
                                "(saved=true adds the saved scenes that are not running)")
 async def scenes(request: Request, saved: bool = False) -> list[dict[str, Any]]:
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     running = list(hubs.scenes.values())
     listed = list(await asyncio.gather(*(_summary(hub) for hub in running)))
     if saved and hubs.state is not None:
@@ -235,7 +236,7 @@ async def import_(request: Request, scene: str, replace: bool = False) -> JSONRe
     server token, ``Authorization: Bearer <token>`` is needed; pages of other sites may not.
     The document is read and checked in the scene's process: no other scene waits."""
     changing_allowed(request)
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     body = await read_body(request, hubs.limits.document_bytes, "documentBytes", "the document")
     made = (hubs.get(scene) is None or hubs.scenes[scene].ended) and not (
         hubs.state is not None and scene in hubs.state.saved_scenes())
@@ -262,7 +263,7 @@ def _export(scene: Scene, embed: bool) -> dict[str, Any]:
                                  "ticks, requests and CPU per second, peak contact force; totals, connections and "
                                  "queues (format=prometheus: Prometheus's text format)")
 async def metrics(request: Request, format: Literal["json", "prometheus"] = "json") -> Any:
-    hubs = _hubs(request)
+    hubs = hubs_of(request)
     running = list(hubs.scenes.items())
     figures = {"scenesRemoved": hubs.removed, "scenes": dict(zip(
         [name for name, _ in running],
