@@ -5,6 +5,8 @@
 // page's side does not have goes to the server as it is: the bundled meshes
 // ('round-palm.glb', 1.0's '../assets/gltf/round-palm.glb') and uploads' names.
 
+import { serverCall } from './rest.js';
+
 const WAIT_MS = 20000;   // longest a file may take to read and upload before it is given up
 
 export class MeshFiles {
@@ -44,11 +46,9 @@ export class MeshFiles {
 // MeshFiles for a session of the server at `http` (http://host:port), in this runtime.
 export function meshFilesFor(http, token) {
 	const upload = async (bytes) => {
-		const headers = { 'Content-Type': 'application/octet-stream', ...(token ? { Authorization: `Bearer ${token}` } : {}) };
-		const answer = await fetch(new URL('/api/assets', http), { method: 'POST', body: bytes, headers });
-		const body = await answer.json().catch(() => ({}));
-		if (!answer.ok) throw new Error(`${body.code ?? answer.status}: ${body.message ?? answer.statusText}`);
-		return body.name;
+		const answer = await serverCall(http, token, '/api/assets', 'upload',
+			{ method: 'POST', body: bytes, headers: { 'Content-Type': 'application/octet-stream' } });
+		return (await answer.json()).name;
 	};
 	return new MeshFiles({ read: globalThis.document ? pageFile(http) : workingFolderFile, upload });
 }

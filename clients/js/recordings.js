@@ -5,7 +5,7 @@
 // Recording is stopped by its id and fetched over REST (/api/recordings/{id}…) with the
 // session's token.
 
-import { ServerError } from './errors.js';
+import { serverCall } from './rest.js';
 import { SCENE_ID } from './runtime.js';
 import { currentSession } from './session.js';
 
@@ -20,14 +20,15 @@ export class Recording {
 	// ticks, requests, readings, and why it stopped.
 	async stop() {
 		await this.session.sync();
-		this.summary = await (await serverCall(this.session, `/api/recordings/${this.id}/stop`, 'stopRecording', 'POST')).json();
+		this.summary = await (await serverCall(this.session.http, this.session.token, `/api/recordings/${this.id}/stop`,
+			'stopRecording', { method: 'POST' })).json();
 		return this.summary;
 	}
 
 	// The MCAP file's bytes (stopping the recording first if it runs).
 	async bytes() {
 		if (!this.summary) await this.stop();
-		const answer = await serverCall(this.session, `/api/recordings/${this.id}`, 'saveRecording');
+		const answer = await serverCall(this.session.http, this.session.token, `/api/recordings/${this.id}`, 'saveRecording');
 		return new Uint8Array(await answer.arrayBuffer());
 	}
 
@@ -56,15 +57,4 @@ export async function startRecording(session = currentSession()) {
 // Stop the scene's recording, whoever started it; what it holds.
 export async function stopRecording(session = currentSession()) {
 	return session.call(SCENE_ID, 'stopRecording', [], { wait: true });
-}
-
-// A REST answer of the session's server; its refusal as the ServerError the WebSocket gives.
-async function serverCall(session, path, request, method = 'GET') {
-	const headers = session.token ? { Authorization: `Bearer ${session.token}` } : {};
-	const answer = await fetch(new URL(path, session.http), { method, headers });
-	if (!answer.ok) {
-		const body = await answer.json().catch(() => ({}));
-		throw new ServerError(body.code ?? 'http_error', body.message ?? answer.statusText, request, body.details ?? {});
-	}
-	return answer;
 }
