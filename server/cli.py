@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import asyncio
 import logging
 import os
 import resource
@@ -11,7 +12,9 @@ from pathlib import Path
 
 import uvicorn
 
+from .cluster.roles import LEASE_SECONDS, ROLES, ClusterMember, WorkerSettings, plain_name
 from .core.kit.limits import DEFAULT, Limits
+from .core.physics.assets import AssetLibrary
 from .demo import DEMOS
 from .web.access import AccessPolicy
 from .web.app import create_app
@@ -38,11 +41,14 @@ def main(argv: list[str] | None = None) -> None:
         parser.error(str(error))
     logging.basicConfig(level=args.log_level.upper())
     _raise_file_limit(limits)
+    cluster = _cluster(args, limits)
+    if cluster is not None and args.role == "worker":
+        sys.exit(UNSAVED if asyncio.run(cluster.serve()) else 0)
     access = AccessPolicy.serving(args.host, args.token or None, args.view_token or None,
                                   tuple(args.allow_origin), tuple(args.allow_host))
     app = create_app(tick_rate=args.tick_rate, setups=None if args.no_demo else DEMOS,
                      limits=limits, uploads=args.assets_dir, access=access,
-                     state_dir=args.state_dir)
+                     state_dir=args.state_dir, cluster=cluster)
     # No permessage-deflate: it would compress every frame for every client on the one
     # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md).
     uvicorn.run(app, host=args.host, port=args.port, log_level=args.log_level,
@@ -54,6 +60,17 @@ def main(argv: list[str] | None = None) -> None:
         log.error("the last changes of scene %s could not be saved",
                   ", ".join(app.state.unsaved))
         sys.exit(UNSAVED)
+
+
+def _cluster(args: argparse.Namespace, limits: Limits) -> ClusterMember | None:
+    """This process's part in a cluster, when ``--bus`` names one."""
+    if not args.bus:
+        return None
+    uploads = args.assets_dir or (args.state_dir / "assets" if args.state_dir else None)
+    settings = WorkerSettings(limits, args.tick_rate, AssetLibrary(uploads=uploads, limits=limits),
+                              {} if args.no_demo else DEMOS, args.state_dir,
+                              **({"name": plain_name(args.worker_name)} if args.worker_name else {}))
+    return ClusterMember(args.bus, args.role, settings, args.lease_seconds)
 
 
 def _defaults() -> Limits:
@@ -114,6 +131,18 @@ def _parser() -> argparse.ArgumentParser:
                         help="answer requests that name this server NAME (its Host header) "
                              "besides its IP addresses, localhost and --host (repeatable; * "
                              "for any; default: $VP_ALLOWED_HOSTS, comma-separated)")
+    parser.add_argument("--bus", default=os.environ.get("VP_BUS"), metavar="URL",
+                        help="run as part of a cluster on this NATS server (nats://host:port): "
+                             "scenes run on workers, clients connect to gateways (default: "
+                             "$VP_BUS; unset: one server runs everything, no bus)")
+    parser.add_argument("--role", choices=ROLES, default="all",
+                        help="with --bus: gateway (WebSockets, REST, pages), worker (runs "
+                             "scenes) or all (both in this process)")
+    parser.add_argument("--worker-name", default=None, metavar="NAME",
+                        help="with --bus: this worker's name (default: host name and process id)")
+    parser.add_argument("--lease-seconds", type=float, default=LEASE_SECONDS,
+                        help="with --bus: a dead worker's scenes start on another worker "
+                             "within this long")
     parser.add_argument("--log-level", default="info",
                         choices=["critical", "error", "warning", "info", "debug"])
     return parser

@@ -19,7 +19,22 @@ def test_docker_compose_reads_the_file_and_finds_both_services():
     subprocess.run([COMPOSE, "config", "-q"], cwd=ROOT, check=True, timeout=60)
     services = subprocess.run([COMPOSE, "config", "--services"], cwd=ROOT, check=True,
                               capture_output=True, text=True, timeout=60).stdout.split()
-    assert sorted(services) == ["server", "tests"]
+    assert sorted(services) == ["balancer", "bus", "gateway1", "gateway2", "server", "tests",
+                                "worker1", "worker2"]
+
+
+@pytest.mark.skipif(COMPOSE is None, reason="make test installs docker-compose first")
+def test_the_cluster_profile_puts_two_gateways_behind_the_balancer_and_two_workers_on_the_bus():
+    config = subprocess.run([COMPOSE, "--profile", "cluster", "config"], cwd=ROOT, check=True,
+                            capture_output=True, text=True, timeout=60).stdout
+    roles = dict(re.findall(r"^  (\w+):\n(?:    .*\n)*?    command:\n(?:    - .*\n)*?"
+                            r"    - --role\n    - (\w+)", config, re.MULTILINE))
+    assert roles == {"gateway1": "gateway", "gateway2": "gateway", "worker1": "worker",
+                     "worker2": "worker"}
+    assert config.count("nats://bus:4222") == 4
+    balancer = (ROOT / "docker" / "cluster" / "nginx.conf").read_text()
+    assert re.findall(r"server (\w+):8000", balancer) == ["gateway1", "gateway2"]
+    assert "proxy_set_header Upgrade $http_upgrade" in balancer  # WebSockets pass
 
 
 def test_the_tests_service_runs_the_readme_test_command():
@@ -47,7 +62,8 @@ def lineage(name: str) -> list[str]:
 
 def test_both_services_build_a_stage_of_the_dockerfile():
     compose = (ROOT / "docker-compose.yml").read_text()
-    assert re.findall(r"target: (\S+)", compose) == ["server", "tests"]
+    targets = re.findall(r"target: (\S+)", compose)
+    assert targets == ["server", "tests", "bus", "balancer"] and set(targets) <= set(stages())
     assert set(lineage("tests")) >= {"tests", "server"}  # the tests run the server's image
 
 

@@ -83,6 +83,16 @@ def test_the_cores_layers_import_only_the_layers_below_them():
     assert wrong == []
 
 
+def test_the_server_imports_one_way_cli_cluster_web_core():
+    graph = import_graph(ROOT / "server")
+    order = ["server.core", "server.web", "server.cluster", "server.cli"]
+    tier = lambda module: next((k for k, top in enumerate(order) if module.startswith(top)), None)
+    assert "server.web.runner" in graph["server.cluster.worker_host"]  # the graph is read
+    wrong = [f"{module} imports {other}" for module, imports in graph.items() for other in imports
+             if None not in (tier(module), tier(other)) and tier(other) > tier(module)]
+    assert wrong == []
+
+
 def test_the_core_does_no_io():
     for path in (ROOT / "server" / "core").rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):

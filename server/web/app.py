@@ -9,7 +9,7 @@ import tempfile
 import time
 from contextlib import asynccontextmanager
 from pathlib import Path
-from typing import AsyncIterator, Mapping
+from typing import AsyncIterator, Mapping, Protocol
 
 from fastapi import Depends, FastAPI, Request
 from fastapi.responses import JSONResponse, Response
@@ -32,15 +32,27 @@ HTTP_STATUS: dict[type[VPError], int] = {LookupFailure: 404, Forbidden: 403, Too
                                          LimitExceeded: 429, RecordingBusy: 409, StorageFailure: 507}
 
 
+class ClusterPart(Protocol):
+    """This server's part in a cluster (:class:`server.cluster.roles.ClusterMember`)."""
+
+    async def start(self, hubs: Hubs | None) -> None:
+        """Join: ``hubs``' scenes run on the cluster's workers from now on."""
+
+    async def stop(self) -> list[str]:
+        """Leave; the scenes run here whose last changes could not be saved."""
+
+
 def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None = None,
                limits: Limits = DEFAULT, uploads: Path | None = None,
-               access: AccessPolicy = AccessPolicy(), state_dir: Path | None = None) -> FastAPI:
+               access: AccessPolicy = AccessPolicy(), state_dir: Path | None = None,
+               cluster: ClusterPart | None = None) -> FastAPI:
     """The server: the ``default`` scene exists from the start; ``setups`` prepare scenes
     by name (whenever one starts). Uploaded meshes are kept in ``uploads`` (by default
     the state folder's, else a temporary folder removed when the server stops).
     ``access``: tokens, origins and host names. ``state_dir``: scenes are saved there and
     come back from there (:mod:`server.web.state_dir`); after the server stopped,
-    ``app.state.unsaved`` names the scenes whose last changes could not be saved."""
+    ``app.state.unsaved`` names the scenes whose last changes could not be saved.
+    ``cluster``: scenes run on a cluster's workers instead of this server's processes."""
     state = StateDir(state_dir) if state_dir is not None else None
     temporary = uploads is None and state is None
     uploads = _upload_folder(uploads, state)
@@ -52,12 +64,16 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         asyncio.get_running_loop().set_exception_handler(LoopErrorLog().handle)
         redact_tokens_in_logs()  # uvicorn has set its loggers up by now
+        if cluster is not None:
+            await cluster.start(hubs)
         hubs.open(DEFAULT_SCENE)  # saved scenes open when they are first used
         sweeper = asyncio.create_task(hubs.sweep())
         heap.settle()
         yield
         sweeper.cancel()
         app.state.unsaved = await hubs.stop()
+        if cluster is not None:
+            app.state.unsaved += await cluster.stop()
         if temporary:
             shutil.rmtree(uploads, ignore_errors=True)
 

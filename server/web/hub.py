@@ -12,7 +12,6 @@ import hmac
 import json
 import logging
 import re
-import secrets
 import time
 from typing import Any, Callable
 
@@ -23,8 +22,9 @@ from ..core.protocol.scene_document import uploaded_assets
 from ..core.scene.scene import Scene
 from ..errors import LimitExceeded, OutOfRange, UnknownScene, VPError
 from . import heap
+from .client_ids import ClientIdSource, ClientIds
 from .offload import Offload
-from .runner import PREDECESSOR_SECONDS, SceneRunner
+from .runner import PREDECESSOR_SECONDS, Runner, RunnerFactory, SceneRunner
 from .scene_hub import SceneHub
 from .recordings import Recordings
 from .state_dir import SCENE_NAME, SceneStore, StateDir
@@ -56,24 +56,22 @@ class Hubs:
     holds nothing, or holds what is kept in ``state`` (then it comes back from there)."""
 
     def __init__(self, tick_rate: float = 60.0, limits: Limits = DEFAULT,
-                 assets: AssetLibrary | None = None, state: StateDir | None = None) -> None:
+                 assets: AssetLibrary | None = None, state: StateDir | None = None,
+                 runners: RunnerFactory = SceneRunner, ids: ClientIdSource | None = None) -> None:
         self.tick_rate = tick_rate
         self.limits = limits
         self.assets = assets or AssetLibrary()  # uploads land here; every scene reads them
         self.state = state
         self.scenes: dict[str, SceneHub] = {}
-        self._stopping: dict[str, SceneRunner] = {}  # removed scenes whose process may run on
+        self._stopping: dict[str, Runner] = {}  # removed scenes whose process may run on
         self.removed = 0
         self.offload = Offload()  # reading saved files and checking uploads, off this process
         self.resimulations = Offload()  # recordings run again (minutes, maybe): a process of their own
         self.replays = Offload()  # recordings read for players (JSON parsing: not in this process)
         self._setups: dict[str, SceneSetup] = {}
         self._restarts: dict[str, float] = {}  # a failed setup scene's next pause
-        # signs resume keys: valid until a restart, or for good with a state folder
-        self._secret = state.secret if state is not None else secrets.token_bytes(32)
-        self._clients = state.clients_reserved if state is not None else 0
-        self._reserved = self._clients
-        self._reserve(self._clients)
+        self.runners = runners  # scene processes here, or on a cluster's workers (server.cluster)
+        self.ids = ids if ids is not None else ClientIds(state)
         self.recordings = Recordings(state.root / "recordings" if state is not None else None)
 
     def get(self, name: str) -> SceneHub | None:
@@ -102,7 +100,8 @@ class Hubs:
             store = self.state.store(name) if self.state is not None else None
             hub = self.scenes[name] = SceneHub(name, self.limits, self.tick_rate,
                                                self.assets, self._setups.get(name), store,
-                                               self.reserve, self._ended, self.recordings)
+                                               self.reserve, self._ended, self.recordings,
+                                               self.runners)
             hub.runner.start(after=self._stopping.pop(name, None))
         return hub
 
@@ -136,25 +135,19 @@ class Hubs:
         return client_id, self._resume_key(scene, client_id)
 
     def _resume_key(self, scene: str, client_id: str) -> str:
-        mac = hmac.new(self._secret, f"{scene}\0{client_id}".encode(), hashlib.sha256)
+        mac = hmac.new(self.ids.secret, f"{scene}\0{client_id}".encode(), hashlib.sha256)
         return f"{client_id}:{mac.hexdigest()[:32]}"
 
     def new_client_id(self) -> str:
         """A fresh client id: c1, c2, … (never handed out twice by this server, nor, with
         a state folder, by the server before a restart)."""
-        self._clients += 1
-        self._reserve(self._clients)
-        return f"c{self._clients}"
+        return f"c{self.ids.next()}"
 
     def reserve(self, owners: list[str]) -> None:
         """Never hand out these client ids (owners of objects a document brought in)."""
         numbers = [int(owner[1:]) for owner in owners if CLIENT_ID.fullmatch(owner)]
-        self._clients = max([self._clients, *numbers])
-        self._reserve(self._clients)
-
-    def _reserve(self, upto: int) -> None:
-        if self.state is not None and upto >= self._reserved:
-            self._reserved = self.state.reserve_clients(upto)
+        if numbers:
+            self.ids.reserve(max(numbers))
 
     def discard(self, hub: SceneHub) -> None:
         """Stop a scene nobody has joined (made for an import that was refused)."""

@@ -17,7 +17,7 @@ import sys
 import threading
 import time
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Protocol
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
@@ -36,6 +36,38 @@ CONTEXT = multiprocessing.get_context("forkserver")
 CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial", "scipy.optimize",
                                 "server.web.forkserver_heap"])  # last: freezes what they loaded
 sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
+
+
+class Runner(Protocol):
+    """A scene's process as the event loop drives it: :class:`SceneRunner` here, or a
+    cluster's worker over the bus (:mod:`server.cluster.remote_runner`)."""
+
+    name: str
+    tick_rate: float
+    last_posted: float
+    ended: bool
+    stopping: bool
+
+    @property
+    def pid(self) -> int | None: ...
+
+    @property
+    def unsaved(self) -> bool: ...
+
+    def start(self, after: Runner | None = None) -> None: ...
+
+    def post(self, *command: Any) -> None: ...
+
+    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]: ...
+
+    def stop(self) -> None: ...
+
+    def join(self, timeout: float) -> None: ...
+
+
+# name, limits, tick rate, assets, setup, deliver, store, recordings' folder
+RunnerFactory = Callable[[str, Limits, float, AssetLibrary, "worker.SceneSetup | None", Deliver,
+                          "SceneStore | None", "Path | None"], Runner]
 
 
 class SceneRunner:
@@ -71,14 +103,14 @@ class SceneRunner:
     def pid(self) -> int | None:
         return self._process.pid
 
-    def start(self, after: SceneRunner | None = None) -> None:
+    def start(self, after: Runner | None = None) -> None:
         """Start the process and the two threads that talk to it; with ``after`` (the
         scene's process still stopping), once that has ended: its last save is what this
         one restores. Commands posted meanwhile wait."""
         threading.Thread(target=self._launch, args=(after,), name=f"to-{self.name}",
                          daemon=True).start()
 
-    def _launch(self, after: SceneRunner | None) -> None:
+    def _launch(self, after: Runner | None) -> None:
         if after is not None:
             after.join(PREDECESSOR_SECONDS)
         try:
@@ -113,6 +145,13 @@ class SceneRunner:
         """Ask the process to finish the commands sent so far, then end."""
         self.stopping = True
         self._commands.put(_STOP)
+
+    def kill(self) -> None:
+        """End the process at once, unsaved: another process owns the scene now."""
+        self.stopping = True
+        self._started.wait()
+        if self._process.pid is not None:
+            self._process.kill()
 
     def join(self, timeout: float) -> None:
         """Wait for the process to end (killed after ``timeout`` seconds)."""

@@ -21,7 +21,7 @@ from ..core.physics.assets import AssetLibrary
 from ..errors import UnknownScene
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .recordings import Recordings
-from .runner import SceneRunner
+from .runner import RunnerFactory, SceneRunner
 from .scene_store import SceneStore
 from .worker import SceneSetup
 
@@ -79,7 +79,8 @@ class SceneHub:
                  setup: SceneSetup | None = None, store: SceneStore | None = None,
                  owners: Callable[[list[str]], None] = lambda owners: None,
                  ended: Callable[[SceneHub, bool], None] = lambda hub, failed: None,
-                 recordings: Recordings | None = None) -> None:
+                 recordings: Recordings | None = None,
+                 runners: RunnerFactory = SceneRunner) -> None:
         self.name = name
         self.members: dict[int, Connection] = {}  # joined, admitted or not yet
         self.connections: set[Connection] = set()  # admitted: they get every frame
@@ -95,7 +96,7 @@ class SceneHub:
         self._open = asyncio.Event()  # made (restored), and no import under way
         self._imports = 0
         self._arriving = 0  # connections waiting for it to settle
-        self.runner = SceneRunner(name, limits, tick_rate, assets, setup, self._events, store,
+        self.runner = runners(name, limits, tick_rate, assets, setup, self._events, store,
                                   recordings.folder if recordings is not None else None)
 
     @property

@@ -46,6 +46,7 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
                              f"{ENGINE}", engine=engine)
         hub = hubs.open(scene)
         await hub.settled()  # restored (its owners reserved), no import under way
+        await hubs.ids.available()  # a cluster's ids come from the bus
     except VPError as error:
         code = TRY_AGAIN_LATER if isinstance(error, LimitExceeded) else POLICY_VIOLATION
         await websocket.send_text(Outgoing.of(error.to_wire()).text)

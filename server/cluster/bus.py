@@ -1,0 +1,166 @@
+"""The bus: one NATS connection (``nats-py``, NATS's own client), the subjects and
+key-value buckets the cluster uses, and how its messages are packed.
+
+Subjects (scene and worker names are plain: letters, digits, ``_`` and ``-``)::
+
+    vp.place                        every worker answers how many scenes it runs (a
+                                    gateway places a new scene on the least busy)
+    vp.worker.<w>.attach            a gateway asks worker <w> to run a scene for it
+    vp.worker.<w>.alive             a gateway's heartbeat; <w> answers which of its scenes
+                                    it still runs
+    vp.worker.<w>.scene.<s>         commands for scene <s> (from any gateway, in order)
+    vp.scene.<s>.events             everything scene <s> says: published once, received
+                                    by every gateway attached to it, in the order it was said
+
+Buckets: ``vp_leases`` (scene → the worker running it, expiring unless renewed) and
+``vp_cluster`` (the resume keys' secret, how far client ids have been handed out).
+
+Messages are pickled Python values, as on the pipes between a server and its scene
+processes (:mod:`server.web.runner`): the bus is part of one deployment and must be
+reachable by its processes only (NATS accounts or TLS when it leaves one machine).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import pickle
+from typing import Any, Awaitable, Callable
+
+import nats
+from nats.aio.client import Client
+from nats.aio.msg import Msg
+from nats.errors import NoRespondersError, NoServersError, TimeoutError as RequestTimeout
+from nats.js.errors import BadRequestError
+from nats.js.kv import KeyValue
+
+from ..errors import TooLarge
+
+log = logging.getLogger(__name__)
+PLACE = "vp.place"
+CONNECT_SECONDS = 60.0  # a process started with its bus waits this long for it
+LEASES, CLUSTER = "vp_leases", "vp_cluster"
+Handler = Callable[[Any, "Reply | None"], Awaitable[None] | None]
+
+
+def attach_subject(worker: str) -> str:
+    return f"vp.worker.{worker}.attach"
+
+
+def alive_subject(worker: str) -> str:
+    return f"vp.worker.{worker}.alive"
+
+
+def commands_subject(worker: str, scene: str) -> str:
+    return f"vp.worker.{worker}.scene.{scene}"
+
+
+def events_subject(scene: str) -> str:
+    return f"vp.scene.{scene}.events"
+
+
+class Unanswered(Exception):
+    """A request nobody answered: no subscriber (``gone``: its worker is gone) or not in
+    time (it may only be slow)."""
+
+    def __init__(self, text: str, gone: bool) -> None:
+        super().__init__(text)
+        self.gone = gone
+
+
+class Reply:
+    """The way back to a request's sender."""
+
+    def __init__(self, bus: Bus, subject: str) -> None:
+        self._bus, self._subject = bus, subject
+
+    async def send(self, value: Any) -> None:
+        await self._bus.publish(self._subject, value)
+
+
+class Bus:
+    """A connection to the bus, with the cluster's buckets."""
+
+    def __init__(self, client: Client, leases: KeyValue, shared: KeyValue) -> None:
+        self.client = client
+        self.leases = leases  # scene -> worker, expiring (server.cluster.leases)
+        self.shared = shared  # cluster-wide facts (server.cluster.client_ids)
+
+    @classmethod
+    async def connect(cls, url: str, name: str, lease_seconds: float) -> Bus:
+        """Connect (retrying while the bus starts), making the buckets if they are missing."""
+        deadline = asyncio.get_running_loop().time() + CONNECT_SECONDS
+        while True:
+            try:
+                client = await nats.connect(url, name=name, connect_timeout=2,
+                                            max_reconnect_attempts=-1, reconnect_time_wait=0.5)
+                break
+            except (NoServersError, OSError) as error:
+                if asyncio.get_running_loop().time() > deadline:
+                    raise ConnectionError(f"the bus at {url} does not answer") from error
+                log.warning("waiting for the bus at %s", url)
+                await asyncio.sleep(1.0)
+        stream = client.jetstream()
+        try:
+            leases = await stream.create_key_value(bucket=LEASES, ttl=lease_seconds, history=1)
+        except BadRequestError:  # made by a process with another --lease-seconds: that one holds
+            leases = await stream.key_value(LEASES)
+            log.warning("the bus's leases last as long as the first process said; "
+                        "--lease-seconds %s is not used", lease_seconds)
+        shared = await stream.create_key_value(bucket=CLUSTER, history=1)
+        return cls(client, leases, shared)
+
+    def pack(self, value: Any) -> bytes:
+        data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        if len(data) > self.client.max_payload:
+            raise TooLarge(f"{len(data)} bytes is more than the bus carries in one message "
+                           f"({self.client.max_payload} bytes: nats-server's max_payload)",
+                           limit="max_payload", value=self.client.max_payload)
+        return data
+
+    async def publish(self, subject: str, value: Any) -> None:
+        await self.client.publish(subject, self.pack(value))
+
+    async def request(self, subject: str, value: Any, timeout: float) -> Any:
+        """Ask and wait for the answer; :class:`Unanswered` when none comes."""
+        try:
+            message = await self.client.request(subject, self.pack(value), timeout=timeout)
+        except NoRespondersError:
+            raise Unanswered(f"{subject}: nobody listens", gone=True) from None
+        except RequestTimeout:
+            raise Unanswered(f"{subject}: no answer within {timeout} s", gone=False) from None
+        return pickle.loads(message.data)
+
+    async def gather(self, subject: str, value: Any, wait: float) -> list[Any]:
+        """Ask everyone listening on ``subject``; the answers that came within ``wait``."""
+        answers: list[Any] = []
+
+        async def collect(message: Msg) -> None:
+            if message.data:  # (not the bus's own "no responders")
+                answers.append(pickle.loads(message.data))
+        inbox = self.client.new_inbox()
+        subscription = await self.client.subscribe(inbox, cb=collect)
+        try:
+            await self.client.publish(subject, self.pack(value), reply=inbox)
+            await asyncio.sleep(wait)
+        finally:
+            await subscription.unsubscribe()
+        return answers
+
+    async def subscribe(self, subject: str, handler: Handler) -> Any:
+        """Call ``handler(value, reply)`` for each message, in order; the subscription."""
+        async def receive(message: Msg) -> None:
+            reply = Reply(self, message.reply) if message.reply else None
+            try:
+                outcome = handler(pickle.loads(message.data), reply)
+                if outcome is not None:
+                    await outcome
+            except Exception:  # one bad message must not end the subscription
+                log.exception("handling a message on %s", subject)
+        return await self.client.subscribe(subject, cb=receive)
+
+    async def close(self) -> None:
+        try:
+            await self.client.drain()
+        except Exception:  # already closed, or the bus is gone: nothing left to drain
+            await self.client.close()

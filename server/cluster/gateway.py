@@ -1,0 +1,110 @@
+"""A gateway: the server's WebSockets, REST and pages, its scenes run by workers.
+
+:class:`Gateway` is what :class:`server.web.hub.Hubs` needs of the cluster: a
+:data:`server.web.runner.RunnerFactory` making :class:`.remote_runner.RemoteRunner`\\ s,
+client ids shared with the other gateways (:mod:`.client_ids`), one ordered sender for
+everything the gateway publishes, and a heartbeat that tells each worker its attachments
+live and notices when a worker has gone.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+import logging
+from collections import defaultdict
+from pathlib import Path
+from typing import Any
+
+from ..core.kit.limits import Limits
+from ..core.physics.assets import AssetLibrary
+from ..web.runner import Deliver
+from ..web.scene_store import SceneStore
+from ..web.worker import SceneSetup
+from .bus import PLACE, Bus, Unanswered, alive_subject
+from .remote_runner import RemoteRunner
+
+log = logging.getLogger(__name__)
+HEARTBEAT_SECONDS = 1.0
+# a worker is gone after this many heartbeats in a row went to nobody (its connection to the
+# bus is closed), or this many more went unanswered (alive, maybe, but stuck)
+MISSED_BEATS = {True: 2, False: 5}
+GATHER_SECONDS = 0.05  # how long workers have to say how busy they are
+
+
+class Gateway:
+    """This gateway's attachments to scenes, by worker."""
+
+    def __init__(self, bus: Bus, name: str) -> None:
+        self.bus, self.name = bus, name
+        self._numbers = itertools.count(1)
+        self._attached: dict[str, RemoteRunner] = {}
+        self._missed: dict[str, int] = defaultdict(int)  # worker -> heartbeats unanswered
+        self._outgoing: asyncio.Queue[tuple[str, Any]] = asyncio.Queue()
+        self._tasks: list[asyncio.Task[None]] = []
+
+    def runner(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
+               setup: SceneSetup | None, deliver: Deliver, store: SceneStore | None,
+               recordings: Path | None) -> RemoteRunner:
+        """A scene's runner (the worker makes the scene with its own setups and store)."""
+        return RemoteRunner(self, f"{self.name}-{next(self._numbers)}", name, tick_rate, deliver)
+
+    def start(self) -> None:
+        self._tasks = [asyncio.create_task(self._send()), asyncio.create_task(self._beat())]
+
+    def send(self, subject: str, value: Any) -> None:
+        """Publish in order: one sender for every command of this gateway."""
+        self._outgoing.put_nowait((subject, value))
+
+    async def _send(self) -> None:
+        while True:
+            subject, value = await self._outgoing.get()
+            try:
+                await self.bus.publish(subject, value)
+            except Exception:
+                log.exception("publishing on %s", subject)
+
+    async def least_busy(self) -> list[str]:
+        """Workers with room for a scene, the least busy first."""
+        answers = await self.bus.gather(PLACE, None, GATHER_SECONDS)
+        return [name for name, scenes, most in sorted(answers, key=lambda a: (a[1], a[0]))
+                if scenes < most]
+
+    def attached(self, runner: RemoteRunner) -> None:
+        self._attached[runner.attachment] = runner
+
+    def detached(self, runner: RemoteRunner) -> None:
+        self._attached.pop(runner.attachment, None)
+
+    async def _beat(self) -> None:
+        while True:
+            await asyncio.sleep(HEARTBEAT_SECONDS)
+            by_worker: dict[str, list[RemoteRunner]] = defaultdict(list)
+            for runner in list(self._attached.values()):
+                by_worker[runner.worker].append(runner)  # type: ignore[index]
+            await asyncio.gather(*(self._check(worker, runners)
+                                   for worker, runners in by_worker.items()))
+
+    async def _check(self, worker: str, runners: list[RemoteRunner]) -> None:
+        try:
+            alive = set(await self.bus.request(
+                alive_subject(worker), [(r.attachment, r.name) for r in runners],
+                HEARTBEAT_SECONDS))
+        except Unanswered as unanswered:
+            self._missed[worker] += 1
+            if self._missed[worker] >= MISSED_BEATS[unanswered.gone]:
+                del self._missed[worker]
+                for runner in runners:
+                    runner.lost()
+            return
+        self._missed.pop(worker, None)
+        for runner in runners:
+            if runner.attachment not in alive:
+                runner.lost()
+
+    async def stop(self) -> None:
+        while not self._outgoing.empty():  # the detachments of the scenes just stopped
+            subject, value = self._outgoing.get_nowait()
+            await self.bus.publish(subject, value)
+        for task in self._tasks:
+            task.cancel()

@@ -1,0 +1,226 @@
+"""A gateway's handle on a scene a worker runs: :class:`server.web.runner.Runner` over the bus.
+
+It places the scene first (the worker holding its lease, else the least busy one that
+claims it; while a dead worker's lease lapses it keeps trying), then sends commands in
+the order they were posted (those posted meanwhile wait) and hands the scene's events to
+its hub, as :class:`server.web.runner.SceneRunner` does for a process of its own. It ends
+when it is detached (asked to stop), when the scene's process ends, or when its worker
+stops answering (:class:`.gateway.Gateway`'s heartbeat): then as a failed scene, which its
+clients reconnect to, and it starts again elsewhere.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+from collections import deque
+import logging
+import threading
+import time
+from typing import Any, Protocol
+
+from ..errors import UnknownScene, VPError
+from ..web.runner import Deliver, Runner
+from .bus import Bus, Unanswered, attach_subject, commands_subject, events_subject
+from .leases import lease_holder
+
+log = logging.getLogger(__name__)
+PLACE_SECONDS = 30.0  # how long a scene waits for a worker (a dead one's lease lapses sooner)
+ATTACH_SECONDS = 10.0  # a worker's answer to an attachment (it starts the scene's process)
+RETRY_SECONDS = 0.25
+EARLY_EVENTS = 1024
+
+
+class Attachments(Protocol):
+    """What a runner needs of its gateway (:class:`.gateway.Gateway`)."""
+
+    bus: Bus
+
+    def send(self, subject: str, value: Any) -> None:
+        """Publish, in order with everything else the gateway sends."""
+
+    async def least_busy(self) -> list[str]:
+        """Workers with room, the least busy first."""
+
+    def attached(self, runner: RemoteRunner) -> None:
+        """The runner is placed: its worker's heartbeat covers it now."""
+
+    def detached(self, runner: RemoteRunner) -> None:
+        """The runner has ended."""
+
+
+class RemoteRunner:
+    """One attachment: this gateway's handle on a scene some worker runs."""
+
+    def __init__(self, gateway: Attachments, attachment: str, name: str, tick_rate: float,
+                 deliver: Deliver) -> None:
+        self.gateway, self.attachment, self.name = gateway, attachment, name
+        self.tick_rate = tick_rate
+        self.worker: str | None = None
+        self.last_posted = 0.0
+        self.ended = False
+        self.stopping = False
+        self._deliver = deliver
+        self._waiting: list[tuple[Any, ...]] = []  # posted before it was placed
+        self._replies: dict[int, asyncio.Future[Any]] = {}
+        self._numbers = itertools.count(1)
+        self._events: Any = None  # the subscription to the scene's events
+        self._placing: asyncio.Task[None] | None = None
+        self._incarnation: str | None = None  # the scene's process on its worker, once placed
+        # its events heard before the worker's answer (frames of a scene running already:
+        # the newest are enough; only those after the answer was made matter)
+        self._early: deque[Any] = deque(maxlen=EARLY_EVENTS)
+        self._gone = threading.Event()  # join() waits in a thread
+        self._pid: int | None = None
+
+    @property
+    def pid(self) -> int | None:
+        """The scene's process id, on its worker."""
+        return self._pid
+
+    @property
+    def unsaved(self) -> bool:
+        """Never here: a scene's saving is its worker's (``vp-server --role worker``'s exit code)."""
+        return False
+
+    def start(self, after: Runner | None = None) -> None:
+        """Place the scene. A predecessor still stopping (``after``) is its worker's to
+        wait for: the scene's lease is still that worker's, so it is placed there again."""
+        self._placing = asyncio.create_task(self._place())
+
+    async def _place(self) -> None:
+        try:
+            self._events = await self.gateway.bus.subscribe(events_subject(self.name),
+                                                            self._receive)
+            deadline = time.monotonic() + PLACE_SECONDS
+            while (answer := await self._attach()) is None:
+                if time.monotonic() > deadline:
+                    raise UnknownScene(f"no worker runs scene {self.name}: none answered for "
+                                       f"{PLACE_SECONDS:.0f} s", scene=self.name)
+                await asyncio.sleep(RETRY_SECONDS)
+        except asyncio.CancelledError:
+            raise
+        except VPError as error:
+            log.error("scene %s could not be placed: %s", self.name, error.message)
+            self._end(True)
+            return
+        except Exception:  # the bus failed us: the scene fails; a client's return retries
+            log.exception("scene %s could not be placed", self.name)
+            self._end(True)
+            return
+        self._pid, self._incarnation = answer["pid"], answer["incarnation"]
+        self.gateway.attached(self)
+        if answer["ready"] is not None:  # made before this attachment: it will not say so again
+            self._deliver([("ready", answer["ready"])])
+        if answer["saving"]:
+            self._deliver([("saving", answer["saving"])])
+        early, self._early = list(self._early), deque()
+        for message in early:
+            self._receive(message, None)
+        self.gateway.send(commands_subject(self.worker, self.name),  # type: ignore[arg-type]
+                          (self.attachment, self._waiting))
+        self._waiting = []
+
+    async def _attach(self) -> dict[str, Any] | None:
+        """One try: the lease holder, else the least busy workers in turn."""
+        holder = await lease_holder(self.gateway.bus.leases, self.name)
+        for worker in [holder] if holder is not None else await self.gateway.least_busy():
+            try:
+                answer = await self.gateway.bus.request(
+                    attach_subject(worker), (self.attachment, self.name), ATTACH_SECONDS)
+            except Unanswered:
+                continue  # gone; its lease lapses soon
+            if answer[0] == "attached":
+                self.worker = worker
+                return answer[1]
+            if answer[0] == "elsewhere":
+                return None  # placed meanwhile: try its holder
+        return None
+
+    def post(self, *command: Any) -> None:
+        """Send a command; the scene applies a gateway's commands in the order posted."""
+        self.last_posted = time.monotonic()
+        if self.worker is None:
+            self._waiting.append(command)
+        else:
+            self.gateway.send(commands_subject(self.worker, self.name),
+                              (self.attachment, [command]))
+
+    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
+        """Send a command that is answered; its reply, awaitable."""
+        future = asyncio.get_running_loop().create_future()
+        if self.ended:
+            future.set_exception(UnknownScene(f"scene {self.name} has ended", scene=self.name))
+            return future
+        number = next(self._numbers)
+        self._replies[number] = future
+        self.post(verb, number, *args)
+        return future
+
+    def stop(self) -> None:
+        """Detach: the worker stops the scene when no other gateway is attached to it."""
+        self.stopping = True
+        if self.worker is None and self._placing is not None:
+            self._placing.cancel()
+            self._end(False)
+        elif not self.ended:
+            self.post("detach")
+
+    def join(self, timeout: float) -> None:
+        """Wait until detached (the scene saved, if it stopped)."""
+        self._gone.wait(timeout)
+
+    def _receive(self, message: tuple[str, list[tuple[str | None, tuple[Any, ...]]]],
+                 reply: Any) -> None:
+        incarnation, events = message
+        if self._incarnation is None:
+            self._early.append(message)
+            return
+        if incarnation != self._incarnation or self.ended:
+            return  # a predecessor's last words, or after the end
+        mine = []
+        for target, event in events:
+            if target is not None and target != self.attachment:
+                continue
+            kind = event[0]
+            if kind == "reply":
+                self._reply(*event[1:])
+            elif kind == "detached":
+                self._end(False)
+                return
+            elif kind == "ended":
+                self._end(bool(event[1]) and not self.stopping)
+                return
+            else:
+                mine.append(event)
+        if mine and not self.ended:
+            self._deliver(mine)
+
+    def _reply(self, number: int, ok: bool, value: Any) -> None:
+        future = self._replies.pop(number, None)
+        if future is None or future.done():
+            return
+        if ok:
+            future.set_result(value)
+        else:
+            future.set_exception(value)
+
+    def lost(self) -> None:
+        """Its worker stopped answering: the scene failed (it starts again elsewhere)."""
+        log.error("the worker %s of scene %s stopped answering", self.worker, self.name)
+        self._end(not self.stopping)
+
+    def _end(self, failed: bool) -> None:
+        if self.ended:
+            return
+        self.ended = True
+        self.gateway.detached(self)
+        if self._events is not None:
+            asyncio.create_task(self._events.unsubscribe())
+        for future in self._replies.values():
+            if not future.done():
+                future.set_exception(UnknownScene(f"scene {self.name} has ended",
+                                                  scene=self.name))
+        self._replies.clear()
+        self._deliver([("ended", failed)])
+        self._gone.set()

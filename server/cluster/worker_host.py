@@ -1,0 +1,257 @@
+"""A worker: runs scenes for the cluster's gateways (``vp-server --role worker``).
+
+Each scene is a process of :mod:`server.web.runner`, as on a single server; the worker
+holds its lease (:mod:`.leases`), takes its commands from the bus and publishes its events
+once, for every gateway attached to it (:mod:`.bus`). An *attachment* is one gateway's
+handle on one scene (:class:`.remote_runner.RemoteRunner`); a client connection is named
+by its attachment and the gateway's number for it, so connections of different gateways
+never collide. A scene stops when its last attachment detaches (the gateway found it idle),
+or, once every gateway attached to it has gone silent, when it has been alone for
+``sceneIdleSeconds`` and holds nothing or is saved.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+import json
+import logging
+import time
+from typing import Any, Mapping
+
+from ..core.kit.limits import Limits
+from ..core.physics.assets import AssetLibrary
+from ..web.hub import clients_objects
+from ..web.runner import SceneRunner
+from ..web.state_dir import StateDir
+from ..web.worker import SceneSetup
+from .bus import PLACE, Bus, Reply, alive_subject, attach_subject, commands_subject, events_subject
+from .leases import Leases
+
+log = logging.getLogger(__name__)
+CALLS = frozenset({"read", "import", "metrics", "record", "unrecord"})  # answered: ("reply", n, …)
+SILENT_SECONDS = 5.0  # an attachment not heard of this long is gone (its gateway died)
+
+
+class HostedScene:
+    """One scene this worker runs: its process, attachments and their connections."""
+
+    def __init__(self, host: WorkerHost, name: str, incarnation: str,
+                 after: SceneRunner | None) -> None:
+        self.host, self.name = host, name
+        self.incarnation = incarnation  # its events carry it: a predecessor's are told apart
+        self.heard: dict[str, float] = {}  # attachment -> when it was last heard of
+        self.connections: dict[str, set[int]] = {}  # attachment -> its connections' numbers
+        self.alone_since: float | None = None
+        self.owners: list[str] | None = None  # from "ready": the scene is made
+        self.saving: dict[str, Any] = {}
+        self.subscription: Any = None
+        self.runner = SceneRunner(name, host.limits, host.tick_rate, host.assets,
+                                  host.setups.get(name), self._deliver,
+                                  host.state.store(name) if host.state is not None else None,
+                                  host.state.root / "recordings" if host.state is not None else None)
+        self.runner.start(after)
+
+    def attach(self, attachment: str) -> dict[str, Any]:
+        self.heard[attachment] = time.monotonic()
+        self.connections.setdefault(attachment, set())
+        self.alone_since = None
+        return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
+                "saving": self.saving}
+
+    def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
+        """A gateway's commands, in the order it sent them."""
+        if attachment not in self.heard:
+            return  # detached, or silent too long: its clients have left
+        self.heard[attachment] = time.monotonic()
+        for verb, *args in commands:
+            if verb in CALLS:
+                number, *rest = args
+                self.runner.call(verb, *rest).add_done_callback(
+                    lambda done, n=number: self._answer(attachment, n, done))
+            elif verb == "detach":
+                self.detach(attachment)
+            elif verb in ("join", "text", "leave"):
+                cid, *rest = args
+                if verb == "join":
+                    self.connections[attachment].add(cid)
+                elif verb == "leave":
+                    self.connections[attachment].discard(cid)
+                self.runner.post(verb, (attachment, cid), *rest)
+
+    def _answer(self, attachment: str, number: int, done: asyncio.Future[Any]) -> None:
+        failure = done.exception()
+        self._publish([(attachment, ("reply", number, failure is None,
+                                     failure if failure is not None else done.result()))])
+
+    def _publish(self, events: list[tuple[str | None, tuple[Any, ...]]]) -> None:
+        self.host.publish(events_subject(self.name), (self.incarnation, events))
+
+    def detach(self, attachment: str) -> None:
+        """The attachment is gone: its clients leave; the scene stops when none is left and
+        the attachment asked (it found the scene idle), else it waits (``alone_since``)."""
+        for cid in self.connections.pop(attachment, ()):
+            self.runner.post("leave", (attachment, cid))
+        asked = self.heard.pop(attachment, None) is not None
+        if not self.heard:
+            self.alone_since = time.monotonic()
+            if asked:
+                self.runner.stop()
+        self._publish([(attachment, ("detached",))])
+
+    def _deliver(self, events: list[tuple[Any, ...]]) -> None:
+        routed = []
+        for event in events:
+            kind = event[0]
+            if kind in ("admit", "answers"):  # a connection's: its attachment's alone
+                (attachment, number), rest = event[1], event[2:]
+                routed.append((attachment, (kind, number, *rest)))
+                continue
+            if kind == "ready":
+                self.owners = event[1]
+            elif kind == "saving":
+                self.saving = event[1]
+            routed.append((None, event))
+        self._publish(routed)
+        if events[-1][0] == "ended":
+            self.host.ended(self)
+
+
+class WorkerHost:
+    """The scenes one worker runs, placed on it through the bus."""
+
+    def __init__(self, bus: Bus, name: str, limits: Limits, tick_rate: float,
+                 assets: AssetLibrary, setups: Mapping[str, SceneSetup],
+                 state: StateDir | None, lease_seconds: float) -> None:
+        self.bus, self.name = bus, name
+        self.limits, self.tick_rate, self.assets, self.setups = limits, tick_rate, assets, setups
+        self.state = state
+        self.lease_seconds = lease_seconds
+        self.scenes: dict[str, HostedScene] = {}
+        self.leases = Leases(bus.leases, name)
+        self._incarnations = itertools.count(1)
+        self._claims = asyncio.Lock()  # one placement at a time: a scene is started once
+        self._outgoing: asyncio.Queue[tuple[str, Any]] = asyncio.Queue()
+        self._tasks: list[asyncio.Task[None]] = []
+
+    async def start(self) -> None:
+        """Answer placements and heartbeats; renew leases; look after silent attachments."""
+        await self.bus.subscribe(PLACE, self._load)
+        await self.bus.subscribe(attach_subject(self.name), self._attach)
+        await self.bus.subscribe(alive_subject(self.name), self._alive)
+        self._tasks = [asyncio.create_task(self._send()), asyncio.create_task(self._renew()),
+                       asyncio.create_task(self._sweep())]
+        log.info("worker %s runs scenes for the cluster", self.name)
+
+    def publish(self, subject: str, value: Any) -> None:
+        """Publish in order (one sender for everything this worker says)."""
+        self._outgoing.put_nowait((subject, value))
+
+    async def _send(self) -> None:
+        while True:
+            subject, value = await self._outgoing.get()
+            try:
+                await self.bus.publish(subject, value)
+            except Exception:  # too large, or the bus is gone for a moment: that message is lost
+                log.exception("publishing on %s", subject)
+
+    async def _load(self, value: Any, reply: Reply | None) -> None:
+        if reply is not None:
+            await reply.send((self.name, len(self.scenes), self.limits.scenes))
+
+    async def _attach(self, value: Any, reply: Reply | None) -> None:
+        attachment, scene = value
+        async with self._claims:
+            answer = await self._place(attachment, scene)
+        if reply is not None:
+            await reply.send(answer)
+
+    async def _place(self, attachment: str, scene: str) -> tuple[Any, ...]:
+        hosted = self.scenes.get(scene)
+        if hosted is not None and not hosted.runner.stopping:
+            return ("attached", hosted.attach(attachment))
+        if len(self.scenes) >= self.limits.scenes and hosted is None:
+            return ("full", self.limits.scenes)
+        holder = await self.leases.claim(scene)
+        if holder is not None:
+            return ("elsewhere", holder)
+        # (a predecessor still stopping: its last save is what the new process restores)
+        after = hosted.runner if hosted is not None else None
+        hosted = self.scenes[scene] = HostedScene(self, scene,
+                                                  f"{self.name}.{next(self._incarnations)}", after)
+        hosted.subscription = await self.bus.subscribe(
+            commands_subject(self.name, scene),
+            lambda value, reply, hosted=hosted: hosted.command(*value))
+        return ("attached", hosted.attach(attachment))
+
+    async def _alive(self, value: Any, reply: Reply | None) -> None:
+        """A gateway's heartbeat for its attachments here; the ones still running."""
+        now, alive = time.monotonic(), []
+        for attachment, scene in value:
+            hosted = self.scenes.get(scene)
+            if hosted is not None and attachment in hosted.heard and not hosted.runner.ended:
+                hosted.heard[attachment] = now
+                alive.append(attachment)
+        if reply is not None:
+            await reply.send(alive)
+
+    def ended(self, hosted: HostedScene) -> None:
+        """A scene's process ended: its lease goes, unless a new process runs it already."""
+        if self.scenes.get(hosted.name) is hosted:
+            del self.scenes[hosted.name]
+            asyncio.create_task(self.leases.release(hosted.name))
+        if hosted.subscription is not None:
+            asyncio.create_task(hosted.subscription.unsubscribe())
+
+    async def _renew(self) -> None:
+        while True:
+            await asyncio.sleep(self.lease_seconds / 3)
+            try:
+                lost = await self.leases.renew()
+            except Exception:  # the bus is away: try again (the leases last a while)
+                log.exception("renewing leases")
+                continue
+            for scene in lost:  # another worker runs it now: this copy must not save over it
+                hosted = self.scenes.pop(scene, None)
+                if hosted is not None:
+                    hosted.runner.kill()
+
+    async def _sweep(self) -> None:
+        while True:
+            await asyncio.sleep(1.0)
+            now = time.monotonic()
+            for hosted in list(self.scenes.values()):
+                for attachment, heard in list(hosted.heard.items()):
+                    if now - heard > SILENT_SECONDS:
+                        log.warning("attachment %s of scene %s went silent", attachment,
+                                    hosted.name)
+                        hosted.heard.pop(attachment)
+                        hosted.detach(attachment)
+                if hosted.alone_since is not None and not hosted.runner.stopping and \
+                        now - hosted.alone_since >= self.limits.scene_idle_seconds:
+                    await self._stop_if_idle(hosted)
+
+    async def _stop_if_idle(self, hosted: HostedScene) -> None:
+        """Stop a scene no gateway has attached to for the grace period, unless it holds
+        objects it would lose (it is not saved)."""
+        if self.state is None:  # not saved: what it holds would be lost
+            held = json.loads(await hosted.runner.call("read", clients_objects, ()))
+            if held:
+                return
+        if hosted.alone_since is not None and not hosted.heard:
+            hosted.runner.stop()
+
+    async def stop(self) -> list[str]:
+        """Stop every scene (each saved first); the scenes whose last changes could not be saved."""
+        for task in self._tasks:
+            task.cancel()
+        runners = [hosted.runner for hosted in self.scenes.values()]
+        for runner in runners:
+            runner.stop()
+        await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])
+        for scene in list(self.scenes):
+            await self.leases.release(scene)
+        while not self._outgoing.empty():  # the scenes' last words
+            subject, value = self._outgoing.get_nowait()
+            await self.bus.publish(subject, value)
+        return sorted(runner.name for runner in runners if runner.unsaved)

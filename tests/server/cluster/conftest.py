@@ -1,0 +1,184 @@
+"""A real NATS server (Debian's nats-server, installed by `make test`) for the cluster's
+tests, on a free loopback port with JetStream in a folder of its own; and the cluster's
+processes started around it."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import os
+import signal
+import socket
+import subprocess
+import time
+from pathlib import Path
+from typing import Any, Iterator
+
+import nats
+import pytest
+
+from server.cluster.bus import PLACE, Bus
+from server.cluster.leases import lease_holder
+from tests.conftest import ROOT, VP_SERVER, RunningServer, free_port, start_server
+
+NATS_SERVER = "/usr/sbin/nats-server"
+
+
+@contextlib.contextmanager
+def running_bus(folder: Path) -> Iterator[str]:
+    """A NATS server on a free port, its JetStream in ``folder``: its URL."""
+    port = free_port()
+    config = folder / "nats.conf"
+    config.write_text(f'listen: 127.0.0.1:{port}\nmax_payload: 64MB\n'
+                      f'jetstream {{ store_dir: "{folder / "jetstream"}" }}\n')
+    process = subprocess.Popen([NATS_SERVER, "-c", str(config)], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    url = f"nats://127.0.0.1:{port}"
+    try:
+        asyncio.run(_wait_for_bus(url))
+        yield url
+    finally:
+        process.terminate()
+        process.wait(10)
+
+
+@pytest.fixture
+def bus_url(tmp_path: Path) -> Iterator[str]:
+    """A NATS server of the test's own (its buckets start empty)."""
+    with running_bus(tmp_path) as url:
+        yield url
+
+
+async def _wait_for_bus(url: str) -> None:
+    for _ in range(100):
+        try:
+            client = await nats.connect(url, connect_timeout=1, allow_reconnect=False)
+            await client.close()
+            return
+        except Exception:
+            await asyncio.sleep(0.05)
+
+
+def ask_bus(url: str, question: Any) -> Any:
+    """``await question(bus)`` on a connection of its own."""
+    async def ask() -> Any:
+        bus = await Bus.connect(url, "test", 3.0)
+        try:
+            return await question(bus)
+        finally:
+            await bus.close()
+    return asyncio.run(ask())
+
+
+def workers(url: str) -> list[str]:
+    """The workers that answer on the bus, by name."""
+    async def gather(bus: Bus) -> list[str]:
+        return sorted(answer[0] for answer in await bus.gather(PLACE, None, 0.2))
+    return ask_bus(url, gather)
+
+
+def holder(url: str, scene: str) -> str | None:
+    """The worker running ``scene``."""
+    return ask_bus(url, lambda bus: lease_holder(bus.leases, scene))
+
+
+def start_worker(url: str, name: str, state: Path, log: Path) -> subprocess.Popen[bytes]:
+    """``vp-server --role worker``, answering on the bus before this returns."""
+    output = open(log, "ab")  # noqa: SIM115 (the process keeps it)
+    process = subprocess.Popen([str(VP_SERVER), "--bus", url, "--role", "worker",
+                                "--worker-name", name, "--state-dir", str(state), "--no-demo",
+                                "--log-level", "warning"], cwd=ROOT, stdout=output,
+                               stderr=output, start_new_session=True)
+    deadline = time.monotonic() + 30
+    while name not in workers(url):
+        if process.poll() is not None or time.monotonic() > deadline:
+            raise RuntimeError(f"worker {name} did not start: {log.read_text()[-2000:]}")
+        time.sleep(0.1)
+    return process
+
+
+def start_gateway(url: str, state: Path, log: Path) -> RunningServer:
+    """``vp-server --role gateway`` on a free port."""
+    return start_server("--bus", url, "--role", "gateway", "--state-dir", str(state),
+                        "--no-demo", log=log)
+
+
+class Cluster:
+    """A bus, two workers (wa, wb) and two gateways sharing one state folder, as the issue's
+    smallest cluster; every process is killed at the end."""
+
+    def __init__(self, url: str, folder: Path) -> None:
+        self.url, self.state = url, folder / "state"
+        self.logs = folder
+        self.workers = {name: start_worker(url, name, self.state, folder / f"{name}.log")
+                        for name in ("wa", "wb")}
+        self.gateways = [start_gateway(url, self.state, folder / f"g{k}.log") for k in (1, 2)]
+
+    def kill_worker(self, name: str) -> None:
+        """``kill -9`` a worker and its scenes' processes: nothing is saved on the way."""
+        process = self.workers.pop(name)
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait(10)
+
+    def close(self) -> None:
+        for process in [*self.workers.values(), *(g.process for g in self.gateways)]:
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(process.pid, signal.SIGKILL)
+            process.wait(10)
+
+
+@pytest.fixture(scope="module")
+def cluster(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Cluster]:
+    """One cluster for a test module (its tests run in order: a module's last may kill parts)."""
+    folder = tmp_path_factory.mktemp("cluster")
+    with running_bus(folder) as url:
+        running = Cluster(url, folder)
+        yield running
+        running.close()
+
+
+NGINX = "/usr/sbin/nginx"
+
+
+@contextlib.contextmanager
+def load_balancer(ports: list[int], folder: Path) -> Iterator[int]:
+    """Debian's nginx in front of gateways (WebSockets proxied; a gateway that refuses
+    connections is passed over), as a deployment has: its port."""
+    port = free_port()
+    upstreams = "".join(f"server 127.0.0.1:{p} max_fails=1 fail_timeout=10s; " for p in ports)
+    temp = " ".join(f"{kind}_temp_path {folder / kind};"
+                    for kind in ("client_body", "proxy", "fastcgi", "uwsgi", "scgi"))
+    config = folder / "nginx.conf"
+    config.write_text(f"""
+daemon off; master_process off; pid {folder / 'nginx.pid'}; error_log {folder / 'nginx.log'};
+events {{}}
+http {{
+  access_log off; {temp}
+  upstream gateways {{ {upstreams} }}
+  map $http_upgrade $connection_upgrade {{ default upgrade; '' close; }}
+  server {{
+    listen 127.0.0.1:{port};
+    location / {{
+      proxy_pass http://gateways; proxy_http_version 1.1;
+      proxy_set_header Upgrade $http_upgrade; proxy_set_header Connection $connection_upgrade;
+      proxy_set_header Host $host; proxy_read_timeout 1h; proxy_connect_timeout 2s;
+      proxy_next_upstream error timeout;
+    }}
+  }}
+}}
+""")
+    process = subprocess.Popen([NGINX, "-c", str(config), "-p", str(folder)],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 10
+        while True:
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=0.2).close()
+                break
+            except OSError:
+                assert time.monotonic() < deadline, (folder / "nginx.log").read_text()
+                time.sleep(0.05)
+        yield port
+    finally:
+        process.terminate()
+        process.wait(10)
