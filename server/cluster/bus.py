@@ -93,7 +93,8 @@ class Bus:
         while True:
             try:
                 client = await nats.connect(url, name=name, connect_timeout=2,
-                                            max_reconnect_attempts=-1, reconnect_time_wait=0.5)
+                                            max_reconnect_attempts=-1, reconnect_time_wait=0.5,
+                                            error_cb=_bus_trouble)
                 break
             except (NoServersError, OSError) as error:
                 if asyncio.get_running_loop().time() > deadline:
@@ -164,3 +165,9 @@ class Bus:
             await self.client.drain()
         except Exception:  # already closed, or the bus is gone: nothing left to drain
             await self.client.close()
+
+
+async def _bus_trouble(error: Exception) -> None:
+    """The client's own errors (the bus went away, a reconnection failed): one line each,
+    not a traceback; it reconnects by itself."""
+    log.warning("bus: %s", error or type(error).__name__)

@@ -21,15 +21,17 @@ from ..core.physics.assets import AssetLibrary
 from ..web.runner import Deliver
 from ..web.scene_store import SceneStore
 from ..web.worker import SceneSetup
-from .bus import PLACE, Bus, Unanswered, alive_subject
+from .bus import Bus, Unanswered, alive_subject
+from .leases import break_lease
+from .placement import Placement
 from .remote_runner import RemoteRunner
 
 log = logging.getLogger(__name__)
 HEARTBEAT_SECONDS = 1.0
 # a worker is gone after this many heartbeats in a row went to nobody (its connection to the
-# bus is closed), or this many more went unanswered (alive, maybe, but stuck)
-MISSED_BEATS = {True: 2, False: 5}
-GATHER_SECONDS = 0.05  # how long workers have to say how busy they are
+# bus is closed: it died), or this many more went unanswered (alive but stuck, or swamped:
+# a busy machine must not make its scenes hop from worker to worker)
+MISSED_BEATS = {True: 2, False: 10}
 
 
 class Gateway:
@@ -42,6 +44,10 @@ class Gateway:
         self._missed: dict[str, int] = defaultdict(int)  # worker -> heartbeats unanswered
         self._outgoing: asyncio.Queue[tuple[str, Any]] = asyncio.Queue()
         self._tasks: list[asyncio.Task[None]] = []
+        self.placement = Placement(bus)
+
+    async def place(self, attachment: str, scene: str) -> tuple[str, dict[str, Any]] | None:
+        return await self.placement.place(attachment, scene)
 
     def runner(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                setup: SceneSetup | None, deliver: Deliver, store: SceneStore | None,
@@ -50,7 +56,8 @@ class Gateway:
         return RemoteRunner(self, f"{self.name}-{next(self._numbers)}", name, tick_rate, deliver)
 
     def start(self) -> None:
-        self._tasks = [asyncio.create_task(self._send()), asyncio.create_task(self._beat())]
+        self._tasks = [asyncio.create_task(self._send()), asyncio.create_task(self._beat()),
+                       asyncio.create_task(self.placement.keep_surveying())]
 
     def send(self, subject: str, value: Any) -> None:
         """Publish in order: one sender for every command of this gateway."""
@@ -63,12 +70,6 @@ class Gateway:
                 await self.bus.publish(subject, value)
             except Exception:
                 log.exception("publishing on %s", subject)
-
-    async def least_busy(self) -> list[str]:
-        """Workers with room for a scene, the least busy first."""
-        answers = await self.bus.gather(PLACE, None, GATHER_SECONDS)
-        return [name for name, scenes, most in sorted(answers, key=lambda a: (a[1], a[0]))
-                if scenes < most]
 
     def attached(self, runner: RemoteRunner) -> None:
         self._attached[runner.attachment] = runner
@@ -95,6 +96,8 @@ class Gateway:
             if self._missed[worker] >= MISSED_BEATS[unanswered.gone]:
                 del self._missed[worker]
                 for runner in runners:
+                    if unanswered.gone:  # it left the bus: its scenes may start elsewhere now
+                        await break_lease(self.bus.leases, runner.name, worker)
                     runner.lost()
             return
         self._missed.pop(worker, None)

@@ -1,7 +1,7 @@
 """Which worker runs which scene: a key per scene in the bus's ``vp_leases`` bucket, whose
 value is the worker's name. The bucket forgets a key ``seconds`` after it was last written,
 so a worker renews its leases while it lives; when it dies they lapse and another worker
-may claim them. Claims and renewals are compare-and-set on the key's revision: two
+may claim them (sooner when it is seen to have left the bus: :func:`break_lease`). Claims and renewals are compare-and-set on the key's revision: two
 workers never both hold a scene."""
 
 from __future__ import annotations
@@ -21,6 +21,22 @@ async def lease_holder(leases: KeyValue, scene: str) -> str | None:
     except (KeyNotFoundError, KeyDeletedError):
         return None
     return entry.value.decode() if entry.value else None
+
+
+async def break_lease(leases: KeyValue, scene: str, worker: str) -> None:
+    """Delete ``scene``'s lease if ``worker`` still holds it: the worker has left the bus
+    (nobody listens on its subjects), so its scenes need not wait for the lease to lapse."""
+    try:
+        entry = await leases.get(scene)
+    except (KeyNotFoundError, KeyDeletedError):
+        return
+    if entry.value and entry.value.decode() == worker:
+        try:
+            await leases.delete(scene, last=entry.revision)
+            log.warning("scene %s: the lease of worker %s, which has left the bus, is broken",
+                        scene, worker)
+        except (KeyWrongLastSequenceError, KeyNotFoundError):
+            pass  # renewed or taken meanwhile: not broken
 
 
 class Leases:

@@ -21,12 +21,10 @@ from typing import Any, Protocol
 
 from ..errors import UnknownScene, VPError
 from ..web.runner import Deliver, Runner
-from .bus import Bus, Unanswered, attach_subject, commands_subject, events_subject
-from .leases import lease_holder
+from .bus import Bus, commands_subject, events_subject
 
 log = logging.getLogger(__name__)
 PLACE_SECONDS = 30.0  # how long a scene waits for a worker (a dead one's lease lapses sooner)
-ATTACH_SECONDS = 10.0  # a worker's answer to an attachment (it starts the scene's process)
 RETRY_SECONDS = 0.25
 EARLY_EVENTS = 1024
 
@@ -39,8 +37,9 @@ class Attachments(Protocol):
     def send(self, subject: str, value: Any) -> None:
         """Publish, in order with everything else the gateway sends."""
 
-    async def least_busy(self) -> list[str]:
-        """Workers with room, the least busy first."""
+    async def place(self, attachment: str, scene: str) -> tuple[str, dict[str, Any]] | None:
+        """Attach to the scene's worker (placing the scene first if it runs nowhere): the
+        worker and its answer, or None for "not yet"."""
 
     def attached(self, runner: RemoteRunner) -> None:
         """The runner is placed: its worker's heartbeat covers it now."""
@@ -93,10 +92,12 @@ class RemoteRunner:
             self._events = await self.gateway.bus.subscribe(events_subject(self.name),
                                                             self._receive)
             deadline = time.monotonic() + PLACE_SECONDS
-            while (answer := await self._attach()) is None:
+            while (placed := await self.gateway.place(self.attachment, self.name)) is None:
                 if time.monotonic() > deadline:
-                    raise UnknownScene(f"no worker runs scene {self.name}: none answered for "
-                                       f"{PLACE_SECONDS:.0f} s", scene=self.name)
+                    raise UnknownScene(f"no worker took scene {self.name} within "
+                                       f"{PLACE_SECONDS:.0f} s: none answered, or each runs "
+                                       f"its maximum of scenes (--limit scenes)",
+                                       scene=self.name)
                 await asyncio.sleep(RETRY_SECONDS)
         except asyncio.CancelledError:
             raise
@@ -108,6 +109,7 @@ class RemoteRunner:
             log.exception("scene %s could not be placed", self.name)
             self._end(True)
             return
+        self.worker, answer = placed
         self._pid, self._incarnation = answer["pid"], answer["incarnation"]
         self.gateway.attached(self)
         if answer["ready"] is not None:  # made before this attachment: it will not say so again
@@ -120,22 +122,6 @@ class RemoteRunner:
         self.gateway.send(commands_subject(self.worker, self.name),  # type: ignore[arg-type]
                           (self.attachment, self._waiting))
         self._waiting = []
-
-    async def _attach(self) -> dict[str, Any] | None:
-        """One try: the lease holder, else the least busy workers in turn."""
-        holder = await lease_holder(self.gateway.bus.leases, self.name)
-        for worker in [holder] if holder is not None else await self.gateway.least_busy():
-            try:
-                answer = await self.gateway.bus.request(
-                    attach_subject(worker), (self.attachment, self.name), ATTACH_SECONDS)
-            except Unanswered:
-                continue  # gone; its lease lapses soon
-            if answer[0] == "attached":
-                self.worker = worker
-                return answer[1]
-            if answer[0] == "elsewhere":
-                return None  # placed meanwhile: try its holder
-        return None
 
     def post(self, *command: Any) -> None:
         """Send a command; the scene applies a gateway's commands in the order posted."""

@@ -26,7 +26,9 @@ from .worker_host import WorkerHost
 
 log = logging.getLogger(__name__)
 ROLES = ("all", "gateway", "worker")
-LEASE_SECONDS = 3.0  # a dead worker's scenes start elsewhere this long after it died, at most
+# a worker's scenes start elsewhere this long after it stopped answering, at most (at once
+# when it left the bus: it died); long enough that a swamped machine's stalls are no death
+LEASE_SECONDS = 10.0
 
 
 def plain_name(text: str) -> str:

@@ -57,7 +57,8 @@ class HostedScene:
         self.connections.setdefault(attachment, set())
         self.alone_since = None
         return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
-                "saving": self.saving}
+                "saving": self.saving, "scenes": len(self.host.scenes),
+                "most": self.host.limits.scenes}
 
     def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
         """A gateway's commands, in the order it sent them."""
@@ -204,16 +205,21 @@ class WorkerHost:
             asyncio.create_task(hosted.subscription.unsubscribe())
 
     async def _renew(self) -> None:
+        renewed = time.monotonic()
         while True:
-            await asyncio.sleep(self.lease_seconds / 3)
+            await asyncio.sleep(self.lease_seconds / 5)
             try:
                 lost = await self.leases.renew()
-            except Exception:  # the bus is away: try again (the leases last a while)
-                log.exception("renewing leases")
-                continue
-            for scene in lost:  # another worker runs it now: this copy must not save over it
+                renewed = time.monotonic()
+            except Exception as error:  # the bus is away: the leases last a while
+                log.warning("leases not renewed: %s", error)
+                # past most of their life another worker may run these scenes soon
+                lost = list(self.scenes) if time.monotonic() - renewed > 0.8 * \
+                    self.lease_seconds else []
+            for scene in lost:  # another worker runs it, or may: this copy must not save over it
                 hosted = self.scenes.pop(scene, None)
                 if hosted is not None:
+                    log.error("scene %s stops unsaved here: its lease is lost", scene)
                     hosted.runner.kill()
 
     async def _sweep(self) -> None:

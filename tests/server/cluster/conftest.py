@@ -50,9 +50,12 @@ def bus_url(tmp_path: Path) -> Iterator[str]:
 
 
 async def _wait_for_bus(url: str) -> None:
+    async def quiet(error: Exception) -> None:
+        pass  # not listening yet: the loop tries again
     for _ in range(100):
         try:
-            client = await nats.connect(url, connect_timeout=1, allow_reconnect=False)
+            client = await nats.connect(url, connect_timeout=1, allow_reconnect=False,
+                                        error_cb=quiet)
             await client.close()
             return
         except Exception:
@@ -82,12 +85,14 @@ def holder(url: str, scene: str) -> str | None:
     return ask_bus(url, lambda bus: lease_holder(bus.leases, scene))
 
 
-def start_worker(url: str, name: str, state: Path, log: Path) -> subprocess.Popen[bytes]:
-    """``vp-server --role worker``, answering on the bus before this returns."""
+def start_worker(url: str, name: str, state: Path, log: Path,
+                 *extra: str) -> subprocess.Popen[bytes]:
+    """``vp-server --role worker`` (``extra``: more flags), answering on the bus before this
+    returns."""
     output = open(log, "ab")  # noqa: SIM115 (the process keeps it)
     process = subprocess.Popen([str(VP_SERVER), "--bus", url, "--role", "worker",
                                 "--worker-name", name, "--state-dir", str(state), "--no-demo",
-                                "--log-level", "warning"], cwd=ROOT, stdout=output,
+                                "--log-level", "warning", *extra], cwd=ROOT, stdout=output,
                                stderr=output, start_new_session=True)
     deadline = time.monotonic() + 30
     while name not in workers(url):
@@ -97,22 +102,23 @@ def start_worker(url: str, name: str, state: Path, log: Path) -> subprocess.Pope
     return process
 
 
-def start_gateway(url: str, state: Path, log: Path) -> RunningServer:
-    """``vp-server --role gateway`` on a free port."""
+def start_gateway(url: str, state: Path, log: Path, *extra: str) -> RunningServer:
+    """``vp-server --role gateway`` on a free port (``extra``: more flags)."""
     return start_server("--bus", url, "--role", "gateway", "--state-dir", str(state),
-                        "--no-demo", log=log)
+                        "--no-demo", *extra, log=log)
 
 
 class Cluster:
     """A bus, two workers (wa, wb) and two gateways sharing one state folder, as the issue's
     smallest cluster; every process is killed at the end."""
 
-    def __init__(self, url: str, folder: Path) -> None:
+    def __init__(self, url: str, folder: Path, *extra: str, gateways: int = 2) -> None:
         self.url, self.state = url, folder / "state"
         self.logs = folder
-        self.workers = {name: start_worker(url, name, self.state, folder / f"{name}.log")
+        self.workers = {name: start_worker(url, name, self.state, folder / f"{name}.log", *extra)
                         for name in ("wa", "wb")}
-        self.gateways = [start_gateway(url, self.state, folder / f"g{k}.log") for k in (1, 2)]
+        self.gateways = [start_gateway(url, self.state, folder / f"g{k}.log", *extra)
+                         for k in range(1, gateways + 1)]
 
     def kill_worker(self, name: str) -> None:
         """``kill -9`` a worker and its scenes' processes: nothing is saved on the way."""
@@ -133,6 +139,16 @@ def cluster(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Cluster]:
     folder = tmp_path_factory.mktemp("cluster")
     with running_bus(folder) as url:
         running = Cluster(url, folder)
+        yield running
+        running.close()
+
+
+@pytest.fixture(scope="module")
+def workers_only(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Cluster]:
+    """The bus and the two workers, no gateway (the test is one)."""
+    folder = tmp_path_factory.mktemp("cluster")
+    with running_bus(folder) as url:
+        running = Cluster(url, folder, gateways=0)
         yield running
         running.close()
 

@@ -1,0 +1,210 @@
+"""The cluster under load (issue 29), on this machine and loopback only: a NATS bus, two
+workers and one or two gateways, every process on the same two cores as the clients.
+
+- **Viewers:** hands-10 driven at 60 Hz through the first gateway; light viewers (one
+  asyncio process per gateway, :mod:`bench.viewers`) spread over the gateways; per count,
+  frames per second, late frames and the CPU of the gateways, the worker and the bus. The
+  most viewers held at ≤ 1 % late, with one gateway and with two.
+- **Busy scenes:** scenes each with a hand whose fingers a client moves 10 times a second,
+  opened through the gateways: how they spread over the workers, how long placing them
+  took, the ticks a second they keep.
+- **Failover:** a scene with kept objects (acknowledged, so journaled), its worker killed
+  with SIGKILL: the time until the scene answers again through a gateway from another
+  worker, and the objects lost.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from contextlib import ExitStack, contextmanager
+from dataclasses import asdict
+from pathlib import Path
+from typing import Any, Iterator
+
+import virtual_prosthetics as vp
+
+from tests.conftest import RunningServer
+from server.cluster.leases import lease_holder
+from tests.server.cluster.conftest import (ask_bus, holder, running_bus, start_gateway,
+                                           start_worker)
+
+from .live import NICE, cpu_seconds, driving
+from .stats import figure
+
+ROOT = Path(__file__).resolve().parents[1]
+LIMITS = ("--limit", "bytesPerSecond=1000000000", "--limit", "connectionsPerAddress=5000",
+          "--limit", "connections=5000", "--limit", "sceneIdleSeconds=3600")
+LATE_PCT = 1.0
+
+
+class LoadCluster:
+    """A bus, workers and gateways started for one measure, killed at its end."""
+
+    def __init__(self, folder: Path, url: str, gateways: int, bus_pid: int) -> None:
+        self.folder, self.url, self.bus_pid = folder, url, bus_pid
+        state = folder / "state"
+        self.workers = {name: start_worker(url, name, state, folder / f"{name}.log", *LIMITS)
+                        for name in ("wa", "wb")}
+        self.gateways: list[RunningServer] = [
+            start_gateway(url, state, folder / f"g{k}.log", *LIMITS) for k in range(gateways)]
+
+    def pids(self) -> list[int]:
+        """The gateways', the workers' and their scenes' processes, and the bus's."""
+        roots = [g.process.pid for g in self.gateways] + [w.pid for w in self.workers.values()]
+        return roots + _children(roots) + [self.bus_pid]
+
+    def kill_worker(self, name: str) -> None:
+        process = self.workers.pop(name)
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait(10)
+
+    def close(self) -> None:
+        for process in [*self.workers.values(), *(g.process for g in self.gateways)]:
+            try:
+                os.killpg(process.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            process.wait(10)
+
+
+def _children(pids: list[int]) -> list[int]:
+    found = []
+    for pid in pids:
+        try:
+            text = Path(f"/proc/{pid}/task/{pid}/children").read_text()
+        except OSError:
+            continue
+        kids = [int(k) for k in text.split()]
+        found += kids + _children(kids)
+    return found
+
+
+@contextmanager
+def load_cluster(gateways: int) -> Iterator[LoadCluster]:
+    with tempfile.TemporaryDirectory(prefix="vp-cluster-") as name, ExitStack() as stack:
+        folder = Path(name)
+        url = stack.enter_context(running_bus(folder))
+        bus_pid = int(subprocess.run(["pgrep", "-f", str(folder / "nats.conf")],
+                                     capture_output=True, text=True).stdout.split()[0])
+        running = LoadCluster(folder, url, gateways, bus_pid)
+        try:
+            yield running
+        finally:
+            running.close()
+
+
+def viewers(counts: list[int], seconds: float) -> dict[str, Any]:
+    """Per gateway count (1, 2), per viewer count: the viewers' frames and the cluster's CPU;
+    the most viewers held at ≤ 1 % late with each."""
+    rows = []
+    for gateways in (1, 2):
+        with load_cluster(gateways) as cluster, \
+                driving(cluster.gateways[0], "viewed", "hands", 10, 3600):
+            for count in counts:
+                rows.append({"gateways": gateways, **_viewer_run(cluster, count, seconds)})
+    held = {g: max([r["viewers"] for r in rows if r["gateways"] == g and r["late_pct"] <= LATE_PCT],
+                   default=0) for g in (1, 2)}
+    return {"rows": rows, "held": held,
+            "scaling": held[2] / held[1] if held[1] else None}
+
+
+def _viewer_run(cluster: LoadCluster, count: int, seconds: float) -> dict[str, Any]:
+    shares = [count // len(cluster.gateways) + (k < count % len(cluster.gateways))
+              for k in range(len(cluster.gateways))]
+    cpu_before, started = cpu_seconds(cluster.pids()), time.monotonic()
+    processes = [subprocess.Popen([*NICE, sys.executable, "-m", "bench.viewers", gateway.ws,
+                                   "viewed", str(share), str(seconds)], cwd=ROOT,
+                                  stdout=subprocess.PIPE, text=True)
+                 for gateway, share in zip(cluster.gateways, shares) if share]
+    found = [v for p in processes for v in json.loads(p.communicate(timeout=seconds + 300)[0])["viewers"]]
+    cores = (cpu_seconds(cluster.pids()) - cpu_before) / (time.monotonic() - started)
+    frames = sum(v["frames"] for v in found)
+    fps = [v["fps"] for v in found]
+    return {"viewers": count, "fps_min": min(fps), "fps_median": figure(fps).median,
+            "late_pct": 100 * sum(v["late"] for v in found) / max(1, frames),
+            "cluster_cores": cores}
+
+
+def busy_scenes(count: int, seconds: float) -> dict[str, Any]:
+    """``count`` scenes with a hand each, fingers moved 10 times a second by one client
+    process: their spread over the workers, the time to place them, their tick rate."""
+    with load_cluster(2) as cluster:
+        started = time.monotonic()
+        driver = subprocess.Popen([*NICE, sys.executable, "-m", "bench.cluster_busy",
+                                   *[g.ws for g in cluster.gateways], str(count), str(seconds)],
+                                  cwd=ROOT, stdout=subprocess.PIPE, text=True)
+        assert driver.stdout is not None
+        placed = json.loads(driver.stdout.readline())
+        placing = time.monotonic() - started
+        time.sleep(seconds * 0.2)
+        cpu_before, measured = cpu_seconds(cluster.pids()), time.monotonic()
+        time.sleep(seconds * 0.5)
+        cores = (cpu_seconds(cluster.pids()) - cpu_before) / (time.monotonic() - measured)
+        metrics = {name: m for gateway in cluster.gateways
+                   for name, m in gateway.get("/api/metrics")["scenes"].items()}
+        rates = [m["ticksPerSecond"] for name, m in metrics.items() if name.startswith("busy")]
+        spread = ask_bus(cluster.url, lambda bus: _holders(bus, count))
+        driver.communicate(timeout=seconds + 120)
+    return {"scenes": count, "placed": placed["placed"], "refused": placed["failed"],
+            "placing_s": placing,
+            "per_worker": spread, "cluster_cores": cores,
+            "ticks_per_second": asdict(figure(rates)) if rates else None}
+
+
+async def _holders(bus: Any, count: int) -> dict[str, int]:
+    spread: dict[str, int] = {}
+    for k in range(count):
+        worker = await lease_holder(bus.leases, f"busy{k}") or "none"
+        spread[worker] = spread.get(worker, 0) + 1
+    return spread
+
+
+def failover(objects: int) -> dict[str, Any]:
+    """A scene with ``objects`` kept boxes; its worker killed: seconds until the scene
+    answers again through a gateway with them, and the objects lost."""
+    with load_cluster(2) as cluster:
+        gateway = cluster.gateways[1]
+        with vp.connect(cluster.gateways[0].ws, scene="failover", keep=True) as session:
+            boxes = [vp.Box(0.2, 0.2, 0.2) for _ in range(objects)]
+            for k, box in enumerate(boxes):
+                box.set_position(k % 10, 0.1, k // 10)
+            session.sync()  # acknowledged: journaled
+        first = holder(cluster.url, "failover")
+        assert first is not None
+        killed = time.monotonic()
+        cluster.kill_worker(first)
+        found = None
+        while time.monotonic() - killed < 60:
+            try:
+                nodes = gateway.get("/api/scenes/failover/snapshot")["nodes"]
+            except Exception:  # the scene has failed, and is not placed again yet
+                nodes = None
+            if nodes is not None and holder(cluster.url, "failover") not in (None, first):
+                found = nodes
+                break
+            _reopen(gateway)
+            time.sleep(0.05)
+        back = time.monotonic() - killed
+        ids = {box.id for box in boxes}
+    return {"objects": objects, "seconds": back if found is not None else None,
+            "lost": len(ids - {n["id"] for n in found or []})}
+
+
+def _reopen(gateway: RunningServer) -> None:
+    """What a client coming back does: connect (the scene starts again on a worker)."""
+    try:
+        with vp.connect(gateway.ws, scene="failover", role="viewer"):
+            pass
+    except Exception:  # not yet placed: the next round tries again
+        pass
+
+
+if __name__ == "__main__":
+    print(json.dumps({"busy": busy_scenes(int(sys.argv[1]), 20)}, indent=1))
