@@ -40,7 +40,7 @@ from .stats import figure
 
 ROOT = Path(__file__).resolve().parents[1]
 LIMITS = ("--limit", "bytesPerSecond=1000000000", "--limit", "connectionsPerAddress=5000",
-          "--limit", "connections=5000", "--limit", "sceneIdleSeconds=3600")
+          "--limit", "connections=5000", "--limit", "sceneIdleSeconds=5")
 LATE_PCT = 1.0
 
 
@@ -50,7 +50,8 @@ class LoadCluster:
     def __init__(self, folder: Path, url: str, gateways: int, bus_pid: int) -> None:
         self.folder, self.url, self.bus_pid = folder, url, bus_pid
         state = folder / "state"
-        self.workers = {name: start_worker(url, name, state, folder / f"{name}.log", *LIMITS)
+        self.workers = {name: start_worker(url, name, state, folder / f"{name}.log", *LIMITS,
+                                           "--worker-cores", "1")  # two on two cores
                         for name in ("wa", "wb")}
         self.gateways: list[RunningServer] = [
             start_gateway(url, state, folder / f"g{k}.log", *LIMITS) for k in range(gateways)]
@@ -100,29 +101,58 @@ def load_cluster(gateways: int) -> Iterator[LoadCluster]:
             running.close()
 
 
-def viewers(counts: list[int], seconds: float) -> dict[str, Any]:
-    """Per gateway count (1, 2), per viewer count: the viewers' frames and the cluster's CPU;
-    the most viewers held at ≤ 1 % late with each."""
+def measure(counts: list[int], seconds: float, busy: int, objects: int,
+            idle_wait: float) -> dict[str, Any]:
+    """Every measure on one cluster (two workers, two gateways): viewers through one gateway
+    and through both, busy scenes, then (``idle_wait`` later: the busy scenes gone) the
+    failover, which kills a worker."""
+    with load_cluster(2) as cluster:
+        found = {"viewers": viewers(cluster, counts, seconds),
+                 "busy": busy_scenes(cluster, busy, max(seconds, 5.0))}
+        time.sleep(idle_wait)
+        found["failover"] = failover(cluster, objects)
+    return found
+
+
+def headline(found: dict[str, Any]) -> dict[str, Any]:
+    """The cluster's named figures of results.json."""
+    rows = found["viewers"]["rows"]
+    most = max(r["viewers"] for r in rows)
+    busy = found["busy"]
+    return {
+        "cluster_viewers2000_late_pct": next(r["late_pct"] for r in rows
+                                             if r["gateways"] == 2 and r["viewers"] == most),
+        "cluster_gateway_scaling": found["viewers"]["scaling"],
+        "cluster_busy_scenes_placed": busy["placed"],
+        "cluster_busy_scenes_fps_median": (busy["ticks_per_second"] or {}).get("median", 0.0),
+        "cluster_failover_s": found["failover"]["seconds"] or float("inf"),
+        "cluster_failover_lost": found["failover"]["lost"],
+    }
+
+
+def viewers(cluster: LoadCluster, counts: list[int], seconds: float) -> dict[str, Any]:
+    """hands-10 driven at 60 Hz through the first gateway; per viewer count, viewers on the
+    first gateway alone, then spread over both: their frames and the cluster's CPU; the
+    most viewers held at ≤ 1 % late each way."""
     rows = []
-    for gateways in (1, 2):
-        with load_cluster(gateways) as cluster, \
-                driving(cluster.gateways[0], "viewed", "hands", 10, 3600):
+    with driving(cluster.gateways[0], "viewed", "hands", 10, 3600):
+        for gateways in (1, 2):
             for count in counts:
-                rows.append({"gateways": gateways, **_viewer_run(cluster, count, seconds)})
+                rows.append({"gateways": gateways,
+                             **_viewer_run(cluster, cluster.gateways[:gateways], count, seconds)})
     held = {g: max([r["viewers"] for r in rows if r["gateways"] == g and r["late_pct"] <= LATE_PCT],
                    default=0) for g in (1, 2)}
-    return {"rows": rows, "held": held,
-            "scaling": held[2] / held[1] if held[1] else None}
+    return {"rows": rows, "held": held, "scaling": held[2] / held[1] if held[1] else 0.0}
 
 
-def _viewer_run(cluster: LoadCluster, count: int, seconds: float) -> dict[str, Any]:
-    shares = [count // len(cluster.gateways) + (k < count % len(cluster.gateways))
-              for k in range(len(cluster.gateways))]
+def _viewer_run(cluster: LoadCluster, gateways: list[RunningServer], count: int,
+                seconds: float) -> dict[str, Any]:
+    shares = [count // len(gateways) + (k < count % len(gateways)) for k in range(len(gateways))]
     cpu_before, started = cpu_seconds(cluster.pids()), time.monotonic()
     processes = [subprocess.Popen([*NICE, sys.executable, "-m", "bench.viewers", gateway.ws,
                                    "viewed", str(share), str(seconds)], cwd=ROOT,
                                   stdout=subprocess.PIPE, text=True)
-                 for gateway, share in zip(cluster.gateways, shares) if share]
+                 for gateway, share in zip(gateways, shares) if share]
     found = [v for p in processes for v in json.loads(p.communicate(timeout=seconds + 300)[0])["viewers"]]
     cores = (cpu_seconds(cluster.pids()) - cpu_before) / (time.monotonic() - started)
     frames = sum(v["frames"] for v in found)
@@ -132,26 +162,25 @@ def _viewer_run(cluster: LoadCluster, count: int, seconds: float) -> dict[str, A
             "cluster_cores": cores}
 
 
-def busy_scenes(count: int, seconds: float) -> dict[str, Any]:
+def busy_scenes(cluster: LoadCluster, count: int, seconds: float) -> dict[str, Any]:
     """``count`` scenes with a hand each, fingers moved 10 times a second by one client
     process: their spread over the workers, the time to place them, their tick rate."""
-    with load_cluster(2) as cluster:
-        started = time.monotonic()
-        driver = subprocess.Popen([*NICE, sys.executable, "-m", "bench.cluster_busy",
-                                   *[g.ws for g in cluster.gateways], str(count), str(seconds)],
-                                  cwd=ROOT, stdout=subprocess.PIPE, text=True)
-        assert driver.stdout is not None
-        placed = json.loads(driver.stdout.readline())
-        placing = time.monotonic() - started
-        time.sleep(seconds * 0.2)
-        cpu_before, measured = cpu_seconds(cluster.pids()), time.monotonic()
-        time.sleep(seconds * 0.5)
-        cores = (cpu_seconds(cluster.pids()) - cpu_before) / (time.monotonic() - measured)
-        metrics = {name: m for gateway in cluster.gateways
-                   for name, m in gateway.get("/api/metrics")["scenes"].items()}
-        rates = [m["ticksPerSecond"] for name, m in metrics.items() if name.startswith("busy")]
-        spread = ask_bus(cluster.url, lambda bus: _holders(bus, count))
-        driver.communicate(timeout=seconds + 120)
+    started = time.monotonic()
+    driver = subprocess.Popen([*NICE, sys.executable, "-m", "bench.cluster_busy",
+                               *[g.ws for g in cluster.gateways], str(count), str(seconds)],
+                              cwd=ROOT, stdout=subprocess.PIPE, text=True)
+    assert driver.stdout is not None
+    placed = json.loads(driver.stdout.readline())
+    placing = time.monotonic() - started
+    time.sleep(seconds * 0.2)
+    cpu_before, measured = cpu_seconds(cluster.pids()), time.monotonic()
+    time.sleep(seconds * 0.5)
+    cores = (cpu_seconds(cluster.pids()) - cpu_before) / (time.monotonic() - measured)
+    metrics = {name: m for gateway in cluster.gateways
+               for name, m in gateway.get("/api/metrics")["scenes"].items()}
+    rates = [m.get("ticksPerSecond", 0.0) for name, m in metrics.items() if name.startswith("busy")]
+    spread = ask_bus(cluster.url, lambda bus: _holders(bus, count))
+    driver.communicate(timeout=seconds + 120)
     return {"scenes": count, "placed": placed["placed"], "refused": placed["failed"],
             "placing_s": placing,
             "per_worker": spread, "cluster_cores": cores,
@@ -161,38 +190,37 @@ def busy_scenes(count: int, seconds: float) -> dict[str, Any]:
 async def _holders(bus: Any, count: int) -> dict[str, int]:
     spread: dict[str, int] = {}
     for k in range(count):
-        worker = await lease_holder(bus.leases, f"busy{k}") or "none"
+        worker = await lease_holder(bus.workers, bus.scenes, f"busy{k}") or "none"
         spread[worker] = spread.get(worker, 0) + 1
     return spread
 
 
-def failover(objects: int) -> dict[str, Any]:
+def failover(cluster: LoadCluster, objects: int) -> dict[str, Any]:
     """A scene with ``objects`` kept boxes; its worker killed: seconds until the scene
     answers again through a gateway with them, and the objects lost."""
-    with load_cluster(2) as cluster:
-        gateway = cluster.gateways[1]
-        with vp.connect(cluster.gateways[0].ws, scene="failover", keep=True) as session:
-            boxes = [vp.Box(0.2, 0.2, 0.2) for _ in range(objects)]
-            for k, box in enumerate(boxes):
-                box.set_position(k % 10, 0.1, k // 10)
-            session.sync()  # acknowledged: journaled
-        first = holder(cluster.url, "failover")
-        assert first is not None
-        killed = time.monotonic()
-        cluster.kill_worker(first)
-        found = None
-        while time.monotonic() - killed < 60:
-            try:
-                nodes = gateway.get("/api/scenes/failover/snapshot")["nodes"]
-            except Exception:  # the scene has failed, and is not placed again yet
-                nodes = None
-            if nodes is not None and holder(cluster.url, "failover") not in (None, first):
-                found = nodes
-                break
-            _reopen(gateway)
-            time.sleep(0.05)
-        back = time.monotonic() - killed
-        ids = {box.id for box in boxes}
+    gateway = cluster.gateways[1]
+    with vp.connect(cluster.gateways[0].ws, scene="failover", keep=True) as session:
+        boxes = [vp.Box(0.2, 0.2, 0.2) for _ in range(objects)]
+        for k, box in enumerate(boxes):
+            box.set_position(k % 10, 0.1, k // 10)
+        session.sync()  # acknowledged: journaled
+    first = holder(cluster.url, "failover")
+    assert first is not None
+    killed = time.monotonic()
+    cluster.kill_worker(first)
+    found = None
+    while time.monotonic() - killed < 60:
+        try:
+            nodes = gateway.get("/api/scenes/failover/snapshot")["nodes"]
+        except Exception:  # the scene has failed, and is not placed again yet
+            nodes = None
+        if nodes is not None and holder(cluster.url, "failover") not in (None, first):
+            found = nodes
+            break
+        _reopen(gateway)
+        time.sleep(0.05)
+    back = time.monotonic() - killed
+    ids = {box.id for box in boxes}
     return {"objects": objects, "seconds": back if found is not None else None,
             "lost": len(ids - {n["id"] for n in found or []})}
 
@@ -206,5 +234,6 @@ def _reopen(gateway: RunningServer) -> None:
         pass
 
 
-if __name__ == "__main__":
-    print(json.dumps({"busy": busy_scenes(int(sys.argv[1]), 20)}, indent=1))
+if __name__ == "__main__":  # python -m bench.cluster VIEWERS[,VIEWERS…] BUSY_SCENES
+    print(json.dumps(measure([int(c) for c in sys.argv[1].split(",")], 5.0, int(sys.argv[2]),
+                             50, 20.0), indent=1, default=str))

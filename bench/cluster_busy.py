@@ -35,7 +35,10 @@ async def _scene(url: str, name: str, built: asyncio.Event, go: asyncio.Event,
                  seconds: float, counts: list[int]) -> None:
     async with connect(f"{url}/ws?scene={name}", max_size=None, compression=None,
                        open_timeout=120) as ws:
-        me = json.loads(await ws.recv())["client"]
+        hello = json.loads(await ws.recv())
+        if hello.get("op") != "hello":
+            raise RuntimeError(f"refused: {hello}")
+        me = hello["client"]
         hand = f"{me}.hand"
         await ws.send(json.dumps({"op": "create", "id": 1, "object": hand, "type": "EdgedHand",
                                   "args": [True]}))

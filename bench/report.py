@@ -37,6 +37,13 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
     "chaos_changes_lost": ("0 acknowledged changes lost", lambda v: v == 0),
     "chaos_bystander_gap_ms": ("< 100 ms between frames", lambda v: v < 100),
     "recording_seek_ms_max": ("< 200 ms, any time of 10 minutes of 10 hands", lambda v: v < 200),
+    "cluster_viewers2000_late_pct": ("≤ 1 % (2 000 viewers over two gateways)", lambda v: v <= 1),
+    "cluster_gateway_scaling": ("≥ 1.8 (viewers held at ≤ 1 % late, two gateways over one)",
+                                lambda v: v >= 1.8),
+    "cluster_busy_scenes_placed": ("200 busy scenes placed over two workers", lambda v: v >= 200),
+    "cluster_busy_scenes_fps_median": ("60 Hz", lambda v: v >= AT_60_HZ),
+    "cluster_failover_s": ("a killed worker's scene back within the lease (10 s)", lambda v: v <= 10),
+    "cluster_failover_lost": ("0 saved objects lost", lambda v: v == 0),
 }
 
 
@@ -71,7 +78,8 @@ def lines(results: dict[str, Any], found: dict[str, Any]) -> list[str]:
            f"Commit `{results['commit']}`, {run}, {results['seconds']} s. Everything ran on "
            "this one machine; clients (drivers, viewers) in processes of their own at nice 10.",
            "", *headline_table(results), "", *figure_table(found), "",
-           *viewer_table(found["viewers"]), "", *chaos_table(found["chaos"]), ""]
+           *viewer_table(found["viewers"]), "", *chaos_table(found["chaos"]), "",
+           *cluster_table(found["cluster"]), ""]
     return out
 
 
@@ -178,6 +186,29 @@ def chaos_table(run: dict[str, Any]) -> list[str]:
         shown = f"{_ms(gap.median)} / {_ms(run['gap_worst_ms'][kind])}" if gap else \
             "(the server itself restarts: not a bystander's gap)"
         out.append(f"| {kind} | {count} | {shown} |")
+    return out
+
+
+def cluster_table(found: dict[str, Any]) -> list[str]:
+    """bench/cluster.py: viewers over one and two gateways, busy scenes, the failover."""
+    out = ["Cluster (bench/cluster.py: a NATS bus, two workers, two gateways, all on this "
+           "machine's cores with the clients): hands-10 driven at 60 Hz through the first "
+           "gateway, light viewers on the first gateway alone or spread over both:", "",
+           "| gateways | viewers | frames/s lowest / median | late | cluster CPU (cores) |",
+           "|---|---|---|---|---|"]
+    for row in found["viewers"]["rows"]:
+        out.append(f"| {row['gateways']} | {row['viewers']} | {row['fps_min']:.1f} / "
+                   f"{row['fps_median']:.1f} | {row['late_pct']:.2f} % | {row['cluster_cores']:.2f} |")
+    busy, fail = found["busy"], found["failover"]
+    rates = busy["ticks_per_second"] or {"median": 0.0, "p95": 0.0}
+    out += ["", f"Busy scenes: {busy['scenes']} asked for (a hand each, its fingers moved 10 "
+            f"times a second), {busy['placed']} placed ({', '.join(f'{w}: {n}' for w, n in sorted(busy['per_worker'].items()))}), "
+            f"{busy['refused']} refused (the workers full), in {busy['placing_s']:.1f} s; "
+            f"ticks/s median {rates['median']:.1f}; cluster CPU {busy['cluster_cores']:.2f} cores. "
+            f"Failover: a scene with {fail['objects']} kept objects, its worker killed (SIGKILL): "
+            f"back through the other gateway after "
+            f"{'never' if fail['seconds'] is None else format(fail['seconds'], '.2f') + ' s'}, "
+            f"{fail['lost']} objects lost."]
     return out
 
 

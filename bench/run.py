@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import chaos, core, idle_scenes, live, recording, scenes
+from . import chaos, cluster, core, idle_scenes, live, recording, scenes
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -47,6 +47,10 @@ class Sizes:
     dynamic: tuple[int, int, int, int]  # hands, free objects, ticks while they fall, ticks at rest
     recorded_ticks: int  # of hands-10 recorded (10 minutes: the seek figure's recording)
     seeks: int  # to random times of it
+    cluster_viewers: tuple[int, ...]  # light viewers of one scene, over one gateway and two
+    cluster_busy: int  # busy scenes placed over two workers
+    cluster_objects: int  # kept objects of the scene whose worker is killed
+    cluster_idle_wait: float  # seconds for the busy scenes to go before that
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -54,12 +58,15 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
              document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
-             dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50)
+             dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
+             cluster_viewers=(250, 500, 1000, 2000), cluster_busy=200, cluster_objects=50,
+             cluster_idle_wait=20.0)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
               document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4,
-              dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2)
+              dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
+              cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0)
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -101,6 +108,9 @@ def measure(sizes: Sizes) -> dict[str, Any]:
                                                       quick=sizes is QUICK))
     found["idle_scenes"] = _timed("idle scenes", lambda: idle_scenes.measure(
         sizes.idle_scenes, sizes.outside_seconds))
+    found["cluster"] = _timed("cluster", lambda: cluster.measure(
+        list(sizes.cluster_viewers), sizes.viewer_seconds, sizes.cluster_busy,
+        sizes.cluster_objects, sizes.cluster_idle_wait))
     return found
 
 
@@ -137,6 +147,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "chaos_faults": found["chaos"]["faults"],
         "chaos_changes_lost": found["chaos"]["lost"],
         "chaos_bystander_gap_ms": found["chaos"]["worst_gap_ms"],
+        **cluster.headline(found["cluster"]),
         "commit": commit,
     }
 

@@ -69,7 +69,8 @@ def _cluster(args: argparse.Namespace, limits: Limits) -> ClusterMember | None:
     uploads = args.assets_dir or (args.state_dir / "assets" if args.state_dir else None)
     settings = WorkerSettings(limits, args.tick_rate, AssetLibrary(uploads=uploads, limits=limits),
                               {} if args.no_demo else DEMOS, args.state_dir,
-                              **({"name": plain_name(args.worker_name)} if args.worker_name else {}))
+                              **({"name": plain_name(args.worker_name)} if args.worker_name else {}),
+                              **({"cores": args.worker_cores} if args.worker_cores else {}))
     return ClusterMember(args.bus, args.role, settings, args.lease_seconds)
 
 
@@ -140,6 +141,9 @@ def _parser() -> argparse.ArgumentParser:
                              "scenes) or all (both in this process)")
     parser.add_argument("--worker-name", default=None, metavar="NAME",
                         help="with --bus: this worker's name (default: host name and process id)")
+    parser.add_argument("--worker-cores", type=float, default=None, metavar="N",
+                        help="with --bus: the cores this worker's scenes may use; it takes no "
+                             "new scene while they use 80 %% of them (default: the machine's)")
     parser.add_argument("--lease-seconds", type=float, default=LEASE_SECONDS,
                         help="with --bus: a dead worker's scenes start on another worker "
                              "within this long")

@@ -9,11 +9,13 @@ Subjects (scene and worker names are plain: letters, digits, ``_`` and ``-``)::
     vp.worker.<w>.alive             a gateway's heartbeat; <w> answers which of its scenes
                                     it still runs
     vp.worker.<w>.scene.<s>         commands for scene <s> (from any gateway, in order)
+    vp.gateway.<g>.alive            a worker asks whether gateway <g>, silent a while, lives
     vp.scene.<s>.events             everything scene <s> says: published once, received
                                     by every gateway attached to it, in the order it was said
 
-Buckets: ``vp_leases`` (scene → the worker running it, expiring unless renewed) and
-``vp_cluster`` (the resume keys' secret, how far client ids have been handed out).
+Buckets: ``vp_workers`` and ``vp_scenes`` (which worker runs which scene:
+:mod:`.leases`) and ``vp_cluster`` (the resume keys' secret, how far client ids have been
+handed out: :mod:`.client_ids`).
 
 Messages are pickled Python values, as on the pipes between a server and its scene
 processes (:mod:`server.web.runner`): the bus is part of one deployment and must be
@@ -39,7 +41,7 @@ from ..errors import TooLarge
 log = logging.getLogger(__name__)
 PLACE = "vp.place"
 CONNECT_SECONDS = 60.0  # a process started with its bus waits this long for it
-LEASES, CLUSTER = "vp_leases", "vp_cluster"
+WORKERS, SCENES, CLUSTER = "vp_workers", "vp_scenes", "vp_cluster"
 Handler = Callable[[Any, "Reply | None"], Awaitable[None] | None]
 
 
@@ -49,6 +51,15 @@ def attach_subject(worker: str) -> str:
 
 def alive_subject(worker: str) -> str:
     return f"vp.worker.{worker}.alive"
+
+
+def gateway_subject(gateway: str) -> str:
+    return f"vp.gateway.{gateway}.alive"
+
+
+def gateway_of(attachment: str) -> str:
+    """The gateway an attachment (``<gateway>-<number>``) belongs to."""
+    return attachment.rpartition("-")[0]
 
 
 def commands_subject(worker: str, scene: str) -> str:
@@ -81,9 +92,11 @@ class Reply:
 class Bus:
     """A connection to the bus, with the cluster's buckets."""
 
-    def __init__(self, client: Client, leases: KeyValue, shared: KeyValue) -> None:
+    def __init__(self, client: Client, workers: KeyValue, scenes: KeyValue,
+                 shared: KeyValue) -> None:
         self.client = client
-        self.leases = leases  # scene -> worker, expiring (server.cluster.leases)
+        self.workers = workers  # the living workers, expiring (server.cluster.leases)
+        self.scenes = scenes  # scene -> the worker running it
         self.shared = shared  # cluster-wide facts (server.cluster.client_ids)
 
     @classmethod
@@ -103,13 +116,14 @@ class Bus:
                 await asyncio.sleep(1.0)
         stream = client.jetstream()
         try:
-            leases = await stream.create_key_value(bucket=LEASES, ttl=lease_seconds, history=1)
+            workers = await stream.create_key_value(bucket=WORKERS, ttl=lease_seconds, history=1)
         except BadRequestError:  # made by a process with another --lease-seconds: that one holds
-            leases = await stream.key_value(LEASES)
+            workers = await stream.key_value(WORKERS)
             log.warning("the bus's leases last as long as the first process said; "
                         "--lease-seconds %s is not used", lease_seconds)
+        scenes = await stream.create_key_value(bucket=SCENES, history=1)
         shared = await stream.create_key_value(bucket=CLUSTER, history=1)
-        return cls(client, leases, shared)
+        return cls(client, workers, scenes, shared)
 
     def pack(self, value: Any) -> bytes:
         data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)

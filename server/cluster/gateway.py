@@ -21,16 +21,16 @@ from ..core.physics.assets import AssetLibrary
 from ..web.runner import Deliver
 from ..web.scene_store import SceneStore
 from ..web.worker import SceneSetup
-from .bus import Bus, Unanswered, alive_subject
-from .leases import break_lease
+from .bus import Bus, Reply, Unanswered, alive_subject, gateway_subject
+from .leases import break_worker, lease_holder
 from .placement import Placement
 from .remote_runner import RemoteRunner
 
 log = logging.getLogger(__name__)
 HEARTBEAT_SECONDS = 1.0
 # a worker is gone after this many heartbeats in a row went to nobody (its connection to the
-# bus is closed: it died), or this many more went unanswered (alive but stuck, or swamped:
-# a busy machine must not make its scenes hop from worker to worker)
+# bus is closed: it died); after this many unanswered, its leases decide (a swamped machine
+# must not make its scenes hop from worker to worker)
 MISSED_BEATS = {True: 2, False: 10}
 
 
@@ -55,9 +55,16 @@ class Gateway:
         """A scene's runner (the worker makes the scene with its own setups and store)."""
         return RemoteRunner(self, f"{self.name}-{next(self._numbers)}", name, tick_rate, deliver)
 
-    def start(self) -> None:
+    async def start(self) -> None:
+        """Answer workers that ask whether it lives; send; beat; survey the workers."""
+        await self.bus.subscribe(gateway_subject(self.name), self._alive)
         self._tasks = [asyncio.create_task(self._send()), asyncio.create_task(self._beat()),
                        asyncio.create_task(self.placement.keep_surveying())]
+
+    @staticmethod
+    async def _alive(value: Any, reply: Reply | None) -> None:
+        if reply is not None:
+            await reply.send(True)
 
     def send(self, subject: str, value: Any) -> None:
         """Publish in order: one sender for every command of this gateway."""
@@ -95,15 +102,28 @@ class Gateway:
             self._missed[worker] += 1
             if self._missed[worker] >= MISSED_BEATS[unanswered.gone]:
                 del self._missed[worker]
-                for runner in runners:
-                    if unanswered.gone:  # it left the bus: its scenes may start elsewhere now
-                        await break_lease(self.bus.leases, runner.name, worker)
-                    runner.lost()
+                await self._unanswered(worker, runners, unanswered.gone)
             return
         self._missed.pop(worker, None)
         for runner in runners:
             if runner.attachment not in alive:
+                log.warning("worker %s no longer runs scene %s for %s", worker, runner.name,
+                            runner.attachment)
                 runner.lost()
+
+    async def _unanswered(self, worker: str, runners: list[RemoteRunner], gone: bool) -> None:
+        """A worker that left the bus has died: its scenes start elsewhere at once. One that
+        only does not answer (swamped, or stuck) keeps the scenes it still holds the lease
+        of; those it does not hold any more are lost."""
+        if gone:
+            await break_worker(self.bus.workers, worker)
+        for runner in runners:
+            if gone or await lease_holder(self.bus.workers, self.bus.scenes,
+                                          runner.name) != worker:
+                runner.lost()
+            else:
+                log.warning("worker %s has not answered for %d s; it still holds scene %s",
+                            worker, MISSED_BEATS[False], runner.name)
 
     async def stop(self) -> None:
         while not self._outgoing.empty():  # the detachments of the scenes just stopped

@@ -1,8 +1,16 @@
-"""Which worker runs which scene: a key per scene in the bus's ``vp_leases`` bucket, whose
-value is the worker's name. The bucket forgets a key ``seconds`` after it was last written,
-so a worker renews its leases while it lives; when it dies they lapse and another worker
-may claim them (sooner when it is seen to have left the bus: :func:`break_lease`). Claims and renewals are compare-and-set on the key's revision: two
-workers never both hold a scene."""
+"""Which worker runs which scene, in two of the bus's key-value buckets:
+
+- ``vp_workers``: a key per living worker, which the bucket forgets ``seconds`` after it
+  was last written; each worker writes its own again several times a lease, one write
+  however many scenes it runs.
+- ``vp_scenes``: a key per scene, naming the worker that runs it. It holds only while
+  that worker's key lives: once the worker's key lapses (the worker died, or was cut off
+  from the bus), another worker may take the scene over.
+
+Claims and takeovers are compare-and-set on a key's revision: two workers never both take
+a scene. A worker seen to have left the bus (nobody listens on its subjects) need not be
+waited for: :func:`break_worker` deletes its key at once.
+"""
 
 from __future__ import annotations
 
@@ -14,88 +22,99 @@ from nats.js.kv import KeyValue
 log = logging.getLogger(__name__)
 
 
-async def lease_holder(leases: KeyValue, scene: str) -> str | None:
-    """The worker that holds ``scene``'s lease, if one does."""
+async def _value(bucket: KeyValue, key: str) -> tuple[str | None, int]:
+    """A key's value and revision (None and 0 when it has none)."""
     try:
-        entry = await leases.get(scene)
+        entry = await bucket.get(key)
     except (KeyNotFoundError, KeyDeletedError):
-        return None
-    return entry.value.decode() if entry.value else None
+        return None, 0
+    return (entry.value.decode() if entry.value else None), entry.revision or 0
 
 
-async def break_lease(leases: KeyValue, scene: str, worker: str) -> None:
-    """Delete ``scene``'s lease if ``worker`` still holds it: the worker has left the bus
-    (nobody listens on its subjects), so its scenes need not wait for the lease to lapse."""
-    try:
-        entry = await leases.get(scene)
-    except (KeyNotFoundError, KeyDeletedError):
+async def worker_lives(workers: KeyValue, worker: str) -> bool:
+    """Whether ``worker``'s key is there (written within a lease)."""
+    return (await _value(workers, worker))[0] is not None
+
+
+async def lease_holder(workers: KeyValue, scenes: KeyValue, scene: str) -> str | None:
+    """The living worker that runs ``scene``, if one does."""
+    holder, _ = await _value(scenes, scene)
+    return holder if holder is not None and await worker_lives(workers, holder) else None
+
+
+async def break_worker(workers: KeyValue, worker: str) -> None:
+    """``worker`` has left the bus: its scenes may be taken over now, not a lease later."""
+    value, revision = await _value(workers, worker)
+    if value is None:
         return
-    if entry.value and entry.value.decode() == worker:
-        try:
-            await leases.delete(scene, last=entry.revision)
-            log.warning("scene %s: the lease of worker %s, which has left the bus, is broken",
-                        scene, worker)
-        except (KeyWrongLastSequenceError, KeyNotFoundError):
-            pass  # renewed or taken meanwhile: not broken
+    try:
+        await workers.delete(worker, last=revision)
+        log.warning("worker %s has left the bus: its scenes may start elsewhere", worker)
+    except (KeyWrongLastSequenceError, KeyNotFoundError):
+        pass  # written again meanwhile: it lives
 
 
 class Leases:
-    """The leases one worker holds."""
+    """One worker's key and the scenes it holds."""
 
-    def __init__(self, leases: KeyValue, worker: str) -> None:
-        self._leases = leases
+    def __init__(self, workers: KeyValue, scenes: KeyValue, worker: str) -> None:
+        self._workers, self._scenes = workers, scenes
         self.worker = worker
-        self._revisions: dict[str, int] = {}  # scene -> the revision this worker wrote
+        self._held: set[str] = set()
+        self._revision = 0  # of this worker's own key
 
     def __contains__(self, scene: str) -> bool:
-        return scene in self._revisions
+        return scene in self._held
+
+    async def start(self) -> None:
+        """Write this worker's key: it lives."""
+        self._revision = await self._workers.put(self.worker, b"alive")
 
     async def claim(self, scene: str) -> str | None:
-        """Take the scene's lease unless another worker holds it: that worker's name, or
-        None when this worker holds it now."""
-        if scene in self._revisions:
+        """Take the scene unless a living worker holds it: that worker's name, or None when
+        this worker holds it now."""
+        holder, revision = await _value(self._scenes, scene)
+        if holder == self.worker or (holder is not None
+                                     and not await worker_lives(self._workers, holder)) \
+                or holder is None:
+            try:
+                if holder is None:
+                    await self._scenes.create(scene, self.worker.encode())
+                elif holder != self.worker:  # its worker is gone: taken over
+                    await self._scenes.update(scene, self.worker.encode(), last=revision)
+            except KeyWrongLastSequenceError:  # another worker was quicker
+                return await lease_holder(self._workers, self._scenes, scene) or \
+                    await self.claim(scene)
+            self._held.add(scene)
             return None
-        try:
-            self._revisions[scene] = await self._leases.create(scene, self.worker.encode())
-            return None
-        except KeyWrongLastSequenceError:
-            holder = await lease_holder(self._leases, scene)
-            if holder is None:  # it lapsed between the two calls
-                return await self.claim(scene)
-            if holder == self.worker:  # ours from before a restart of this worker's host
-                return await self._retake(scene)
-            return holder
-
-    async def _retake(self, scene: str) -> str | None:
-        entry = await self._leases.get(scene)
-        try:
-            self._revisions[scene] = await self._leases.update(scene, self.worker.encode(),
-                                                               last=entry.revision)
-        except KeyWrongLastSequenceError:
-            return await lease_holder(self._leases, scene)
-        return None
+        return holder
 
     async def renew(self) -> list[str]:
-        """Write every lease again; the scenes whose lease was lost meanwhile (it lapsed and
-        another worker took it): this worker must stop running them."""
+        """Write this worker's key again; the scenes it lost meanwhile (its key lapsed and
+        another worker took them): this worker must stop running them."""
+        try:
+            self._revision = await self._workers.update(self.worker, b"alive",
+                                                        last=self._revision)
+            return []
+        except (KeyWrongLastSequenceError, KeyNotFoundError):
+            pass
+        self._revision = await self._workers.put(self.worker, b"alive")  # it lapsed: back
         lost = []
-        for scene, revision in list(self._revisions.items()):
-            try:
-                self._revisions[scene] = await self._leases.update(
-                    scene, self.worker.encode(), last=revision)
-            except (KeyWrongLastSequenceError, KeyNotFoundError):
-                self._revisions.pop(scene, None)
-                if await self.claim(scene) is not None:
-                    log.error("worker %s lost the lease of scene %s", self.worker, scene)
-                    lost.append(scene)
+        for scene in list(self._held):
+            if (await _value(self._scenes, scene))[0] != self.worker:
+                self._held.discard(scene)
+                log.error("worker %s lost scene %s to another worker", self.worker, scene)
+                lost.append(scene)
         return lost
 
     async def release(self, scene: str) -> None:
-        """Give the scene's lease up (its process has ended)."""
-        revision = self._revisions.pop(scene, None)
-        if revision is None:
+        """Give the scene up (its process has ended)."""
+        if scene not in self._held:
             return
-        try:
-            await self._leases.delete(scene, last=revision)
-        except (KeyWrongLastSequenceError, KeyNotFoundError):
-            pass  # lapsed already, or taken: not ours to delete
+        self._held.discard(scene)
+        holder, revision = await _value(self._scenes, scene)
+        if holder == self.worker:
+            try:
+                await self._scenes.delete(scene, last=revision)
+            except (KeyWrongLastSequenceError, KeyNotFoundError):
+                pass  # taken meanwhile: not ours to delete

@@ -16,7 +16,7 @@ from collections import Counter
 from typing import Any
 
 from .bus import PLACE, Bus, Unanswered, attach_subject
-from .leases import break_lease, lease_holder
+from .leases import break_worker, lease_holder
 
 GATHER_SECONDS = 0.2  # how long workers have to say how busy they are
 SURVEY_SECONDS = 1.0  # how often they are asked
@@ -31,14 +31,14 @@ class Placement:
 
     def __init__(self, bus: Bus) -> None:
         self.bus = bus
-        self._loads: dict[str, tuple[int, int, float]] = {}  # worker -> scenes, most, heard
+        self._loads: dict[str, tuple[int, bool, float]] = {}  # worker -> scenes, room, heard
         self._under_way: Counter[str] = Counter()
         self._surveyed = float("-inf")
 
     async def place(self, attachment: str, scene: str) -> tuple[str, dict[str, Any]] | None:
         """One try: attach to the lease holder, else to the least busy workers in turn;
         the worker and its answer, or None (try again: a lease lapsing, nobody with room)."""
-        holder = await lease_holder(self.bus.leases, scene)
+        holder = await lease_holder(self.bus.workers, self.bus.scenes, scene)
         for worker in [holder] if holder is not None else await self._least_busy():
             self._under_way[worker] += 1
             try:
@@ -47,12 +47,12 @@ class Placement:
             except Unanswered as unanswered:
                 if unanswered.gone:  # it has left the bus: its lease need not lapse
                     self._loads.pop(worker, None)
-                    await break_lease(self.bus.leases, scene, worker)
+                    await break_worker(self.bus.workers, worker)
                 continue  # (if slow, its lease lapses in time)
             finally:
                 self._under_way[worker] -= 1
             if answer[0] == "attached":
-                self._heard(worker, answer[1]["scenes"], answer[1]["most"])
+                self._heard(worker, answer[1]["scenes"], answer[1]["room"])
                 return worker, answer[1]
             if answer[0] == "elsewhere":
                 return None  # placed meanwhile: its holder, next try
@@ -64,20 +64,20 @@ class Placement:
             await self.survey()
         now = time.monotonic()
         loads = {name: scenes + self._under_way[name]
-                 for name, (scenes, most, heard) in self._loads.items()
-                 if now - heard < FORGET_SECONDS and scenes < most}
+                 for name, (scenes, room, heard) in self._loads.items()
+                 if now - heard < FORGET_SECONDS and room}
         ordered = list(loads)
         random.shuffle(ordered)
         return sorted(ordered, key=loads.__getitem__)
 
-    def _heard(self, worker: str, scenes: int, most: int) -> None:
-        self._loads[worker] = (scenes, most, time.monotonic())
+    def _heard(self, worker: str, scenes: int, room: bool) -> None:
+        self._loads[worker] = (scenes, room, time.monotonic())
 
     async def survey(self) -> None:
         """Ask every worker how busy it is."""
         answers = await self.bus.gather(PLACE, None, GATHER_SECONDS)
-        for name, scenes, most in answers:
-            self._heard(name, scenes, most)
+        for name, scenes, room in answers:
+            self._heard(name, scenes, room)
         self._surveyed = time.monotonic()
 
     async def keep_surveying(self) -> None:

@@ -95,8 +95,8 @@ class RemoteRunner:
             while (placed := await self.gateway.place(self.attachment, self.name)) is None:
                 if time.monotonic() > deadline:
                     raise UnknownScene(f"no worker took scene {self.name} within "
-                                       f"{PLACE_SECONDS:.0f} s: none answered, or each runs "
-                                       f"its maximum of scenes (--limit scenes)",
+                                       f"{PLACE_SECONDS:.0f} s: none answered, or each is "
+                                       f"full (--limit scenes, --worker-cores)",
                                        scene=self.name)
                 await asyncio.sleep(RETRY_SECONDS)
         except asyncio.CancelledError:

@@ -50,6 +50,7 @@ class WorkerSettings:
     setups: Mapping[str, SceneSetup]
     state_dir: Path | None
     name: str = field(default_factory=default_worker_name)
+    cores: float = field(default_factory=lambda: float(os.cpu_count() or 1))
 
 
 class ClusterMember:
@@ -73,13 +74,14 @@ class ClusterMember:
             settings = self.settings
             state = StateDir(settings.state_dir) if settings.state_dir is not None else None
             self.host = WorkerHost(self.bus, settings.name, settings.limits, settings.tick_rate,
-                                   settings.assets, settings.setups, state, self.lease_seconds)
+                                   settings.assets, settings.setups, state, self.lease_seconds,
+                                   settings.cores)
             await self.host.start()
         if hubs is not None and self.role in ("all", "gateway"):
             self.gateway = Gateway(self.bus, name if self.role == "gateway" else f"g-{name}")
             hubs.runners = self.gateway.runner
             hubs.ids = await SharedClientIds.open(self.bus.shared)
-            self.gateway.start()
+            await self.gateway.start()
             log.info("gateway %s serves scenes through %s", self.gateway.name, self.url)
 
     async def stop(self) -> list[str]:

@@ -25,12 +25,20 @@ from ..web.hub import clients_objects
 from ..web.runner import SceneRunner
 from ..web.state_dir import StateDir
 from ..web.worker import SceneSetup
-from .bus import PLACE, Bus, Reply, alive_subject, attach_subject, commands_subject, events_subject
+from .bus import (PLACE, Bus, Reply, Unanswered, alive_subject, attach_subject,
+                  commands_subject, events_subject, gateway_of, gateway_subject)
 from .leases import Leases
+from .process_cpu import ProcessCpu
 
 log = logging.getLogger(__name__)
 CALLS = frozenset({"read", "import", "metrics", "record", "unrecord"})  # answered: ("reply", n, …)
-SILENT_SECONDS = 5.0  # an attachment not heard of this long is gone (its gateway died)
+# Scenes run below the worker's own priority: when they want more than the cores give, the
+# worker still renews its lease and answers (else its scenes would hop to other workers)
+SCENE_NICE = 5
+CPU_SHARE = 0.8  # of its cores, the most its scenes' processes use before it takes no more
+# a gateway not heard of this long (its heartbeat comes each second) is asked whether it
+# lives: one that has left the bus (died) loses its attachments; a swamped one keeps them
+SILENT_SECONDS = 5.0
 
 
 class HostedScene:
@@ -49,7 +57,8 @@ class HostedScene:
         self.runner = SceneRunner(name, host.limits, host.tick_rate, host.assets,
                                   host.setups.get(name), self._deliver,
                                   host.state.store(name) if host.state is not None else None,
-                                  host.state.root / "recordings" if host.state is not None else None)
+                                  host.state.root / "recordings" if host.state is not None else None,
+                                  nice=SCENE_NICE)
         self.runner.start(after)
 
     def attach(self, attachment: str) -> dict[str, Any]:
@@ -58,7 +67,7 @@ class HostedScene:
         self.alone_since = None
         return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
                 "saving": self.saving, "scenes": len(self.host.scenes),
-                "most": self.host.limits.scenes}
+                "room": self.host.room() is None}
 
     def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
         """A gateway's commands, in the order it sent them."""
@@ -123,13 +132,15 @@ class WorkerHost:
 
     def __init__(self, bus: Bus, name: str, limits: Limits, tick_rate: float,
                  assets: AssetLibrary, setups: Mapping[str, SceneSetup],
-                 state: StateDir | None, lease_seconds: float) -> None:
+                 state: StateDir | None, lease_seconds: float, cores: float) -> None:
         self.bus, self.name = bus, name
         self.limits, self.tick_rate, self.assets, self.setups = limits, tick_rate, assets, setups
         self.state = state
         self.lease_seconds = lease_seconds
+        self.cores = cores  # its share of the machine (--worker-cores)
+        self.cpu = ProcessCpu()
         self.scenes: dict[str, HostedScene] = {}
-        self.leases = Leases(bus.leases, name)
+        self.leases = Leases(bus.workers, bus.scenes, name)
         self._incarnations = itertools.count(1)
         self._claims = asyncio.Lock()  # one placement at a time: a scene is started once
         self._outgoing: asyncio.Queue[tuple[str, Any]] = asyncio.Queue()
@@ -137,6 +148,7 @@ class WorkerHost:
 
     async def start(self) -> None:
         """Answer placements and heartbeats; renew leases; look after silent attachments."""
+        await self.leases.start()
         await self.bus.subscribe(PLACE, self._load)
         await self.bus.subscribe(attach_subject(self.name), self._attach)
         await self.bus.subscribe(alive_subject(self.name), self._alive)
@@ -158,7 +170,19 @@ class WorkerHost:
 
     async def _load(self, value: Any, reply: Reply | None) -> None:
         if reply is not None:
-            await reply.send((self.name, len(self.scenes), self.limits.scenes))
+            await reply.send((self.name, len(self.scenes), self.room() is None))
+
+    def room(self) -> str | None:
+        """Why this worker takes no more scenes (None: it has room). Besides the ``scenes``
+        limit, its scenes' processes must leave some of its cores free: past that a new
+        scene would only slow every other, and this worker's own work (renewing its lease,
+        answering) would starve."""
+        if len(self.scenes) >= self.limits.scenes:
+            return f"it runs its maximum of {self.limits.scenes} scenes (--limit scenes)"
+        if self.cpu.cores_used > CPU_SHARE * self.cores:
+            return (f"its scenes use {self.cpu.cores_used:.1f} of its {self.cores:g} cores "
+                    f"(--worker-cores)")
+        return None
 
     async def _attach(self, value: Any, reply: Reply | None) -> None:
         attachment, scene = value
@@ -171,8 +195,8 @@ class WorkerHost:
         hosted = self.scenes.get(scene)
         if hosted is not None and not hosted.runner.stopping:
             return ("attached", hosted.attach(attachment))
-        if len(self.scenes) >= self.limits.scenes and hosted is None:
-            return ("full", self.limits.scenes)
+        if hosted is None and (full := self.room()) is not None:
+            return ("full", full)
         holder = await self.leases.claim(scene)
         if holder is not None:
             return ("elsewhere", holder)
@@ -205,37 +229,46 @@ class WorkerHost:
             asyncio.create_task(hosted.subscription.unsubscribe())
 
     async def _renew(self) -> None:
-        renewed = time.monotonic()
         while True:
             await asyncio.sleep(self.lease_seconds / 5)
             try:
                 lost = await self.leases.renew()
-                renewed = time.monotonic()
-            except Exception as error:  # the bus is away: the leases last a while
-                log.warning("leases not renewed: %s", error)
-                # past most of their life another worker may run these scenes soon
-                lost = list(self.scenes) if time.monotonic() - renewed > 0.8 * \
-                    self.lease_seconds else []
-            for scene in lost:  # another worker runs it, or may: this copy must not save over it
+            except Exception as error:  # the bus is slow or away: the leases last a while
+                log.warning("leases not renewed: %s", error or type(error).__name__)
+                continue
+            for scene in lost:  # another worker runs it now: this copy must not save over it
                 hosted = self.scenes.pop(scene, None)
                 if hosted is not None:
-                    log.error("scene %s stops unsaved here: its lease is lost", scene)
+                    log.error("scene %s stops unsaved here: another worker runs it", scene)
                     hosted.runner.kill()
 
     async def _sweep(self) -> None:
         while True:
             await asyncio.sleep(1.0)
+            self.cpu.measure([h.runner.pid for h in self.scenes.values() if h.runner.pid])
             now = time.monotonic()
+            silent = {gateway_of(a) for hosted in self.scenes.values()
+                      for a, heard in hosted.heard.items() if now - heard > SILENT_SECONDS}
+            gone = {g for g, lives in zip(silent, await asyncio.gather(
+                *(self._lives(g) for g in silent))) if not lives}
             for hosted in list(self.scenes.values()):
-                for attachment, heard in list(hosted.heard.items()):
-                    if now - heard > SILENT_SECONDS:
-                        log.warning("attachment %s of scene %s went silent", attachment,
-                                    hosted.name)
-                        hosted.heard.pop(attachment)
-                        hosted.detach(attachment)
+                for attachment in [a for a in hosted.heard if gateway_of(a) in gone]:
+                    log.warning("gateway %s has left: scene %s loses its clients there",
+                                gateway_of(attachment), hosted.name)
+                    hosted.heard.pop(attachment)
+                    hosted.detach(attachment)
                 if hosted.alone_since is not None and not hosted.runner.stopping and \
                         now - hosted.alone_since >= self.limits.scene_idle_seconds:
                     await self._stop_if_idle(hosted)
+
+    async def _lives(self, gateway: str) -> bool:
+        """Whether a gateway that has been silent a while is still on the bus (one that is
+        only swamped is: its scenes stay; one that died is not)."""
+        try:
+            await self.bus.request(gateway_subject(gateway), None, SILENT_SECONDS)
+        except Unanswered as unanswered:
+            return not unanswered.gone
+        return True
 
     async def _stop_if_idle(self, hosted: HostedScene) -> None:
         """Stop a scene no gateway has attached to for the grace period, unless it holds

@@ -76,7 +76,8 @@ class SceneRunner:
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                  setup: worker.SceneSetup | None, deliver: Deliver,
-                 store: SceneStore | None = None, recordings: Path | None = None) -> None:
+                 store: SceneStore | None = None, recordings: Path | None = None,
+                 nice: int = 0) -> None:
         self.name = name
         self.tick_rate = tick_rate
         self._deliver = deliver
@@ -85,7 +86,7 @@ class SceneRunner:
         self._process = CONTEXT.Process(
             target=worker.serve, name=f"scene-{name}", daemon=True,
             args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store,
-                  recordings))
+                  recordings, nice))
         self._child = child
         self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
         self._replies: dict[int, asyncio.Future[Any]] = {}

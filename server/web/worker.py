@@ -42,6 +42,7 @@ each tick                                 ``("frame", [messages])`` for every cl
 from __future__ import annotations
 
 import logging
+import os
 import signal
 import sys
 import time
@@ -78,10 +79,13 @@ SAVE_FAILED = 75  # exit code of a scene's process that stopped with changes it 
 
 def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
           setup: SceneSetup | None, log_level: int, store: SceneStore | None = None,
-          recordings: Path | None = None) -> None:
+          recordings: Path | None = None, nice: int = 0) -> None:
     """The process's main function: make the scene (as ``setup`` makes it, then as its
-    saved document says, when there is one), then serve it."""
+    saved document says, when there is one), then serve it (``nice``: this much below the
+    server's own priority)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
+    if nice:
+        os.nice(nice)
     logging.basicConfig(level=log_level)
     scene = Scene(name, limits, assets)
     worker = SceneWorker(pipe, scene, tick_rate, store, recordings)

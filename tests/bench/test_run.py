@@ -29,6 +29,10 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert chaos["faults"] == 7 and set(chaos["by_kind"].values()) == {1}
     assert chaos["acknowledged"] > 0 and chaos["lost"] == 0  # the journal's promise
     assert chaos["bystander_frames"] > 0
+    cluster = figures["cluster"]
+    assert [(r["gateways"], r["viewers"]) for r in cluster["viewers"]["rows"]] == [(1, 2), (2, 2)]
+    assert all(r["fps_median"] > 0 for r in cluster["viewers"]["rows"])  # frames crossed the bus
+    assert cluster["busy"]["placed"] == 2 and cluster["failover"]["lost"] == 0
     markdown = (tmp_path / "RESULTS.md").read_text()
     assert markdown.count(BEGIN) == 1 and markdown.count(END) == 1
     for name in TARGETS:

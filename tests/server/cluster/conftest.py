@@ -82,7 +82,7 @@ def workers(url: str) -> list[str]:
 
 def holder(url: str, scene: str) -> str | None:
     """The worker running ``scene``."""
-    return ask_bus(url, lambda bus: lease_holder(bus.leases, scene))
+    return ask_bus(url, lambda bus: lease_holder(bus.workers, bus.scenes, scene))
 
 
 def start_worker(url: str, name: str, state: Path, log: Path,

@@ -13,7 +13,7 @@ from tests.server.cluster.conftest import ask_bus
 
 def _loads(url: str) -> dict[str, int]:
     async def gather(bus: Bus) -> dict[str, int]:
-        return {name: scenes for name, scenes, most in await bus.gather(PLACE, None, 0.2)}
+        return {name: scenes for name, scenes, room in await bus.gather(PLACE, None, 0.2)}
     return ask_bus(url, gather)
 
 
