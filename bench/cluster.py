@@ -50,11 +50,16 @@ class LoadCluster:
     def __init__(self, folder: Path, url: str, gateways: int, bus_pid: int) -> None:
         self.folder, self.url, self.bus_pid = folder, url, bus_pid
         state = folder / "state"
-        self.workers = {name: start_worker(url, name, state, folder / f"{name}.log", *LIMITS,
-                                           "--worker-cores", "1")  # two on two cores
-                        for name in ("wa", "wb")}
+        self.workers: dict[str, subprocess.Popen[bytes]] = {}
+        for name in ("wa", "wb"):
+            self.add_worker(name)
         self.gateways: list[RunningServer] = [
             start_gateway(url, state, folder / f"g{k}.log", *LIMITS) for k in range(gateways)]
+
+    def add_worker(self, name: str) -> None:
+        self.workers[name] = start_worker(self.url, name, self.folder / "state",
+                                          self.folder / f"{name}.log", *LIMITS,
+                                          "--worker-cores", "1")  # two on two cores
 
     def pids(self) -> list[int]:
         """The gateways', the workers' and their scenes' processes, and the bus's."""
@@ -104,13 +109,15 @@ def load_cluster(gateways: int) -> Iterator[LoadCluster]:
 def measure(counts: list[int], seconds: float, busy: int, objects: int,
             idle_wait: float) -> dict[str, Any]:
     """Every measure on one cluster (two workers, two gateways): viewers through one gateway
-    and through both, busy scenes, then (``idle_wait`` later: the busy scenes gone) the
-    failover, which kills a worker."""
+    and through both; ``idle_wait`` later (their scene gone) the failover, which kills a
+    worker; then, a new worker in its place, the busy scenes (last: past the cores they
+    leave the cluster swamped)."""
     with load_cluster(2) as cluster:
-        found = {"viewers": viewers(cluster, counts, seconds),
-                 "busy": busy_scenes(cluster, busy, max(seconds, 5.0))}
-        time.sleep(idle_wait)
+        found = {"viewers": viewers(cluster, counts, seconds)}
+        time.sleep(idle_wait)  # the viewed scene gone
         found["failover"] = failover(cluster, objects)
+        cluster.add_worker("wc")  # in place of the one killed
+        found["busy"] = busy_scenes(cluster, busy, max(seconds, 5.0))
     return found
 
 
