@@ -17,8 +17,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-import os
-import signal
 import subprocess
 import sys
 import tempfile
@@ -32,8 +30,7 @@ import virtual_prosthetics as vp
 
 from tests.conftest import RunningServer
 from server.cluster.leases import lease_holder
-from tests.server.cluster.conftest import (ask_bus, holder, running_bus, start_gateway,
-                                           start_worker)
+from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus
 
 from .live import NICE, cpu_seconds, driving
 from .report import AT_60_HZ
@@ -45,40 +42,19 @@ LIMITS = ("--limit", "bytesPerSecond=1000000000", "--limit", "connectionsPerAddr
 LATE_PCT = 1.0
 
 
-class LoadCluster:
-    """A bus, workers and gateways started for one measure, killed at its end."""
+class LoadCluster(Cluster):
+    """The tests' cluster with the bench's limits, two workers on one core each, and the
+    bus's process (its CPU counts)."""
 
     def __init__(self, folder: Path, url: str, gateways: int, bus_pid: int) -> None:
-        self.folder, self.url, self.bus_pid = folder, url, bus_pid
-        state = folder / "state"
-        self.workers: dict[str, subprocess.Popen[bytes]] = {}
-        for name in ("wa", "wb"):
-            self.add_worker(name)
-        self.gateways: list[RunningServer] = [
-            start_gateway(url, state, folder / f"g{k}.log", *LIMITS) for k in range(gateways)]
-
-    def add_worker(self, name: str) -> None:
-        self.workers[name] = start_worker(self.url, name, self.folder / "state",
-                                          self.folder / f"{name}.log", *LIMITS,
-                                          "--worker-cores", "1")  # two on two cores
+        super().__init__(url, folder, *LIMITS, gateways=gateways,
+                         worker_extra=("--worker-cores", "1"))  # two on two cores
+        self.folder, self.bus_pid = folder, bus_pid
 
     def pids(self) -> list[int]:
         """The gateways', the workers' and their scenes' processes, and the bus's."""
         roots = [g.process.pid for g in self.gateways] + [w.pid for w in self.workers.values()]
         return roots + _children(roots) + [self.bus_pid]
-
-    def kill_worker(self, name: str) -> None:
-        process = self.workers.pop(name)
-        os.killpg(process.pid, signal.SIGKILL)
-        process.wait(10)
-
-    def close(self) -> None:
-        for process in [*self.workers.values(), *(g.process for g in self.gateways)]:
-            try:
-                os.killpg(process.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-            process.wait(10)
 
 
 def _children(pids: list[int]) -> list[int]:

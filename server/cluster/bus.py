@@ -89,6 +89,32 @@ class Reply:
         await self._bus.publish(self._subject, value)
 
 
+class OrderedSender:
+    """Publishes in the order things were sent, never waiting the sender: one queue and one
+    task for everything a gateway or a worker says on the bus."""
+
+    def __init__(self, bus: Bus) -> None:
+        self._bus = bus
+        self._queue: asyncio.Queue[tuple[str, Any]] = asyncio.Queue()
+
+    def send(self, subject: str, value: Any) -> None:
+        self._queue.put_nowait((subject, value))
+
+    async def run(self) -> None:
+        """Publish forever (a task of its owner's life)."""
+        while True:
+            subject, value = await self._queue.get()
+            try:
+                await self._bus.publish(subject, value)
+            except Exception:  # too large, or the bus is gone for a moment: that one is lost
+                log.exception("publishing on %s", subject)
+
+    async def flush(self) -> None:
+        """Publish what is still queued (its owner is stopping)."""
+        while not self._queue.empty():
+            await self._bus.publish(*self._queue.get_nowait())
+
+
 class Bus:
     """A connection to the bus, with the cluster's buckets."""
 

@@ -21,7 +21,7 @@ from ..core.physics.assets import AssetLibrary
 from ..web.runner import Deliver
 from ..web.scene_store import SceneStore
 from ..web.worker import SceneSetup
-from .bus import Bus, Reply, Unanswered, alive_subject, gateway_subject
+from .bus import Bus, OrderedSender, Reply, Unanswered, alive_subject, gateway_subject
 from .leases import break_worker, lease_holder
 from .placement import Placement
 from .remote_runner import RemoteRunner
@@ -42,7 +42,7 @@ class Gateway:
         self._numbers = itertools.count(1)
         self._attached: dict[str, RemoteRunner] = {}
         self._missed: dict[str, int] = defaultdict(int)  # worker -> heartbeats unanswered
-        self._outgoing: asyncio.Queue[tuple[str, Any]] = asyncio.Queue()
+        self._outgoing = OrderedSender(bus)
         self._tasks: list[asyncio.Task[None]] = []
         self.placement = Placement(bus)
 
@@ -58,7 +58,8 @@ class Gateway:
     async def start(self) -> None:
         """Answer workers that ask whether it lives; send; beat; survey the workers."""
         await self.bus.subscribe(gateway_subject(self.name), self._alive)
-        self._tasks = [asyncio.create_task(self._send()), asyncio.create_task(self._beat()),
+        self._tasks = [asyncio.create_task(self._outgoing.run()),
+                       asyncio.create_task(self._beat()),
                        asyncio.create_task(self.placement.keep_surveying())]
 
     @staticmethod
@@ -68,15 +69,7 @@ class Gateway:
 
     def send(self, subject: str, value: Any) -> None:
         """Publish in order: one sender for every command of this gateway."""
-        self._outgoing.put_nowait((subject, value))
-
-    async def _send(self) -> None:
-        while True:
-            subject, value = await self._outgoing.get()
-            try:
-                await self.bus.publish(subject, value)
-            except Exception:
-                log.exception("publishing on %s", subject)
+        self._outgoing.send(subject, value)
 
     def attached(self, runner: RemoteRunner) -> None:
         self._attached[runner.attachment] = runner
@@ -126,8 +119,6 @@ class Gateway:
                             worker, MISSED_BEATS[False], runner.name)
 
     async def stop(self) -> None:
-        while not self._outgoing.empty():  # the detachments of the scenes just stopped
-            subject, value = self._outgoing.get_nowait()
-            await self.bus.publish(subject, value)
+        await self._outgoing.flush()  # the detachments of the scenes just stopped
         for task in self._tasks:
             task.cancel()

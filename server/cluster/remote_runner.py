@@ -12,7 +12,6 @@ clients reconnect to, and it starts again elsewhere.
 from __future__ import annotations
 
 import asyncio
-import itertools
 from collections import deque
 import logging
 import threading
@@ -20,7 +19,7 @@ import time
 from typing import Any, Protocol
 
 from ..errors import UnknownScene, VPError
-from ..web.runner import Deliver, Runner
+from ..web.runner import Deliver, Replies, Runner
 from .bus import Bus, commands_subject, events_subject
 
 log = logging.getLogger(__name__)
@@ -61,8 +60,7 @@ class RemoteRunner:
         self.stopping = False
         self._deliver = deliver
         self._waiting: list[tuple[Any, ...]] = []  # posted before it was placed
-        self._replies: dict[int, asyncio.Future[Any]] = {}
-        self._numbers = itertools.count(1)
+        self._replies = Replies()
         self._events: Any = None  # the subscription to the scene's events
         self._placing: asyncio.Task[None] | None = None
         self._incarnation: str | None = None  # the scene's process on its worker, once placed
@@ -134,14 +132,8 @@ class RemoteRunner:
 
     def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
         """Send a command that is answered; its reply, awaitable."""
-        future = asyncio.get_running_loop().create_future()
-        if self.ended:
-            future.set_exception(UnknownScene(f"scene {self.name} has ended", scene=self.name))
-            return future
-        number = next(self._numbers)
-        self._replies[number] = future
-        self.post(verb, number, *args)
-        return future
+        return self._replies.ask(self.post, verb, args, UnknownScene(
+            f"scene {self.name} has ended", scene=self.name) if self.ended else None)
 
     def stop(self) -> None:
         """Detach: the worker stops the scene when no other gateway is attached to it."""
@@ -170,7 +162,7 @@ class RemoteRunner:
                 continue
             kind = event[0]
             if kind == "reply":
-                self._reply(*event[1:])
+                self._replies.answer(*event[1:])
             elif kind == "detached":
                 self._end(False)
                 return
@@ -181,15 +173,6 @@ class RemoteRunner:
                 mine.append(event)
         if mine and not self.ended:
             self._deliver(mine)
-
-    def _reply(self, number: int, ok: bool, value: Any) -> None:
-        future = self._replies.pop(number, None)
-        if future is None or future.done():
-            return
-        if ok:
-            future.set_result(value)
-        else:
-            future.set_exception(value)
 
     def lost(self) -> None:
         """Its worker stopped answering: the scene failed (it starts again elsewhere)."""
@@ -203,10 +186,6 @@ class RemoteRunner:
         self.gateway.detached(self)
         if self._events is not None:
             asyncio.create_task(self._events.unsubscribe())
-        for future in self._replies.values():
-            if not future.done():
-                future.set_exception(UnknownScene(f"scene {self.name} has ended",
-                                                  scene=self.name))
-        self._replies.clear()
+        self._replies.fail(self.name)
         self._deliver([("ended", failed)])
         self._gone.set()

@@ -25,7 +25,7 @@ from ..web.hub import clients_objects
 from ..web.runner import SceneRunner
 from ..web.state_dir import StateDir
 from ..web.worker import SceneSetup
-from .bus import (PLACE, Bus, Reply, Unanswered, alive_subject, attach_subject,
+from .bus import (PLACE, Bus, OrderedSender, Reply, Unanswered, alive_subject, attach_subject,
                   commands_subject, events_subject, gateway_of, gateway_subject)
 from .leases import Leases
 from .process_cpu import ProcessCpu
@@ -143,7 +143,7 @@ class WorkerHost:
         self.leases = Leases(bus.workers, bus.scenes, name)
         self._incarnations = itertools.count(1)
         self._claims = asyncio.Lock()  # one placement at a time: a scene is started once
-        self._outgoing: asyncio.Queue[tuple[str, Any]] = asyncio.Queue()
+        self._outgoing = OrderedSender(bus)
         self._tasks: list[asyncio.Task[None]] = []
 
     async def start(self) -> None:
@@ -152,21 +152,14 @@ class WorkerHost:
         await self.bus.subscribe(PLACE, self._load)
         await self.bus.subscribe(attach_subject(self.name), self._attach)
         await self.bus.subscribe(alive_subject(self.name), self._alive)
-        self._tasks = [asyncio.create_task(self._send()), asyncio.create_task(self._renew()),
+        self._tasks = [asyncio.create_task(self._outgoing.run()),
+                       asyncio.create_task(self._renew()),
                        asyncio.create_task(self._sweep())]
         log.info("worker %s runs scenes for the cluster", self.name)
 
     def publish(self, subject: str, value: Any) -> None:
         """Publish in order (one sender for everything this worker says)."""
-        self._outgoing.put_nowait((subject, value))
-
-    async def _send(self) -> None:
-        while True:
-            subject, value = await self._outgoing.get()
-            try:
-                await self.bus.publish(subject, value)
-            except Exception:  # too large, or the bus is gone for a moment: that message is lost
-                log.exception("publishing on %s", subject)
+        self._outgoing.send(subject, value)
 
     async def _load(self, value: Any, reply: Reply | None) -> None:
         if reply is not None:
@@ -290,7 +283,5 @@ class WorkerHost:
         await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])
         for scene in list(self.scenes):
             await self.leases.release(scene)
-        while not self._outgoing.empty():  # the scenes' last words
-            subject, value = self._outgoing.get_nowait()
-            await self.bus.publish(subject, value)
+        await self._outgoing.flush()  # the scenes' last words
         return sorted(runner.name for runner in runners if runner.unsaved)

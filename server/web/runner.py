@@ -38,6 +38,44 @@ CONTEXT.set_forkserver_preload([worker.__name__, "trimesh", "scipy.spatial", "sc
 sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 
+class Replies:
+    """The answered commands a runner has sent (``call``), by number, until their replies
+    come or the scene ends: one for a scene's process here and for one on a worker."""
+
+    def __init__(self) -> None:
+        self._waiting: dict[int, asyncio.Future[Any]] = {}
+        self._numbers = itertools.count(1)
+
+    def ask(self, post: Callable[..., None], verb: str, args: tuple[Any, ...],
+            refusal: Exception | None = None) -> asyncio.Future[Any]:
+        """``post(verb, number, *args)``; the reply, awaitable (``refusal`` at once, if given:
+        the scene has ended)."""
+        future = asyncio.get_running_loop().create_future()
+        if refusal is not None:
+            future.set_exception(refusal)
+            return future
+        number = next(self._numbers)
+        self._waiting[number] = future
+        post(verb, number, *args)
+        return future
+
+    def answer(self, number: int, ok: bool, value: Any) -> None:
+        future = self._waiting.pop(number, None)
+        if future is None or future.done():
+            return
+        if ok:
+            future.set_result(value)
+        else:
+            future.set_exception(value)
+
+    def fail(self, scene: str) -> None:
+        """The scene has ended: every reply still awaited is ``unknown_scene``."""
+        for future in self._waiting.values():
+            if not future.done():
+                future.set_exception(UnknownScene(f"scene {scene} has ended", scene=scene))
+        self._waiting.clear()
+
+
 class Runner(Protocol):
     """A scene's process as the event loop drives it: :class:`SceneRunner` here, or a
     cluster's worker over the bus (:mod:`server.cluster.remote_runner`)."""
@@ -89,8 +127,7 @@ class SceneRunner:
                   recordings, nice))
         self._child = child
         self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
-        self._replies: dict[int, asyncio.Future[Any]] = {}
-        self._numbers = itertools.count(1)
+        self._replies = Replies()
         self.last_posted = 0.0  # when the last command was sent (monotonic)
         self.ended = False
         self.stopping = False  # asked to stop: however the process ends, it is no failure
@@ -133,14 +170,8 @@ class SceneRunner:
 
     def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
         """Send a command that is answered (``read``, ``metrics``); its reply, awaitable."""
-        future = self._loop.create_future()
-        if self.ended:
-            future.set_exception(UnknownScene(f"scene {self.name} was removed", scene=self.name))
-            return future
-        number = next(self._numbers)
-        self._replies[number] = future
-        self.post(verb, number, *args)
-        return future
+        return self._replies.ask(self.post, verb, args, UnknownScene(
+            f"scene {self.name} was removed", scene=self.name) if self.ended else None)
 
     def stop(self) -> None:
         """Ask the process to finish the commands sent so far, then end."""
@@ -203,20 +234,11 @@ class SceneRunner:
         rest = []
         for event in events:
             if event[0] == "reply":
-                self._reply(*event[1:])
+                self._replies.answer(*event[1:])
             else:
                 rest.append(event)
         if rest:
             self._deliver(rest)
-
-    def _reply(self, number: int, ok: bool, value: Any) -> None:
-        future = self._replies.pop(number, None)
-        if future is None or future.done():
-            return
-        if ok:
-            future.set_result(value)
-        else:
-            future.set_exception(value)
 
     @property
     def unsaved(self) -> bool:
@@ -229,9 +251,5 @@ class SceneRunner:
         failed = bool(exitcode) and not self.stopping
         if failed:
             log.error("the process of scene %s ended with exit code %s", self.name, exitcode)
-        for future in self._replies.values():
-            if not future.done():
-                future.set_exception(UnknownScene(f"scene {self.name} has ended",
-                                                  scene=self.name))
-        self._replies.clear()
+        self._replies.fail(self.name)
         self._deliver([("ended", failed)])

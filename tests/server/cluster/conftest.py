@@ -112,13 +112,21 @@ class Cluster:
     """A bus, two workers (wa, wb) and two gateways sharing one state folder, as the issue's
     smallest cluster; every process is killed at the end."""
 
-    def __init__(self, url: str, folder: Path, *extra: str, gateways: int = 2) -> None:
+    def __init__(self, url: str, folder: Path, *extra: str, gateways: int = 2,
+                 worker_extra: tuple[str, ...] = ()) -> None:
         self.url, self.state = url, folder / "state"
         self.logs = folder
-        self.workers = {name: start_worker(url, name, self.state, folder / f"{name}.log", *extra)
-                        for name in ("wa", "wb")}
+        self._extra, self._worker_extra = extra, worker_extra
+        self.workers: dict[str, subprocess.Popen[bytes]] = {}
+        for name in ("wa", "wb"):
+            self.add_worker(name)
         self.gateways = [start_gateway(url, self.state, folder / f"g{k}.log", *extra)
                          for k in range(1, gateways + 1)]
+
+    def add_worker(self, name: str) -> None:
+        """One more worker (``extra`` flags, then ``worker_extra``)."""
+        self.workers[name] = start_worker(self.url, name, self.state, self.logs / f"{name}.log",
+                                          *self._extra, *self._worker_extra)
 
     def kill_worker(self, name: str) -> None:
         """``kill -9`` a worker and its scenes' processes: nothing is saved on the way."""
