@@ -3,8 +3,9 @@ key-value buckets the cluster uses, and how its messages are packed.
 
 Subjects (scene and worker names are plain: letters, digits, ``_`` and ``-``)::
 
-    vp.place                        every worker answers how many scenes it runs (a
-                                    gateway places a new scene on the least busy)
+    vp.place                        every worker answers how many scenes it runs and
+                                    whether it has room (a gateway places a new scene on
+                                    the least busy with room)
     vp.worker.<w>.attach            a gateway asks worker <w> to run a scene for it
     vp.worker.<w>.alive             a gateway's heartbeat; <w> answers which of its scenes
                                     it still runs
@@ -27,6 +28,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import pickle
+from dataclasses import dataclass
 from typing import Any, Awaitable, Callable
 
 import nats
@@ -43,6 +45,17 @@ PLACE = "vp.place"
 CONNECT_SECONDS = 60.0  # a process started with its bus waits this long for it
 WORKERS, SCENES, CLUSTER = "vp_workers", "vp_scenes", "vp_cluster"
 Handler = Callable[[Any, "Reply | None"], Awaitable[None] | None]
+
+
+@dataclass(frozen=True)
+class NoRoom:
+    """Why a worker takes no more scenes: the limit (a wire name of ``limit_exceeded``),
+    its value, the flag of ``vp-server --role worker`` that changes it, and in words."""
+
+    limit: str
+    value: float
+    flag: str
+    text: str
 
 
 def attach_subject(worker: str) -> str:

@@ -4,7 +4,10 @@ busy worker with room, which claims the lease (:mod:`.worker_host`).
 How busy each worker is comes from asking them all every second, from each worker's
 answer to a placement (its count then), and from the placements this gateway has under
 way; so scenes placed at the same moment spread instead of all going where there were
-fewest a second ago.
+fewest a second ago. When every worker on the bus, asked afresh, has no room, the scene
+is refused at once (``limit_exceeded``, naming each worker's limit), as a single server
+refuses past ``--limit scenes``: waiting would not make room, and the client is told which
+flag does.
 """
 
 from __future__ import annotations
@@ -15,7 +18,8 @@ import time
 from collections import Counter
 from typing import Any
 
-from .bus import PLACE, Bus, Unanswered, attach_subject
+from ..errors import LimitExceeded
+from .bus import PLACE, Bus, NoRoom, Unanswered, attach_subject
 from .leases import break_worker, lease_holder
 
 GATHER_SECONDS = 0.2  # how long workers have to say how busy they are
@@ -31,15 +35,23 @@ class Placement:
 
     def __init__(self, bus: Bus) -> None:
         self.bus = bus
-        self._loads: dict[str, tuple[int, bool, float]] = {}  # worker -> scenes, room, heard
+        # worker -> scenes, why it has no room (None: it has), when heard
+        self._loads: dict[str, tuple[int, NoRoom | None, float]] = {}
         self._under_way: Counter[str] = Counter()
         self._surveyed = float("-inf")
 
     async def place(self, attachment: str, scene: str) -> tuple[str, dict[str, Any]] | None:
         """One try: attach to the lease holder, else to the least busy workers in turn;
-        the worker and its answer, or None (try again: a lease lapsing, nobody with room)."""
+        the worker and its answer, or None (try again: a lease lapsing, no worker heard
+        of). Raises :class:`LimitExceeded` when no worker has room."""
         holder = await lease_holder(self.bus.workers, self.bus.scenes, scene)
-        for worker in [holder] if holder is not None else await self._least_busy():
+        candidates = [holder] if holder is not None else await self._least_busy()
+        if not candidates and holder is None:
+            await self.survey()  # fresh word before a refusal: a scene may have just ended
+            candidates = await self._least_busy()
+            if not candidates:
+                self._refuse(scene)
+        for worker in candidates:
             self._under_way[worker] += 1
             try:
                 answer = await self.bus.request(attach_subject(worker), (attachment, scene),
@@ -56,6 +68,8 @@ class Placement:
                 return worker, answer[1]
             if answer[0] == "elsewhere":
                 return None  # placed meanwhile: its holder, next try
+            if answer[0] == "full":  # filled up since it was asked: the next one
+                self._heard(worker, self._loads.get(worker, (0,))[0], answer[1])
         return None
 
     async def _least_busy(self) -> list[str]:
@@ -64,20 +78,34 @@ class Placement:
             await self.survey()
         now = time.monotonic()
         loads = {name: scenes + self._under_way[name]
-                 for name, (scenes, room, heard) in self._loads.items()
-                 if now - heard < FORGET_SECONDS and room}
+                 for name, (scenes, full, heard) in self._loads.items()
+                 if now - heard < FORGET_SECONDS and full is None}
         ordered = list(loads)
         random.shuffle(ordered)
         return sorted(ordered, key=loads.__getitem__)
 
-    def _heard(self, worker: str, scenes: int, room: bool) -> None:
-        self._loads[worker] = (scenes, room, time.monotonic())
+    def _heard(self, worker: str, scenes: int, full: NoRoom | None) -> None:
+        self._loads[worker] = (scenes, full, time.monotonic())
+
+    def _refuse(self, scene: str) -> None:
+        """Raise the refusal of a scene no worker has room for (none when no worker is
+        known: one may be starting, or a dead one's lease lapsing)."""
+        now = time.monotonic()
+        full = {name: reason for name, (_, reason, heard) in sorted(self._loads.items())
+                if now - heard < FORGET_SECONDS and reason is not None}
+        if not full:
+            return
+        first = next(iter(full.values()))
+        reasons = "; ".join(f"{name}: {reason.text} ({reason.flag})" for name, reason in full.items())
+        raise LimitExceeded(f"no worker of the cluster has room for scene {scene}: {reasons}; "
+                            f"try again later, or start another worker", limit=first.limit,
+                            value=first.value, flag=first.flag, scene=scene)
 
     async def survey(self) -> None:
         """Ask every worker how busy it is."""
         answers = await self.bus.gather(PLACE, None, GATHER_SECONDS)
-        for name, scenes, room in answers:
-            self._heard(name, scenes, room)
+        for name, scenes, full in answers:
+            self._heard(name, scenes, full)
         self._surveyed = time.monotonic()
 
     async def keep_surveying(self) -> None:

@@ -99,9 +99,9 @@ class RemoteRunner:
                 await asyncio.sleep(RETRY_SECONDS)
         except asyncio.CancelledError:
             raise
-        except VPError as error:
-            log.error("scene %s could not be placed: %s", self.name, error.message)
-            self._end(True)
+        except VPError as error:  # refused (every worker full) or none answered in time
+            log.warning("scene %s could not be placed: %s", self.name, error.message)
+            self._end(True, error)
             return
         except Exception:  # the bus failed us: the scene fails; a client's return retries
             log.exception("scene %s could not be placed", self.name)
@@ -179,7 +179,8 @@ class RemoteRunner:
         log.error("the worker %s of scene %s stopped answering", self.worker, self.name)
         self._end(not self.stopping)
 
-    def _end(self, failed: bool) -> None:
+    def _end(self, failed: bool, refusal: VPError | None = None) -> None:
+        """The scene ends here (``refusal``: why it never started, for its waiting clients)."""
         if self.ended:
             return
         self.ended = True
@@ -187,5 +188,5 @@ class RemoteRunner:
         if self._events is not None:
             asyncio.create_task(self._events.unsubscribe())
         self._replies.fail(self.name)
-        self._deliver([("ended", failed)])
+        self._deliver([("ended", failed, refusal)])
         self._gone.set()

@@ -25,8 +25,8 @@ from ..web.hub import clients_objects
 from ..web.runner import SceneRunner
 from ..web.state_dir import StateDir
 from ..web.worker import SceneSetup
-from .bus import (PLACE, Bus, OrderedSender, Reply, Unanswered, alive_subject, attach_subject,
-                  commands_subject, events_subject, gateway_of, gateway_subject)
+from .bus import (PLACE, Bus, NoRoom, OrderedSender, Reply, Unanswered, alive_subject,
+                  attach_subject, commands_subject, events_subject, gateway_of, gateway_subject)
 from .leases import Leases
 from .process_cpu import ProcessCpu
 
@@ -67,7 +67,7 @@ class HostedScene:
         self.alone_since = None
         return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
                 "saving": self.saving, "scenes": len(self.host.scenes),
-                "room": self.host.room() is None}
+                "room": self.host.room()}
 
     def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
         """A gateway's commands, in the order it sent them."""
@@ -163,18 +163,20 @@ class WorkerHost:
 
     async def _load(self, value: Any, reply: Reply | None) -> None:
         if reply is not None:
-            await reply.send((self.name, len(self.scenes), self.room() is None))
+            await reply.send((self.name, len(self.scenes), self.room()))
 
-    def room(self) -> str | None:
+    def room(self) -> NoRoom | None:
         """Why this worker takes no more scenes (None: it has room). Besides the ``scenes``
         limit, its scenes' processes must leave some of its cores free: past that a new
         scene would only slow every other, and this worker's own work (renewing its lease,
         answering) would starve."""
         if len(self.scenes) >= self.limits.scenes:
-            return f"it runs its maximum of {self.limits.scenes} scenes (--limit scenes)"
+            return NoRoom("scenes", self.limits.scenes, "--limit scenes=N",
+                          f"it runs its maximum of {self.limits.scenes} scenes")
         if self.cpu.cores_used > CPU_SHARE * self.cores:
-            return (f"its scenes use {self.cpu.cores_used:.1f} of its {self.cores:g} cores "
-                    f"(--worker-cores)")
+            return NoRoom("workerCores", self.cores, "--worker-cores",
+                          f"its scenes use {self.cpu.cores_used:.1f} of its {self.cores:g} "
+                          f"cores, more than {CPU_SHARE:.0%}")
         return None
 
     async def _attach(self, value: Any, reply: Reply | None) -> None:

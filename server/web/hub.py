@@ -107,9 +107,13 @@ class Hubs:
 
     def _ended(self, hub: SceneHub, failed: bool) -> None:
         """A scene's process ended: the server's own scenes start again by themselves (after
-        a pause that grows while they keep failing); others when a client comes back."""
+        a pause that grows while they keep failing); others when a client comes back. One
+        refused (a cluster without room) never ran: it is forgotten, not reported failed."""
         self.recordings.scene_ended(hub.name)
-        if not failed or (hub.name not in self._setups and hub.name != DEFAULT_SCENE):
+        own = hub.name in self._setups or hub.name == DEFAULT_SCENE
+        if hub.refusal is not None and not own and self.scenes.get(hub.name) is hub:
+            del self.scenes[hub.name]
+        if not failed or not own:
             return
         low, high = RESTART_SECONDS
         pause = self._restarts.get(hub.name, low)

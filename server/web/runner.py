@@ -110,7 +110,8 @@ RunnerFactory = Callable[[str, Limits, float, AssetLibrary, "worker.SceneSetup |
 
 class SceneRunner:
     """Starts a scene's process, sends it commands, and hands its events to ``deliver``
-    on the event loop (a final ``("ended", failed)`` when the process is gone)."""
+    on the event loop (a final ``("ended", failed)`` when the process is gone; a cluster's
+    runner may add why the scene never started: ``("ended", failed, refusal)``)."""
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                  setup: worker.SceneSetup | None, deliver: Deliver,

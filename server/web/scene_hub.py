@@ -18,7 +18,7 @@ from typing import Any, AsyncIterator, Callable
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import UnknownScene
+from ..errors import UnknownScene, VPError
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .recordings import Recordings
 from .runner import RunnerFactory, SceneRunner
@@ -87,6 +87,7 @@ class SceneHub:
         self.idle_since: float | None = time.monotonic()
         self.stored = store is not None  # its scene is kept on disk (and comes back from it)
         self.failed = False  # its process ended without being asked to
+        self.refusal: VPError | None = None  # why it never started (a cluster with no room)
         self.heard = time.monotonic()  # when its process last sent anything (frames: 60 a second)
         self.asleep = False  # its process said it is idle (not ticking) and was sent nothing since
         self.figures: dict[str, Any] | None = None  # its last metrics, for when it is silent
@@ -138,8 +139,11 @@ class SceneHub:
             self._arriving -= 1
             if not self.members and not self._arriving:
                 self.idle_since = time.monotonic()  # join() says otherwise at once
+        self._raise_if_ended()
+
+    def _raise_if_ended(self) -> None:
         if self.ended:
-            raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
+            raise self.refusal or UnknownScene(f"scene {self.name} has ended", scene=self.name)
 
     @contextlib.asynccontextmanager
     async def importing(self) -> AsyncIterator[None]:
@@ -179,7 +183,7 @@ class SceneHub:
             elif kind == "recorded" and self._recordings is not None:
                 self._recordings.ended(event[1]["id"])
             elif kind == "ended":
-                self._ended(event[1])
+                self._ended(*event[1:])
 
     def broadcast(self, items: list[Outgoing]) -> None:
         """Queue a tick's messages for every connection."""
@@ -188,8 +192,7 @@ class SceneHub:
 
     async def join(self, connection: Connection) -> None:
         """Send a connection its hello and snapshot; it gets every later tick."""
-        if self.ended:
-            raise UnknownScene(f"scene {self.name} has ended", scene=self.name)
+        self._raise_if_ended()
         for other in list(self.members.values()):  # the same client back: the new one wins
             if other.client_id == connection.client_id:
                 other.close_code, other.close_reason = REPLACED, \
@@ -232,9 +235,10 @@ class SceneHub:
             connection.send(answers)
             connection.applied(size)
 
-    def _ended(self, failed: bool) -> None:
-        """The scene's process is gone: its clients are disconnected (they may rejoin)."""
-        self.failed = failed
+    def _ended(self, failed: bool, refusal: VPError | None = None) -> None:
+        """The scene's process is gone (or, ``refusal``, never started): its clients are
+        disconnected (they may rejoin); those waiting for it are told why."""
+        self.failed, self.refusal = failed, refusal
         self._open.set()  # whoever waits hears that it ended
         self._on_end(self, failed)
         for connection in self.members.values():
