@@ -4,6 +4,7 @@ REST (the server names it) or by a client's ``startRecording`` (named here)."""
 
 from __future__ import annotations
 
+import fcntl
 import logging
 import time
 from pathlib import Path
@@ -29,6 +30,10 @@ class RecordingFile:
             raise RecordingBusy(f"a recording {recording_id!r} exists already", recording=recording_id) from None
         except OSError as error:
             raise StorageFailure(f"the recording cannot be written ({error.strerror})") from None
+        # held while it records (the kernel lets go when the file closes or this process
+        # dies): every server process sharing the folder, a cluster's gateways included,
+        # sees it running (server.web.recordings.running)
+        fcntl.flock(self._file, fcntl.LOCK_EX | fcntl.LOCK_NB)
         limits = scene.limits
         self.recorder = Recorder(self._file, scene, time.time_ns(),
                                  RecordingLimits(limits.recording_bytes, limits.recording_seconds))

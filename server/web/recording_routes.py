@@ -44,13 +44,13 @@ async def start(request: Request, scene: str) -> dict[str, Any]:
              summary="Stop a recording: what it holds (bytes, seconds, ticks, requests, readings)")
 async def stop(request: Request, recording_id: str) -> dict[str, Any]:
     changing_allowed(request)
-    recordings = hubs_of(request).recordings
-    recordings.path(recording_id)  # unknown_recording for what was never made
-    scene = recordings.active.get(recording_id)
+    hubs = hubs_of(request)
+    scene = hubs.recordings.recording(recording_id)  # unknown_recording for what was never made
     if scene is None:
-        return recordings.describe(recording_id)  # stopped already: as it is
-    answer = await hub_of(request, scene).runner.call("unrecord", recording_id)
-    recordings.ended(recording_id)
+        return hubs.recordings.describe(recording_id)  # stopped already: as it is
+    # (a cluster's other gateway may have started it: this one attaches to its scene)
+    answer = await (hubs.get(scene) or hubs.open(scene)).runner.call("unrecord", recording_id)
+    hubs.recordings.ended(recording_id)
     return answer
 
 

@@ -4,11 +4,13 @@ a temporary folder that goes with the server), and which scene is filling which.
 A recording's id names its file: ``<scene>-<UTC time>-<4 hex digits>.mcap``. Scene
 processes write the files (:mod:`server.web.recording_file`); this side hands out ids,
 lists the files with what each holds (read from its MCAP summary, once per version of the
-file) and hands finished ones out.
+file) and hands finished ones out. A file is being recorded while its writer holds its
+lock (:func:`running`), whichever process of a cluster started it.
 """
 
 from __future__ import annotations
 
+import fcntl
 import re
 import secrets
 import tempfile
@@ -34,7 +36,7 @@ class Recordings:
             self.folder.mkdir(parents=True, exist_ok=True)  # type: ignore[union-attr]
         except OSError:  # the state folder's problem, reported there; recording says it too
             pass
-        self.active: dict[str, str] = {}  # recording id -> scene filling it
+        self.active: dict[str, str] = {}  # recording id -> scene filling it (started here)
         self._read: dict[str, tuple[tuple[int, int], dict[str, Any]]] = {}  # id -> (version, summary)
 
     def close(self) -> None:
@@ -65,10 +67,17 @@ class Recordings:
             raise UnknownRecording(f"no recording {recording_id[:80]!r}", recording=recording_id[:80])
         return path
 
+    def recording(self, recording_id: str) -> str | None:
+        """The scene recording it now (None: it has stopped), whoever started it."""
+        if running(self.path(recording_id)):
+            return self.active.get(recording_id, scene_of(recording_id))
+        self.active.pop(recording_id, None)  # (its scene ended unheard of: it ended too)
+        return None
+
     def finished(self, recording_id: str) -> Path:
         """The file of a recording that has stopped (``recording_busy`` while it runs)."""
         path = self.path(recording_id)
-        if recording_id in self.active:
+        if self.recording(recording_id) is not None:
             raise RecordingBusy(f"recording {recording_id} is still running; stop it first "
                                 f"(POST /api/recordings/{recording_id}/stop)", recording=recording_id)
         return path
@@ -87,14 +96,32 @@ class Recordings:
         """What one recording holds."""
         path = self.path(recording_id)
         stat = path.stat()
-        entry = {"id": recording_id, "scene": recording_id.rsplit("-", 2)[0], "bytes": stat.st_size}
-        if recording_id in self.active:
+        entry = {"id": recording_id, "scene": scene_of(recording_id), "bytes": stat.st_size}
+        if self.recording(recording_id) is not None:
             return {**entry, "state": "recording"}
         version = (stat.st_size, stat.st_mtime_ns)
         cached = self._read.get(recording_id)
         if cached is None or cached[0] != version:
             cached = self._read[recording_id] = (version, _summary(path))
         return {**entry, **cached[1]}
+
+
+def scene_of(recording_id: str) -> str:
+    """The scene a recording is of (its id names it)."""
+    return recording_id.rsplit("-", 2)[0]
+
+
+def running(path: Path) -> bool:
+    """Whether a scene's process is still writing the recording ``path`` (it holds the
+    file's lock: :class:`server.web.recording_file.RecordingFile`)."""
+    try:
+        with open(path, "rb") as stream:
+            fcntl.flock(stream, fcntl.LOCK_SH | fcntl.LOCK_NB)  # let go as it closes
+    except BlockingIOError:
+        return True
+    except OSError:  # gone meanwhile
+        return False
+    return False
 
 
 def new_recording(folder: Path, scene: str) -> tuple[str, Path]:
