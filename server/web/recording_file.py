@@ -30,10 +30,14 @@ class RecordingFile:
             raise RecordingBusy(f"a recording {recording_id!r} exists already", recording=recording_id) from None
         except OSError as error:
             raise StorageFailure(f"the recording cannot be written ({error.strerror})") from None
-        # held while it records (the kernel lets go when the file closes or this process
-        # dies): every server process sharing the folder, a cluster's gateways included,
-        # sees it running (server.web.recordings.running)
-        fcntl.flock(self._file, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        try:  # held while it records (the kernel lets go when the file closes or this
+            # process dies): every server process sharing the folder, a cluster's gateways
+            # included, sees it running (server.web.recordings.running)
+            fcntl.flock(self._file, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as error:  # a folder whose file system has no locks
+            self._file.close()
+            path.unlink(missing_ok=True)
+            raise StorageFailure(f"the recording's file cannot be locked ({error.strerror})") from None
         limits = scene.limits
         self.recorder = Recorder(self._file, scene, time.time_ns(),
                                  RecordingLimits(limits.recording_bytes, limits.recording_seconds))
