@@ -71,7 +71,10 @@ def _children(pids: list[int]) -> list[int]:
 
 @contextmanager
 def load_cluster(gateways: int) -> Iterator[LoadCluster]:
-    with tempfile.TemporaryDirectory(prefix="vp-cluster-") as name, ExitStack() as stack:
+    # (a killed process's last files may still be going as the folder goes: no reason to
+    # lose the run's figures)
+    with tempfile.TemporaryDirectory(prefix="vp-cluster-", ignore_cleanup_errors=True) as name, \
+            ExitStack() as stack:
         folder = Path(name)
         url = stack.enter_context(running_bus(folder))
         bus_pid = int(subprocess.run(["pgrep", "-f", str(folder / "nats.conf")],

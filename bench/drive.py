@@ -59,7 +59,9 @@ def animate(ws: ClientConnection, step: Callable[[int], list[dict[str, Any]]],
 
 
 def main(url: str, scene: str, kind: str, count: int, seconds: float) -> dict[str, int]:
-    with connect(f"{url}/ws?scene={scene}", max_size=None) as ws:
+    # no pings of its own: the server's watch the connection, and a driver that gave up on
+    # a swamped server (its pongs late) would leave the measure with no frames at all
+    with connect(f"{url}/ws?scene={scene}", max_size=None, ping_interval=None) as ws:
         me = json.loads(ws.recv(timeout=30))["client"]
         if kind == "hands":
             build(ws, scenes.hands(me, count))

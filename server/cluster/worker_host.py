@@ -175,7 +175,7 @@ class WorkerHost:
                           f"it runs its maximum of {self.limits.scenes} scenes")
         if self.cpu.cores_used > CPU_SHARE * self.cores:
             return NoRoom("workerCores", self.cores, "--worker-cores",
-                          f"its scenes use {self.cpu.cores_used:.1f} of its {self.cores:g} "
+                          f"its scenes use {self.cpu.cores_used:.2f} of its {self.cores:g} "
                           f"cores, more than {CPU_SHARE:.0%}")
         return None
 
