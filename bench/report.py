@@ -193,12 +193,14 @@ def cluster_table(found: dict[str, Any]) -> list[str]:
     """bench/cluster.py: viewers over one and two gateways, busy scenes, the failover."""
     out = ["Cluster (bench/cluster.py: a NATS bus, two workers, two gateways, all on this "
            "machine's cores with the clients): hands-10 driven at 60 Hz through the first "
-           "gateway, light viewers on the first gateway alone or spread over both:", "",
-           "| gateways | viewers | frames/s lowest / median | late | cluster CPU (cores) |",
-           "|---|---|---|---|---|"]
+           "gateway (a scene and a driver of its own for each row), light viewers on the first "
+           "gateway alone or spread over both:", "",
+           "| gateways | viewers | frames/s lowest / median | late | cluster CPU (cores) | driver lasted |",
+           "|---|---|---|---|---|---|"]
     for row in found["viewers"]["rows"]:
         out.append(f"| {row['gateways']} | {row['viewers']} | {row['fps_min']:.1f} / "
-                   f"{row['fps_median']:.1f} | {row['late_pct']:.2f} % | {row['cluster_cores']:.2f} |")
+                   f"{row['fps_median']:.1f} | {row['late_pct']:.2f} % | {row['cluster_cores']:.2f} | "
+                   f"{'yes' if row.get('driver_lasted', True) else '**no**'} |")
     busy, fail = found["busy"], found["failover"]
     rates = busy["ticks_per_second"] or {"median": 0.0, "p95": 0.0}
     out += ["", f"Busy scenes: {busy['scenes']} asked for (a hand each, its fingers moved 10 "
