@@ -47,7 +47,8 @@ class Placement:
         holder = await lease_holder(self.bus.workers, self.bus.scenes, scene)
         candidates = [holder] if holder is not None else await self._least_busy()
         if not candidates and holder is None:
-            await self.survey()  # fresh word before a refusal: a scene may have just ended
+            if time.monotonic() - self._surveyed > GATHER_SECONDS:  # (_least_busy may have)
+                await self.survey()  # fresh word before a refusal: a scene may have just ended
             candidates = await self._least_busy()
             if not candidates:
                 self._refuse(scene)

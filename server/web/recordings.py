@@ -67,9 +67,10 @@ class Recordings:
             raise UnknownRecording(f"no recording {recording_id[:80]!r}", recording=recording_id[:80])
         return path
 
-    def recording(self, recording_id: str) -> str | None:
-        """The scene recording it now (None: it has stopped), whoever started it."""
-        if running(self.path(recording_id)):
+    def recording(self, recording_id: str, path: Path | None = None) -> str | None:
+        """The scene recording it now (None: it has stopped), whoever started it (``path``:
+        its file, when known already)."""
+        if running(path or self.path(recording_id)):
             return self.active.get(recording_id, scene_of(recording_id))
         self.active.pop(recording_id, None)  # (its scene ended unheard of: it ended too)
         return None
@@ -77,7 +78,7 @@ class Recordings:
     def finished(self, recording_id: str) -> Path:
         """The file of a recording that has stopped (``recording_busy`` while it runs)."""
         path = self.path(recording_id)
-        if self.recording(recording_id) is not None:
+        if self.recording(recording_id, path) is not None:
             raise RecordingBusy(f"recording {recording_id} is still running; stop it first "
                                 f"(POST /api/recordings/{recording_id}/stop)", recording=recording_id)
         return path
@@ -97,7 +98,7 @@ class Recordings:
         path = self.path(recording_id)
         stat = path.stat()
         entry = {"id": recording_id, "scene": scene_of(recording_id), "bytes": stat.st_size}
-        if self.recording(recording_id) is not None:
+        if self.recording(recording_id, path) is not None:
             return {**entry, "state": "recording"}
         version = (stat.st_size, stat.st_mtime_ns)
         cached = self._read.get(recording_id)
