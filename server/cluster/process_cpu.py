@@ -1,5 +1,5 @@
 """How many cores a set of processes uses: their user and system time from ``/proc``,
-between two looks (Linux)."""
+between two looks (Linux), and what they are expected to use."""
 
 from __future__ import annotations
 
@@ -20,18 +20,28 @@ def cpu_seconds(pid: int) -> float:
 
 
 class ProcessCpu:
-    """The cores some processes used since the last look (a process new since then counts
-    from its start)."""
+    """The cores each of some processes used between the last two looks (only those seen
+    at both: a share measured over a whole look), and what a set of them is expected to use."""
 
     def __init__(self) -> None:
-        self.cores_used = 0.0
+        self.shares: dict[int, float] = {}  # pid -> cores, over the last whole look
         self._seconds: dict[int, float] = {}
         self._when = time.monotonic()
 
-    def measure(self, pids: list[int]) -> float:
+    def measure(self, pids: list[int]) -> None:
+        """Look again at these processes."""
         now = time.monotonic()
+        span = max(now - self._when, 1e-3)
         seconds = {pid: cpu_seconds(pid) for pid in pids}
-        used = sum(s - self._seconds.get(pid, 0.0) for pid, s in seconds.items())
-        self.cores_used = max(0.0, used) / max(now - self._when, 1e-3)
+        self.shares = {pid: max(0.0, s - self._seconds[pid]) / span
+                       for pid, s in seconds.items() if pid in self._seconds}
         self._seconds, self._when = seconds, now
-        return self.cores_used
+
+    def expected(self, pids: list[int | None], least: float) -> float:
+        """The cores these processes are expected to use: each measured one its share; one
+        not measured over a whole look yet (new, or not started: None) the mean share of
+        those measured, and at least ``least``. (Counting only what was measured let a
+        burst of new processes within one look pass any bound.)"""
+        known = [self.shares[pid] for pid in pids if pid is not None and pid in self.shares]
+        guess = max(sum(known) / len(known), least) if known else least
+        return sum(known) + guess * (len(pids) - len(known))

@@ -36,6 +36,10 @@ CALLS = frozenset({"read", "import", "metrics", "record", "unrecord"})  # answer
 # worker still renews its lease and answers (else its scenes would hop to other workers)
 SCENE_NICE = 5
 CPU_SHARE = 0.8  # of its cores, the most its scenes' processes use before it takes no more
+# what a scene not measured yet is expected to use, at least: a scene with a hand moving
+# takes about 0.04 of a core here (bench/RESULTS.md), so a burst of placements within one
+# measure (each second) stops near the bound rather than far past it
+NEW_SCENE_CORES = 0.05
 # a gateway not heard of this long (its heartbeat comes each second) is asked whether it
 # lives: one that has left the bus (died) loses its attachments; a swamped one keeps them
 SILENT_SECONDS = 5.0
@@ -173,10 +177,12 @@ class WorkerHost:
         if len(self.scenes) >= self.limits.scenes:
             return NoRoom("scenes", self.limits.scenes, "--limit scenes=N",
                           f"it runs its maximum of {self.limits.scenes} scenes")
-        if self.cpu.cores_used > CPU_SHARE * self.cores:
+        pids = [hosted.runner.pid for hosted in self.scenes.values()]
+        expected = self.cpu.expected(pids + [None], NEW_SCENE_CORES)  # (with one more)
+        if expected > CPU_SHARE * self.cores:
             return NoRoom("workerCores", self.cores, "--worker-cores",
-                          f"its scenes use {self.cpu.cores_used:.2f} of its {self.cores:g} "
-                          f"cores, more than {CPU_SHARE:.0%}")
+                          f"its {len(pids)} scenes and one more would use {expected:.2f} of "
+                          f"its {self.cores:g} cores, more than {CPU_SHARE:.0%}")
         return None
 
     async def _attach(self, value: Any, reply: Reply | None) -> None:

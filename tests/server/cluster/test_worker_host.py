@@ -1,14 +1,56 @@
 """Workers on a real bus: a dead worker's scenes come back on another from what was saved,
-with their clients."""
+with their clients; a burst of new scenes stops at the cores the workers may use."""
 
 from __future__ import annotations
 
+import json
 import time
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any, Iterator
+
+import pytest
+from websockets.sync.client import connect as ws_connect
 
 import virtual_prosthetics as vp
 
 from tests.conftest import eventually
-from tests.server.cluster.conftest import holder
+from tests.server.cluster.conftest import Cluster, holder, running_bus
+
+WORKER_CORES = 0.2  # of which 80 %: room for three scenes not measured yet (0.05 each)
+
+
+@pytest.fixture(scope="module")
+def small_cores(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Cluster]:
+    """Two workers whose scenes may use a fifth of a core each, and one gateway."""
+    folder = tmp_path_factory.mktemp("cluster")
+    with running_bus(folder) as url:
+        running = Cluster(url, folder, gateways=1,
+                          worker_extra=("--worker-cores", str(WORKER_CORES)))
+        yield running
+        running.close()
+
+
+def test_a_burst_of_new_scenes_stops_at_the_cores_the_workers_may_use(small_cores, scene_name):
+    """Ten scenes asked for at once, before any worker has measured a new scene's CPU
+    (once a second): each worker takes the few its cores allow, the others are refused at
+    once naming the flag (before, every one was taken: the measure saw none of them)."""
+    gateway = small_cores.gateways[0]
+
+    def first_message(k: int) -> dict[str, Any]:
+        with ws_connect(f"{gateway.ws}/ws?scene={scene_name}{k}") as socket:
+            return json.loads(socket.recv(timeout=30))
+
+    with ThreadPoolExecutor(10) as pool:
+        firsts = list(pool.map(first_message, range(10)))
+    placed = [m for m in firsts if m["op"] == "hello"]
+    refused = [m for m in firsts if m["op"] == "error"]
+    assert len(placed) + len(refused) == 10, firsts
+    assert 2 <= len(placed) <= 6, firsts  # three a worker at most
+    for refusal in refused:
+        assert refusal["code"] == "limit_exceeded", refusal
+        assert {k: refusal["details"][k] for k in ("limit", "value", "flag")} == \
+            {"limit": "workerCores", "value": WORKER_CORES, "flag": "--worker-cores"}
+        assert "and one more would use" in refusal["message"], refusal
 
 
 def test_a_killed_workers_scene_comes_back_on_the_other_with_its_objects(cluster, scene_name):

@@ -1,0 +1,54 @@
+"""The CPU of real processes, as a worker measures its scenes': a busy one's share, an
+idle one's, and what new ones are expected to use."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+from typing import Iterator
+
+import pytest
+
+from server.cluster.process_cpu import ProcessCpu
+
+BUSY = "while True: pass"
+IDLE = "import time; time.sleep(60)"
+
+
+@pytest.fixture
+def processes() -> Iterator[list[subprocess.Popen[bytes]]]:
+    started = [subprocess.Popen([sys.executable, "-c", code]) for code in (BUSY, IDLE)]
+    yield started
+    for process in started:
+        process.kill()
+        process.wait()
+
+
+def test_each_process_has_its_share_measured_over_a_whole_look(processes):
+    busy, idle = (p.pid for p in processes)
+    cpu = ProcessCpu()
+    cpu.measure([busy, idle])
+    assert cpu.shares == {}  # seen once: nothing measured over a whole look yet
+    time.sleep(0.5)
+    cpu.measure([busy, idle])
+    assert cpu.shares[busy] > 0.25 > cpu.shares[idle]  # (two cores, shared with the suite)
+
+
+def test_processes_not_yet_measured_count_at_the_mean_share_and_no_less(processes):
+    busy, idle = (p.pid for p in processes)
+    cpu = ProcessCpu()
+    for _ in range(2):
+        cpu.measure([busy, idle])
+        time.sleep(0.3)
+    measured = cpu.shares[busy] + cpu.shares[idle]
+    new = subprocess.Popen([sys.executable, "-c", IDLE])
+    try:
+        # the new process and one not started yet, each at the mean of the two measured
+        assert cpu.expected([busy, idle, new.pid, None], 0.01) == pytest.approx(2 * measured)
+        # a burst of new ones: each at least what a new one is expected to use
+        assert cpu.expected([None] * 20, 0.05) == pytest.approx(1.0)
+        assert cpu.expected([idle, None], 1.0) == pytest.approx(cpu.shares[idle] + 1.0)
+    finally:
+        new.kill()
+        new.wait()
