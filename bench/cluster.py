@@ -35,11 +35,13 @@ from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus
 from .live import NICE, cpu_seconds, driving
 from .report import AT_60_HZ
 from .stats import figure
+from .viewers import run_viewers, sleep_until
 
 ROOT = Path(__file__).resolve().parents[1]
 LIMITS = ("--limit", "bytesPerSecond=1000000000", "--limit", "connectionsPerAddress=5000",
           "--limit", "connections=5000", "--limit", "sceneIdleSeconds=5")
 LATE_PCT = 1.0
+QUIET_CORES = 0.25  # the cluster's CPU between two rows, once the last row's work is done
 
 
 class LoadCluster(Cluster):
@@ -51,10 +53,24 @@ class LoadCluster(Cluster):
                          worker_extra=("--worker-cores", "1"))  # two on two cores
         self.folder, self.bus_pid = folder, bus_pid
 
-    def pids(self) -> list[int]:
-        """The gateways', the workers' and their scenes' processes, and the bus's."""
-        roots = [g.process.pid for g in self.gateways] + [w.pid for w in self.workers.values()]
-        return roots + _children(roots) + [self.bus_pid]
+    def pids(self) -> dict[str, list[int]]:
+        """The processes of each role: the gateways'; the workers' and their scenes'; the bus's."""
+        gateways = [g.process.pid for g in self.gateways]
+        workers = [w.pid for w in self.workers.values()]
+        return {"gateways": gateways + _children(gateways),
+                "workers": workers + _children(workers), "bus": [self.bus_pid]}
+
+    def seconds(self) -> dict[str, dict[int, float]]:
+        """Each role's processes' CPU seconds so far."""
+        return {role: {pid: cpu_seconds([pid]) for pid in pids}
+                for role, pids in self.pids().items()}
+
+    def cores_since(self, before: dict[str, dict[int, float]], started: float) -> dict[str, float]:
+        """The cores each role used since ``before`` (taken at ``started``): a process that
+        ended meanwhile is left out, rather than its whole life taken off the sum."""
+        span = time.monotonic() - started
+        return {role: sum(s - before.get(role, {}).get(pid, 0.0) for pid, s in now.items()) / span
+                for role, now in self.seconds().items()}
 
 
 def _children(pids: list[int]) -> list[int]:
@@ -129,13 +145,28 @@ def viewers(cluster: LoadCluster, counts: list[int], seconds: float) -> dict[str
     for gateways in (1, 2):
         for count in counts:
             scene = f"viewed{len(rows)}"
-            with driving(cluster.gateways[0], scene, "hands", 10, 3600) as driver:
+            _quiet(cluster)
+            # (the driver at the servers' priority: it is the watched scene's source, and
+            # the viewers' processes, at a lower one, must not starve it)
+            with driving(cluster.gateways[0], scene, "hands", 10, 3600, nice=()) as driver:
                 row = _viewer_run(cluster, cluster.gateways[:gateways], scene, count, seconds)
                 lasted = driver.poll() is None
             rows.append({"gateways": gateways, **row, "driver_lasted": lasted})
     held = {g: max([r["viewers"] for r in rows if r["gateways"] == g and _held(r)], default=0)
             for g in (1, 2)}
     return {"rows": rows, "held": held, "scaling": held[2] / held[1] if held[1] else 0.0}
+
+
+def _quiet(cluster: LoadCluster, most: float = 120.0) -> None:
+    """Wait until the cluster is done with the last row (its gateways still writing to
+    sockets whose viewers have gone, its scene running until idle), at most ``most`` s:
+    a row started while the last one's work goes on measures both."""
+    deadline = time.monotonic() + most
+    while time.monotonic() < deadline:
+        before, started = cluster.seconds(), time.monotonic()
+        time.sleep(1.0)
+        if sum(cluster.cores_since(before, started).values()) < QUIET_CORES:
+            return
 
 
 def _held(row: dict[str, Any]) -> bool:
@@ -147,24 +178,33 @@ def _held(row: dict[str, Any]) -> bool:
 def _viewer_run(cluster: LoadCluster, gateways: list[RunningServer], scene: str, count: int,
                 seconds: float) -> dict[str, Any]:
     shares = [count // len(gateways) + (k < count % len(gateways)) for k in range(len(gateways))]
-    cpu_before, started = cpu_seconds(cluster.pids()), time.monotonic()
-    processes = [subprocess.Popen([*NICE, sys.executable, "-m", "bench.viewers", gateway.ws,
-                                   scene, str(share), str(seconds)], cwd=ROOT,
-                                  stdout=subprocess.PIPE, text=True)
-                 for gateway, share in zip(gateways, shares) if share]
-    found = [v for p in processes for v in json.loads(p.communicate(timeout=seconds + 300)[0])["viewers"]]
-    cores = (cpu_seconds(cluster.pids()) - cpu_before) / (time.monotonic() - started)
+    commands = [[*NICE, sys.executable, "-m", "bench.viewers", gateway.ws, scene, str(share)]
+                for gateway, share in zip(gateways, shares) if share]
+
+    def cluster_cores(start: float, end: float) -> dict[str, float]:
+        sleep_until(start)
+        before = cluster.seconds()
+        sleep_until(end)
+        return cluster.cores_since(before, start)
+
+    outputs, cores = run_viewers(commands, seconds, cluster_cores)
+    found = [v for out in outputs for v in out["viewers"]]
     frames = sum(v["frames"] for v in found)
     fps = [v["fps"] for v in found]
     starved = sum(1 for v in found if v["frames"] == 0)  # every one of its frames missing
     return {"viewers": count, "fps_min": min(fps), "fps_median": figure(fps).median,
             "late_pct": 100.0 if starved else 100 * sum(v["late"] for v in found) / max(1, frames),
-            "cluster_cores": cores}
+            # in the window: the cluster's roles; the viewers' processes over their whole run
+            "cores": cores, "viewers_cpu_seconds": sum(out["cpu_seconds"] for out in outputs),
+            # a gateway's CPU per frame sent to one viewer
+            "gateway_us_per_viewer_frame": 1e6 * cores["gateways"] * seconds / max(1, frames)}
 
 
 def busy_scenes(cluster: LoadCluster, count: int, seconds: float) -> dict[str, Any]:
     """``count`` scenes with a hand each, fingers moved 10 times a second by one client
-    process: their spread over the workers, the time to place them, their tick rate."""
+    process, a refused scene asked for again every few seconds for a minute: how many the
+    workers took, their spread, the time until every scene was placed or given up, their
+    tick rate."""
     started = time.monotonic()
     driver = subprocess.Popen([*NICE, sys.executable, "-m", "bench.cluster_busy",
                                *[g.ws for g in cluster.gateways], str(count), str(seconds)],
@@ -173,9 +213,9 @@ def busy_scenes(cluster: LoadCluster, count: int, seconds: float) -> dict[str, A
     placed = json.loads(driver.stdout.readline())
     placing = time.monotonic() - started
     time.sleep(seconds * 0.2)
-    cpu_before, measured = cpu_seconds(cluster.pids()), time.monotonic()
+    cpu_before, measured = cluster.seconds(), time.monotonic()
     time.sleep(seconds * 0.5)
-    cores = (cpu_seconds(cluster.pids()) - cpu_before) / (time.monotonic() - measured)
+    cores = cluster.cores_since(cpu_before, measured)
     metrics = {name: m for gateway in cluster.gateways
                for name, m in gateway.get("/api/metrics")["scenes"].items()}
     rates = [m.get("ticksPerSecond", 0.0) for name, m in metrics.items() if name.startswith("busy")]
@@ -183,7 +223,7 @@ def busy_scenes(cluster: LoadCluster, count: int, seconds: float) -> dict[str, A
     driver.communicate(timeout=seconds + 120)
     return {"scenes": count, "placed": placed["placed"], "refused": placed["failed"],
             "placing_s": placing,
-            "per_worker": spread, "cluster_cores": cores,
+            "per_worker": spread, "cores": cores,
             "ticks_per_second": asdict(figure(rates)) if rates else None}
 
 

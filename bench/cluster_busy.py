@@ -1,10 +1,15 @@
 """Busy scenes for :func:`bench.cluster.busy_scenes`: one client connection per scene
 (``busy0`` … spread over the gateways), each building an edged hand and flexing its
-fingers 10 times a second; frames are read and dropped.
+fingers 10 times a second from then on; frames are read and dropped.
 
-``python -m bench.cluster_busy WS_URL [WS_URL …] COUNT SECONDS``: prints ``{"placed": n}``
-and how many failed once every scene is built (or failed), then ``{"steps": n, "failed":
-n}`` at the end.
+A scene refused because the cluster is full (``limit_exceeded``, closed with 1013 "try
+again later") is asked for again every few seconds, as a client should, until
+``PLACING_SECONDS`` have passed: the workers measure their new scenes' CPU once a second
+and take more as long as what they measure leaves room.
+
+``python -m bench.cluster_busy WS_URL [WS_URL …] COUNT SECONDS``: prints ``{"placed": n,
+"failed": n}`` once every scene is built or given up, then ``{"steps": n, "failed": n}``
+SECONDS later, at the end.
 """
 
 from __future__ import annotations
@@ -14,49 +19,74 @@ import json
 import math
 import sys
 import time
+from dataclasses import dataclass, field
 
 from websockets.asyncio.client import ClientConnection, connect
 
 RATE = 10.0
+PLACING_SECONDS = 60.0  # to be placed, after which a refused scene is given up
+RETRY_SECONDS = 3.0
 
 
-async def scene(url: str, name: str, built: asyncio.Event, go: asyncio.Event,
-                seconds: float, counts: list[int]) -> None:
-    try:
-        await _scene(url, name, built, go, seconds, counts)
-    except Exception as error:  # refused, or closed: counted, the others go on
-        counts[3] += 1
+class Refused(Exception):
+    """The cluster has no room: try again later."""
+
+
+@dataclass
+class Counts:
+    wanted: int
+    placed: int = 0
+    failed: int = 0
+    steps: int = 0
+    settled: asyncio.Event = field(default_factory=asyncio.Event)  # every scene placed or failed
+    stop: asyncio.Event = field(default_factory=asyncio.Event)
+
+    def one_settled(self) -> None:
+        if self.placed + self.failed == self.wanted:
+            self.settled.set()
+
+
+async def scene(url: str, name: str, counts: Counts) -> None:
+    deadline = time.monotonic() + PLACING_SECONDS
+    while True:
+        try:
+            return await _scene(url, name, counts)
+        except Refused as refusal:
+            if time.monotonic() + RETRY_SECONDS < deadline:
+                await asyncio.sleep(RETRY_SECONDS)
+                continue
+            error: Exception = refusal
+        except Exception as other:  # closed: counted, the others go on
+            error = other
+        counts.failed += 1
         print(json.dumps({"scene": name, "error": str(error)[:200]}), file=sys.stderr)
-        if counts[0] + counts[3] == counts[1]:
-            built.set()
+        counts.one_settled()
+        return
 
 
-async def _scene(url: str, name: str, built: asyncio.Event, go: asyncio.Event,
-                 seconds: float, counts: list[int]) -> None:
+async def _scene(url: str, name: str, counts: Counts) -> None:
     async with connect(f"{url}/ws?scene={name}", max_size=None, compression=None,
                        open_timeout=120) as ws:
         hello = json.loads(await ws.recv())
+        if hello.get("code") == "limit_exceeded":
+            raise Refused(hello["message"])
         if hello.get("op") != "hello":
             raise RuntimeError(f"refused: {hello}")
-        me = hello["client"]
-        hand = f"{me}.hand"
+        hand = f"{hello['client']}.hand"
         await ws.send(json.dumps({"op": "create", "id": 1, "object": hand, "type": "EdgedHand",
                                   "args": [True]}))
         while json.loads(await ws.recv()).get("id") != 1:
             pass
-        counts[0] += 1
-        if counts[0] + counts[3] == counts[1]:
-            built.set()
+        counts.placed += 1
+        counts.one_settled()
         reader = asyncio.create_task(_drain(ws))
-        await go.wait()
-        started = time.monotonic()
-        step = 0
-        while (due := started + step / RATE) < started + seconds:
-            await asyncio.sleep(max(0.0, due - time.monotonic()))
+        started, step = time.monotonic(), 0
+        while not counts.stop.is_set():
+            await asyncio.sleep(max(0.0, started + step / RATE - time.monotonic()))
             await ws.send(json.dumps({"op": "call", "object": hand, "method": "flexFingers",
                                       "args": [0.5 + 0.5 * math.sin(step / 5)]}))
             step += 1
-        counts[2] += step
+        counts.steps += step
         reader.cancel()
 
 
@@ -66,15 +96,15 @@ async def _drain(ws: ClientConnection) -> None:
 
 
 async def main(urls: list[str], count: int, seconds: float) -> None:
-    built, go = asyncio.Event(), asyncio.Event()
-    counts = [0, count, 0, 0]  # built, wanted, steps sent, failed
-    tasks = [asyncio.create_task(scene(urls[k % len(urls)], f"busy{k}", built, go, seconds,
-                                       counts)) for k in range(count)]
-    await asyncio.wait_for(built.wait(), timeout=600)
-    print(json.dumps({"placed": counts[0], "failed": counts[3]}), flush=True)
-    go.set()
+    counts = Counts(count)
+    tasks = [asyncio.create_task(scene(urls[k % len(urls)], f"busy{k}", counts))
+             for k in range(count)]
+    await asyncio.wait_for(counts.settled.wait(), timeout=PLACING_SECONDS + 300)
+    print(json.dumps({"placed": counts.placed, "failed": counts.failed}), flush=True)
+    await asyncio.sleep(seconds)
+    counts.stop.set()
     await asyncio.gather(*tasks)
-    print(json.dumps({"steps": counts[2], "failed": counts[3]}), flush=True)
+    print(json.dumps({"steps": counts.steps, "failed": counts.failed}), flush=True)
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@ from tests.conftest import RunningServer, start_server, stop_server
 
 from .drive import build, drain
 from .stats import figure
+from .viewers import run_viewers, sleep_until
 
 ROOT = Path(__file__).resolve().parents[1]
 LIMITS = ("--limit", "bytesPerSecond=1000000000",
@@ -43,11 +44,11 @@ def server() -> Iterator[RunningServer]:
 
 
 @contextmanager
-def driving(running: RunningServer, scene: str, kind: str, count: int,
-            seconds: float) -> Iterator[subprocess.Popen[str]]:
+def driving(running: RunningServer, scene: str, kind: str, count: int, seconds: float,
+            nice: tuple[str, ...] = NICE) -> Iterator[subprocess.Popen[str]]:
     """A driver animating a scene (at most ``seconds``); entered once the scene is built,
     stopped on leaving."""
-    process = subprocess.Popen([*NICE, sys.executable, "-m", "bench.drive", running.ws, scene,
+    process = subprocess.Popen([*nice, sys.executable, "-m", "bench.drive", running.ws, scene,
                                 kind, str(count), str(seconds)], cwd=ROOT,
                                stdout=subprocess.PIPE, text=True)
     try:
@@ -127,12 +128,16 @@ def viewers(running: RunningServer, counts: list[int], seconds: float) -> list[d
 def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
                 stall: bool) -> dict[str, Any]:
     command = [*NICE, sys.executable, "-m", "bench.viewers", running.ws, scene, str(count),
-               str(seconds), *(["--stalled"] if stall else [])]
-    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.PIPE, text=True)
-    cpu_before, started = server_cpu_seconds(running, scene), time.monotonic()
-    out, _ = process.communicate(timeout=seconds + 120)
-    cpu = (server_cpu_seconds(running, scene) - cpu_before) / (time.monotonic() - started)
-    found = json.loads(out)["viewers"]
+               *(["--stalled"] if stall else [])]
+
+    def server_cores(start: float, end: float) -> float:
+        sleep_until(start)
+        before = server_cpu_seconds(running, scene)
+        sleep_until(end)
+        return (server_cpu_seconds(running, scene) - before) / (time.monotonic() - start)
+
+    [out], cpu = run_viewers([command], seconds, server_cores)
+    found = out["viewers"]
     frames = sum(v["frames"] for v in found)
     fps = [v["fps"] for v in found]
     return {"viewers": count, "stalled": stall, "fps_min": min(fps),

@@ -195,18 +195,22 @@ def cluster_table(found: dict[str, Any]) -> list[str]:
            "machine's cores with the clients): hands-10 driven at 60 Hz through the first "
            "gateway (a scene and a driver of its own for each row), light viewers on the first "
            "gateway alone or spread over both:", "",
-           "| gateways | viewers | frames/s lowest / median | late | cluster CPU (cores) | driver lasted |",
-           "|---|---|---|---|---|---|"]
+           "| gateways | viewers | frames/s lowest / median | late | cores: gateways / workers and scenes / bus | gateway µs a viewer-frame | viewers' processes (CPU s) | driver lasted |",
+           "|---|---|---|---|---|---|---|---|"]
     for row in found["viewers"]["rows"]:
+        cores = row["cores"]
         out.append(f"| {row['gateways']} | {row['viewers']} | {row['fps_min']:.1f} / "
-                   f"{row['fps_median']:.1f} | {row['late_pct']:.2f} % | {row['cluster_cores']:.2f} | "
-                   f"{'yes' if row.get('driver_lasted', True) else '**no**'} |")
+                   f"{row['fps_median']:.1f} | {row['late_pct']:.2f} % | {cores['gateways']:.2f} / "
+                   f"{cores['workers']:.2f} / {cores['bus']:.2f} | "
+                   f"{row['gateway_us_per_viewer_frame']:.1f} | {row['viewers_cpu_seconds']:.1f} | "
+                   f"{'yes' if row['driver_lasted'] else '**no**'} |")
     busy, fail = found["busy"], found["failover"]
     rates = busy["ticks_per_second"] or {"median": 0.0, "p95": 0.0}
     out += ["", f"Busy scenes: {busy['scenes']} asked for (a hand each, its fingers moved 10 "
             f"times a second), {busy['placed']} placed ({', '.join(f'{w}: {n}' for w, n in sorted(busy['per_worker'].items()))}), "
-            f"{busy['refused']} refused (the workers full), in {busy['placing_s']:.1f} s; "
-            f"ticks/s median {rates['median']:.1f}; cluster CPU {busy['cluster_cores']:.2f} cores. "
+            f"{busy['refused']} still refused after a minute of asking again every 3 s (the workers full), "
+            f"all settled in {busy['placing_s']:.1f} s; "
+            f"ticks/s median {rates['median']:.1f}; cluster CPU {sum(busy['cores'].values()):.2f} cores. "
             f"Failover: a scene with {fail['objects']} kept objects, its worker killed (SIGKILL): "
             f"back through the other gateway after "
             f"{'never' if fail['seconds'] is None else format(fail['seconds'], '.2f') + ' s'}, "

@@ -143,7 +143,7 @@ def _parser() -> argparse.ArgumentParser:
                         help="with --bus: this worker's name (default: host name and process id)")
     parser.add_argument("--worker-cores", type=float, default=None, metavar="N",
                         help="with --bus: the cores this worker's scenes may use; it takes no "
-                             "new scene while they use 80 %% of them (default: the machine's)")
+                             "new scene that would bring them past 80 %% of them (default: the machine's)")
     parser.add_argument("--lease-seconds", type=float, default=LEASE_SECONDS,
                         help="with --bus: a dead worker's scenes start on another worker "
                              "within this long")

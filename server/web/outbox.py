@@ -18,12 +18,14 @@ class Outgoing:
     decoded again only where it is needed (folding frames for a slow reader).
     """
 
-    __slots__ = ("op", "text", "_message")
+    __slots__ = ("op", "text", "_message", "_behind")
 
     def __init__(self, op: str, text: str, message: dict[str, Any] | None = None) -> None:
         self.op = op
         self.text = text
         self._message = message
+        # id of a frame this one was folded behind -> that frame, and the fold
+        self._behind: dict[int, tuple[Outgoing, Outgoing]] | None = None
 
     @classmethod
     def of(cls, message: dict[str, Any]) -> Outgoing:
@@ -34,6 +36,19 @@ class Outgoing:
         if self._message is None:
             self._message = json.loads(self.text)
         return self._message
+
+    def behind(self, older: Outgoing) -> Outgoing:
+        """This frame folded behind ``older`` (both frames), made once for every connection
+        that has ``older`` waiting: readers that fall behind together (a swamped server,
+        its viewers reading slowly) would otherwise each decode, merge and encode the same
+        two frames, the more the further behind."""
+        behind = self._behind if self._behind is not None else {}
+        self._behind = behind
+        known = behind.get(id(older))
+        if known is None or known[0] is not older:
+            fold = Outgoing.of(merge_frames(older.message, self.message))
+            known = behind[id(older)] = (older, fold)
+        return known[1]
 
     def __reduce__(self) -> tuple[Any, ...]:
         return Outgoing, (self.op, self.text)  # the text travels, not the decoded message
@@ -67,7 +82,7 @@ class Outbox:
         if item.op == "frame" and queue and queue[-1].op == "frame":
             older = queue.pop()
             self.bytes -= len(older.text)
-            item = Outgoing.of(merge_frames(older.message, item.message))
+            item = item.behind(older)
             self.merged += 1
         if self.bytes + len(item.text) > self._limit:
             raise SlowConsumer(f"more than {self._limit} bytes waiting to be sent")

@@ -36,3 +36,24 @@ def test_a_reader_that_never_reads_is_cut_off_by_bytes_waiting():
         outbox.put(answer)
     assert asyncio.run(outbox.get()) is answer and outbox.bytes == 2 * len(answer.text) + len(
         frame(1, a=1.0).text)
+
+
+def test_readers_behind_by_the_same_frames_share_one_fold():
+    """A frame reaching 200 slow readers that all have the same frame waiting is folded
+    once, and each gets it whole; a reader behind by more frames gets its own fold."""
+    outboxes = [Outbox() for _ in range(200)]
+    first, second, third = frame(1, a=1.0), frame(2, b=2.0), frame(3, a=3.0)
+    for outbox in outboxes:
+        outbox.put(first)
+        outbox.put(second)
+    outboxes[0].put(third)  # this one is a frame further behind
+
+    async def drain(outbox):
+        return await outbox.get()
+    folds = [asyncio.run(drain(outbox)) for outbox in outboxes]
+    assert all(fold is folds[1] for fold in folds[1:])  # one object: merged and encoded once
+    assert folds[1].message == {"op": "frame", "seq": 2, "time": 2 / 60,
+                                "angles": {"a": 1.0, "b": 2.0}}
+    assert folds[0].message == {"op": "frame", "seq": 3, "time": 3 / 60,
+                                "angles": {"a": 3.0, "b": 2.0}}
+    assert all(outbox.merged == 1 for outbox in outboxes[1:]) and outboxes[0].merged == 2
