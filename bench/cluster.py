@@ -30,9 +30,11 @@ import virtual_prosthetics as vp
 
 from tests.conftest import RunningServer
 from server.cluster.leases import lease_holder
+from server.cluster.roles import LEASE_SECONDS
 from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus
 
 from .live import NICE, cpu_seconds, driving
+from .processes import descendants
 from .report import AT_60_HZ
 from .stats import figure
 from .viewers import run_viewers, sleep_until
@@ -57,8 +59,8 @@ class LoadCluster(Cluster):
         """The processes of each role: the gateways'; the workers' and their scenes'; the bus's."""
         gateways = [g.process.pid for g in self.gateways]
         workers = [w.pid for w in self.workers.values()]
-        return {"gateways": gateways + _children(gateways),
-                "workers": workers + _children(workers), "bus": [self.bus_pid]}
+        return {"gateways": gateways + descendants(*gateways),
+                "workers": workers + descendants(*workers), "bus": [self.bus_pid]}
 
     def seconds(self) -> dict[str, dict[int, float]]:
         """Each role's processes' CPU seconds so far."""
@@ -73,18 +75,6 @@ class LoadCluster(Cluster):
                 for role, now in self.seconds().items()}
 
 
-def _children(pids: list[int]) -> list[int]:
-    found = []
-    for pid in pids:
-        try:
-            text = Path(f"/proc/{pid}/task/{pid}/children").read_text()
-        except OSError:
-            continue
-        kids = [int(k) for k in text.split()]
-        found += kids + _children(kids)
-    return found
-
-
 @contextmanager
 def load_cluster(gateways: int) -> Iterator[LoadCluster]:
     # (a killed process's last files may still be going as the folder goes: no reason to
@@ -93,6 +83,9 @@ def load_cluster(gateways: int) -> Iterator[LoadCluster]:
             ExitStack() as stack:
         folder = Path(name)
         url = stack.enter_context(running_bus(folder))
+        # the buckets made first, with the product's lease (the tests' helpers, which the
+        # bench shares, would make them with their short one)
+        ask_bus(url, lambda bus: asyncio.sleep(0), lease_seconds=LEASE_SECONDS)
         bus_pid = int(subprocess.run(["pgrep", "-f", str(folder / "nats.conf")],
                                      capture_output=True, text=True).stdout.split()[0])
         running = LoadCluster(folder, url, gateways, bus_pid)

@@ -31,6 +31,8 @@ from websockets.sync.client import connect
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from tests.conftest import start_server, stop_server  # noqa: E402
 
+from bench.processes import descendants  # noqa: E402
+
 VIEWER = """
 import json, sys, time
 from websockets.sync.client import connect
@@ -49,17 +51,8 @@ UNLIMITED = ("--limit", "bytesPerSecond=1000000000")
 
 def tree_pss_mb(pid: int) -> float:
     """PSS of ``pid`` and its descendants, in MB (shared pages counted once overall)."""
-    children: dict[int, list[int]] = {}
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        try:
-            fields = stat.read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        children.setdefault(int(fields[1]), []).append(int(stat.parent.name))
-    total, todo = 0, [pid]
-    while todo:
-        current = todo.pop()
-        todo += children.get(current, [])
+    total = 0
+    for current in [pid, *descendants(pid)]:
         try:
             rollup = Path(f"/proc/{current}/smaps_rollup").read_text()
         except OSError:

@@ -19,23 +19,8 @@ from websockets.sync.client import connect
 from tests.conftest import RunningServer, eventually, start_server, stop_server
 
 from .live import cpu_seconds
+from .processes import descendants
 from .stats import figure
-
-def descendants(pid: int) -> list[int]:
-    """Every process below ``pid`` (scene processes are the forkserver's children)."""
-    parents: dict[int, list[int]] = {}
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        try:
-            fields = stat.read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue  # gone meanwhile
-        parents.setdefault(int(fields[1]), []).append(int(stat.parent.name))
-    found, level = [], [pid]
-    while level:
-        level = [child for parent in level for child in parents.get(parent, [])]
-        found += level
-    return found
-
 
 def pss_mb(pid: int) -> float:
     """Proportional set size: private memory plus a share of what is shared (forked)."""

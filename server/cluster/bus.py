@@ -132,9 +132,10 @@ class Bus:
     """A connection to the bus, with the cluster's buckets."""
 
     def __init__(self, client: Client, workers: KeyValue, scenes: KeyValue,
-                 shared: KeyValue) -> None:
+                 shared: KeyValue, lease_seconds: float) -> None:
         self.client = client
         self.workers = workers  # the living workers, expiring (server.cluster.leases)
+        self.lease_seconds = lease_seconds  # how long a worker's key lives: the bucket's
         self.scenes = scenes  # scene -> the worker running it
         self.shared = shared  # cluster-wide facts (server.cluster.client_ids)
 
@@ -158,11 +159,10 @@ class Bus:
             workers = await stream.create_key_value(bucket=WORKERS, ttl=lease_seconds, history=1)
         except BadRequestError:  # made by a process with another --lease-seconds: that one holds
             workers = await stream.key_value(WORKERS)
-            log.warning("the bus's leases last as long as the first process said; "
-                        "--lease-seconds %s is not used", lease_seconds)
+        ttl = (await workers.status()).ttl or lease_seconds
         scenes = await stream.create_key_value(bucket=SCENES, history=1)
         shared = await stream.create_key_value(bucket=CLUSTER, history=1)
-        return cls(client, workers, scenes, shared)
+        return cls(client, workers, scenes, shared, ttl)
 
     def pack(self, value: Any) -> bytes:
         data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)

@@ -71,11 +71,14 @@ class ClusterMember:
         name = f"g{secrets.token_hex(4)}" if self.role == "gateway" else self.settings.name
         self.bus = await Bus.connect(self.url, name, self.lease_seconds)
         if self.role in ("all", "worker"):
+            if abs(self.bus.lease_seconds - self.lease_seconds) > 1e-6:
+                log.warning("the bus's leases last %g s, as the first process to use it said; "
+                            "--lease-seconds %g is not used", self.bus.lease_seconds,
+                            self.lease_seconds)
             settings = self.settings
             state = StateDir(settings.state_dir) if settings.state_dir is not None else None
             self.host = WorkerHost(self.bus, settings.name, settings.limits, settings.tick_rate,
-                                   settings.assets, settings.setups, state, self.lease_seconds,
-                                   settings.cores)
+                                   settings.assets, settings.setups, state, settings.cores)
             await self.host.start()
         if hubs is not None and self.role in ("all", "gateway"):
             self.gateway = Gateway(self.bus, name if self.role == "gateway" else f"g-{name}")

@@ -136,11 +136,10 @@ class WorkerHost:
 
     def __init__(self, bus: Bus, name: str, limits: Limits, tick_rate: float,
                  assets: AssetLibrary, setups: Mapping[str, SceneSetup],
-                 state: StateDir | None, lease_seconds: float, cores: float) -> None:
+                 state: StateDir | None, cores: float) -> None:
         self.bus, self.name = bus, name
         self.limits, self.tick_rate, self.assets, self.setups = limits, tick_rate, assets, setups
         self.state = state
-        self.lease_seconds = lease_seconds
         self.cores = cores  # its share of the machine (--worker-cores)
         self.cpu = ProcessCpu()
         self.scenes: dict[str, HostedScene] = {}
@@ -231,7 +230,8 @@ class WorkerHost:
 
     async def _renew(self) -> None:
         while True:
-            await asyncio.sleep(self.lease_seconds / 5)
+            # (the bus's lease, which the first process to use the bus set, not this one's flag)
+            await asyncio.sleep(self.bus.lease_seconds / 5)
             try:
                 lost = await self.leases.renew()
             except Exception as error:  # the bus is slow or away: the leases last a while

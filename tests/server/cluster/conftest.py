@@ -62,10 +62,11 @@ async def _wait_for_bus(url: str) -> None:
             await asyncio.sleep(0.05)
 
 
-def ask_bus(url: str, question: Any) -> Any:
-    """``await question(bus)`` on a connection of its own."""
+def ask_bus(url: str, question: Any, lease_seconds: float = 3.0) -> Any:
+    """``await question(bus)`` on a connection of its own (the first to use the bus makes
+    its buckets: a worker's key then lives ``lease_seconds``)."""
     async def ask() -> Any:
-        bus = await Bus.connect(url, "test", 3.0)
+        bus = await Bus.connect(url, "test", lease_seconds)
         try:
             return await question(bus)
         finally:

@@ -1,9 +1,13 @@
 """Workers on a real bus: a dead worker's scenes come back on another from what was saved,
-with their clients; a burst of new scenes stops at the cores the workers may use."""
+with their clients; a burst of new scenes stops at the cores the workers may use; a
+worker renews its lease as often as the bus's lease needs."""
 
 from __future__ import annotations
 
+import asyncio
 import json
+import os
+import signal
 import time
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any, Iterator
@@ -14,7 +18,8 @@ from websockets.sync.client import connect as ws_connect
 import virtual_prosthetics as vp
 
 from tests.conftest import eventually
-from tests.server.cluster.conftest import Cluster, holder, running_bus
+from server.cluster.leases import worker_lives
+from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus, start_worker
 
 WORKER_CORES = 0.2  # of which 80 %: room for three scenes not measured yet (0.05 each)
 
@@ -89,3 +94,22 @@ def _move_until_seen(script: vp.Session, viewer: vp.Session,
             refusals.append(error)
         time.sleep(0.05)
     raise AssertionError(f"the viewer never saw the ball move: {refusals[-3:]}")
+
+
+def test_a_worker_keeps_its_key_alive_when_the_bus_has_shorter_leases_than_its_flag(tmp_path):
+    """The first process to use a bus sets how long a worker's key lives (here 1 s); a
+    worker started later with the default ``--lease-seconds`` (10) renews within that
+    (before, it renewed every 2 s: its key lapsed half the time, and its scenes looked
+    held by nobody)."""
+    with running_bus(tmp_path) as url:
+        ask_bus(url, lambda bus: asyncio.sleep(0), lease_seconds=1.0)  # makes the buckets
+        worker = start_worker(url, "wa", tmp_path / "state", tmp_path / "wa.log")
+        try:
+            alive = []
+            for _ in range(25):
+                alive.append(ask_bus(url, lambda bus: worker_lives(bus.workers, "wa")))
+                time.sleep(0.1)
+        finally:
+            os.killpg(worker.pid, signal.SIGKILL)
+            worker.wait(10)
+    assert all(alive), alive
