@@ -59,7 +59,7 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
              document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
-             cluster_viewers=(500, 750, 1000, 1250, 1500, 2000), cluster_busy=200, cluster_objects=50,
+             cluster_viewers=(500, 750, 875, 1000, 1125, 1250, 2000), cluster_busy=200, cluster_objects=50,
              cluster_idle_wait=20.0)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
