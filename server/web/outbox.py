@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import weakref
 from collections import deque
 from typing import Any
 
@@ -18,14 +19,15 @@ class Outgoing:
     decoded again only where it is needed (folding frames for a slow reader).
     """
 
-    __slots__ = ("op", "text", "_message", "_behind")
+    __slots__ = ("op", "text", "_message", "_behind", "__weakref__")
 
     def __init__(self, op: str, text: str, message: dict[str, Any] | None = None) -> None:
         self.op = op
         self.text = text
         self._message = message
-        # id of a frame this one was folded behind -> that frame, and the fold
-        self._behind: dict[int, tuple[Outgoing, Outgoing]] | None = None
+        # id of a frame this one was folded behind -> that frame (weakly: a strong one
+        # would chain every frame to the one before, for ever), and the fold
+        self._behind: dict[int, tuple[weakref.ref[Outgoing], Outgoing]] | None = None
 
     @classmethod
     def of(cls, message: dict[str, Any]) -> Outgoing:
@@ -45,9 +47,9 @@ class Outgoing:
         behind = self._behind if self._behind is not None else {}
         self._behind = behind
         known = behind.get(id(older))
-        if known is None or known[0] is not older:
+        if known is None or known[0]() is not older:  # (an id outlives its object)
             fold = Outgoing.of(merge_frames(older.message, self.message))
-            known = behind[id(older)] = (older, fold)
+            known = behind[id(older)] = (weakref.ref(older), fold)
         return known[1]
 
     def __reduce__(self) -> tuple[Any, ...]:

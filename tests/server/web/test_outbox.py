@@ -1,6 +1,7 @@
 """The outbox: order kept, frames folded, a stalled reader cut off."""
 
 import asyncio
+import weakref
 
 import pytest
 
@@ -57,3 +58,23 @@ def test_readers_behind_by_the_same_frames_share_one_fold():
     assert folds[0].message == {"op": "frame", "seq": 3, "time": 3 / 60,
                                 "angles": {"a": 3.0, "b": 2.0}}
     assert all(outbox.merged == 1 for outbox in outboxes[1:]) and outboxes[0].merged == 2
+
+
+def test_a_fold_keeps_no_earlier_frame_alive():
+    """Two readers that lag in turn (each finds the other's last frame folded into the
+    next) do not chain every frame to the one before in memory: a frame read is gone."""
+    readers = [Outbox(), Outbox()]
+    first = frame(1, a=1.0)
+    gone = weakref.ref(first)
+
+    async def drain(outbox):
+        while len(outbox):
+            await outbox.get()
+    for seq in range(1, 50):
+        item = first if seq == 1 else frame(seq, a=float(seq))
+        for outbox in readers:
+            outbox.put(item)
+        asyncio.run(drain(readers[seq % 2]))  # one reads, the other lags a frame
+    del first, item
+    assert gone() is None
+    assert asyncio.run(readers[0].get()).message["angles"] == {"a": 49.0}
