@@ -47,6 +47,15 @@ class RunningServer:
         with urllib.request.urlopen(request, timeout=10) as response:
             return json.loads(response.read())
 
+    def post(self, path: str) -> tuple[int, Any]:
+        """POST to a REST path with an empty body; the status and the decoded JSON body
+        (raises HTTPError for 4xx/5xx)."""
+        headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
+        request = urllib.request.Request(self.http + path, data=b"", method="POST",
+                                         headers=headers)
+        with urllib.request.urlopen(request, timeout=30) as response:
+            return response.status, json.loads(response.read())
+
     def nodes(self, scene: str) -> list[dict[str, Any]]:
         """The scene's nodes as its snapshot lists them; none while the scene is not there."""
         try:

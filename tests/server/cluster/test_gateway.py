@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import json
 import urllib.error
-import urllib.request
-from typing import Any
 
 import pytest
 import virtual_prosthetics as vp
@@ -46,24 +44,18 @@ def test_a_bad_message_through_a_gateway_is_answered_and_the_connection_goes_on(
     assert answer["op"] == "ok" and [n["id"] for n in cluster.gateways[0].nodes(scene_name)] == [ball]
 
 
-def _post(gateway, path: str) -> Any:
-    request = urllib.request.Request(gateway.http + path, data=b"", method="POST")
-    with urllib.request.urlopen(request, timeout=30) as answer:
-        return json.loads(answer.read())
-
-
 def test_a_recording_started_through_one_gateway_is_seen_and_stopped_through_the_other(cluster, scene_name):
     one, two = cluster.gateways
     script = vp.connect(one.ws, scene=scene_name)
     try:
         vp.Ball(0.5).set_position(1, 2, 3)
         script.sync()
-        started = _post(one, f"/api/scenes/{scene_name}/recordings")["id"]
+        started = one.post(f"/api/scenes/{scene_name}/recordings")[1]["id"]
         assert {r["id"]: r for r in two.get("/api/recordings")}[started]["state"] == "recording"
         with pytest.raises(urllib.error.HTTPError) as early:  # not half a file
             two.get(f"/api/recordings/{started}")
         assert early.value.code == 409 and json.loads(early.value.read())["code"] == "recording_busy"
-        held = _post(two, f"/api/recordings/{started}/stop")  # a balancer may send it anywhere
+        _, held = two.post(f"/api/recordings/{started}/stop")  # a balancer may send it anywhere
     finally:
         script.close()
     assert held["id"] == started and held["stopped"] == "stopped" and held["ticks"] > 0

@@ -14,12 +14,6 @@ from websockets.sync.client import connect
 from .ws_requests import request_all, wait_ticks
 
 
-def _post(server, path):
-    request = urllib.request.Request(server.http + path, data=b"", method="POST")
-    with urllib.request.urlopen(request, timeout=30) as answer:
-        return answer.status, json.loads(answer.read())
-
-
 def _refused(call, status, code):
     with pytest.raises(urllib.error.HTTPError) as refused:
         call()
@@ -61,7 +55,7 @@ def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server,
         client = json.loads(ws.recv(timeout=10))["client"]
         left, right, sensor = _scene_with_two_hands_and_a_watched_sensor(ws, client)
         wait_ticks(ws)
-        status, started = _post(server, f"/api/scenes/{scene_name}/recordings")
+        status, started = server.post(f"/api/scenes/{scene_name}/recordings")
         assert status == 201 and started["scene"] == scene_name
         texts, seen = [], []
         for k in range(40):  # the right hand flexes under the sensor's beam, then back
@@ -72,7 +66,7 @@ def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server,
                                      "args": [k / 40], "id": 100 + k}))
             _send_and_collect(ws, texts[-1], seen)
         wait_ticks(ws, 3)
-        _, stopped = _post(server, f"/api/recordings/{started['id']}/stop")
+        _, stopped = server.post(f"/api/recordings/{started['id']}/stop")
     assert stopped["id"] == started["id"] and stopped["stopped"] == "stopped"
     listed = {r["id"]: r for r in server.get("/api/recordings")}[started["id"]]
     assert listed["state"] == "stopped" and listed["scene"] == scene_name
@@ -116,21 +110,21 @@ def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server,
     assert [m["seq"] for _, tick in window for m in tick if m["op"] == "frame"] == seqs  # each, in order
     assert [t for t, _ in window] == sorted(t for t, _ in window) and window[-1][0] == end["duration"]
     _refused(lambda: server.get(f"{base}/ticks?after=0&until=11"), 400, "out_of_range")
-    _, again = _post(server, f"/api/recordings/{started['id']}/resimulate")  # kinematic: exactly
+    _, again = server.post(f"/api/recordings/{started['id']}/resimulate")  # kinematic: exactly
     assert (again["ticks"], again["requests"]) == (len(frames), len(texts))
     assert again["ticksDiffering"] == 0, again["differences"][:3]
 
 
 def test_one_recording_at_a_time_and_none_downloaded_before_it_stops(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}"):
-        _, started = _post(server, f"/api/scenes/{scene_name}/recordings")
-        busy = _refused(lambda: _post(server, f"/api/scenes/{scene_name}/recordings"), 409, "recording_busy")
+        _, started = server.post(f"/api/scenes/{scene_name}/recordings")
+        busy = _refused(lambda: server.post(f"/api/scenes/{scene_name}/recordings"), 409, "recording_busy")
         assert started["id"] in busy["message"]
         _refused(lambda: urllib.request.urlopen(f"{server.http}/api/recordings/{started['id']}"),
                  409, "recording_busy")
         assert {r["id"]: r for r in server.get("/api/recordings")}[started["id"]]["state"] == "recording"
-        _post(server, f"/api/recordings/{started['id']}/stop")
-        _, again = _post(server, f"/api/recordings/{started['id']}/stop")  # stopped already: as it is
+        server.post(f"/api/recordings/{started['id']}/stop")
+        _, again = server.post(f"/api/recordings/{started['id']}/stop")  # stopped already: as it is
         assert again["state"] == "stopped"
 
 
