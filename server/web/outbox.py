@@ -25,9 +25,9 @@ class Outgoing:
         self.op = op
         self.text = text
         self._message = message
-        # id of a frame this one was folded behind -> that frame (weakly: a strong one
-        # would chain every frame to the one before, for ever), and the fold
-        self._behind: dict[int, tuple[weakref.ref[Outgoing], Outgoing]] | None = None
+        # a frame this one was folded behind (weakly: a strong key would chain every frame
+        # to the one before, for ever) -> the fold
+        self._behind: weakref.WeakKeyDictionary[Outgoing, Outgoing] | None = None
 
     @classmethod
     def of(cls, message: dict[str, Any]) -> Outgoing:
@@ -44,13 +44,12 @@ class Outgoing:
         that has ``older`` waiting: readers that fall behind together (a swamped server,
         its viewers reading slowly) would otherwise each decode, merge and encode the same
         two frames, the more the further behind."""
-        behind = self._behind if self._behind is not None else {}
-        self._behind = behind
-        known = behind.get(id(older))
-        if known is None or known[0]() is not older:  # (an id outlives its object)
-            fold = Outgoing.of(merge_frames(older.message, self.message))
-            known = behind[id(older)] = (weakref.ref(older), fold)
-        return known[1]
+        if self._behind is None:
+            self._behind = weakref.WeakKeyDictionary()
+        fold = self._behind.get(older)
+        if fold is None:
+            fold = self._behind[older] = Outgoing.of(merge_frames(older.message, self.message))
+        return fold
 
     def __reduce__(self) -> tuple[Any, ...]:
         return Outgoing, (self.op, self.text)  # the text travels, not the decoded message
