@@ -11,6 +11,7 @@ import { currentSession, setCurrentSession } from './session.js';
 import { meshFilesFor } from './mesh_files.js';
 import { PageMeshes } from './meshes.js';
 import { openSession } from './transport.js';
+import { waitSeconds } from './waiting.js';
 
 export const VERSION = '0.1.0';   // this client's (package.json; a test keeps them equal)
 export const IN_BROWSER = typeof window !== 'undefined' && typeof document !== 'undefined';
@@ -44,12 +45,14 @@ export function sceneUrl(url, { scene: name = 'default', role = 'controller', to
 }
 
 // Connect to a scene of a server and make it the one new objects go to.
-// Node: connect({url, scene, role, token, keep}) or the VP_URL and VP_TOKEN environment
-// variables; keep: what this script makes stays in the scene after it ends.
-export async function connect({ url, scene: name = 'default', role = 'controller', token, keep = false, onMessage } = {}) {
+// Node: connect({url, scene, role, token, keep, timeout}) or the VP_URL, VP_TOKEN and
+// VP_TIMEOUT environment variables; keep: what this script makes stays in the scene after
+// it ends; timeout: seconds to wait for the scene and for each answer (default 60).
+export async function connect({ url, scene: name = 'default', role = 'controller', token, keep = false, onMessage, timeout } = {}) {
 	const server = url ?? globalThis.process?.env?.VP_URL ?? 'ws://127.0.0.1:8000';
 	const key = token ?? globalThis.process?.env?.VP_TOKEN ?? null;
-	const session = await openSession(sceneUrl(server, { scene: name, role, token: key, keep }), CLASSES, onMessage);
+	const session = await openSession(sceneUrl(server, { scene: name, role, token: key, keep }), CLASSES,
+		{ onMessage, timeout: waitSeconds(timeout) });
 	session.meshes = new PageMeshes(session, () => [scene, session.root]);
 	session.http = server.replace(/^ws/, 'http');   // its REST side (recordings, mesh files)
 	session.token = key;

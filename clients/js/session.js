@@ -15,6 +15,7 @@ import { Mirror } from './mirror.js';
 import { baseRotation, shownRotation } from './pose.js';
 import { Prediction } from './prediction.js';
 import { ProtocolCore } from './protocol.js';
+import { DEFAULT_SECONDS, within } from './waiting.js';
 
 const ONE = [1, 1, 1];
 const base = new THREE.Quaternion();
@@ -34,9 +35,11 @@ export function setCurrentSession(session) {
 }
 
 export class Session {
-	// send(text): the transport; classes: type name -> class (for objects made elsewhere).
-	constructor({ send, classes = {}, onWarning = (text) => console.warn(`server: ${text}`) }) {
+	// send(text): the transport; classes: type name -> class (for objects made elsewhere);
+	// timeout: seconds to wait for each answer waited on (waiting.js).
+	constructor({ send, classes = {}, timeout = DEFAULT_SECONDS, onWarning = (text) => console.warn(`server: ${text}`) }) {
 		this.transmit = send;
+		this.timeout = timeout;
 		this.classes = classes;
 		this.hello = null;
 		this.closed = null;
@@ -275,7 +278,7 @@ export class Session {
 	send(message, { wait = false } = {}) {
 		const { text, answer } = this.requested(message, { wait });
 		this.queue(text);
-		return answer;
+		return answer && within(answer, this.timeout, () => `no answer to ${message.op} ${message.method ?? ''}`.trim());
 	}
 
 	// Queue a request whose final form `ready` gives later: it and every request after
@@ -334,7 +337,7 @@ export class Session {
 	// Resolves once the server has answered everything sent so far; throws a kept error.
 	async sync() {
 		this.flush();
-		await this.core.settle();
+		await within(this.core.settle(), this.timeout, () => `no answer to ${this.core.unanswered.size} requests`);
 		if (this.closed) throw new ConnectionLost(this.closed);
 		this.core.raiseDeferred();
 	}

@@ -6,6 +6,7 @@
 import { Backoff } from './backoff.js';
 import { ProtocolError } from './errors.js';
 import { Session } from './session.js';
+import { within } from './waiting.js';
 
 const OPEN = 1;
 const REPLACED = 4001;   // close code: this client connected again elsewhere (no coming back here)
@@ -22,14 +23,16 @@ function withResume(url, key) {
 }
 
 // Open a session on `url` (ws://host:port/ws?scene=…&role=…); resolves once the scene's
-// snapshot has arrived, rejects with the server's error when it refuses. onMessage hears
-// every server message that is not an answer, from the hello on.
-export async function openSession(url, classes, onMessage = null) {
+// snapshot has arrived, rejects with the server's error when it refuses and with a Timeout
+// when no snapshot came within `timeout` seconds. onMessage hears every server message that
+// is not an answer, from the hello on.
+export async function openSession(url, classes, { onMessage = null, timeout } = {}) {
 	const WebSocketClass = await socketClass();
 	const waiting = [];   // texts sent while no connection is open
 	const session = new Session({
 		send: (text) => (session.socket.readyState === OPEN ? session.socket.send(text) : waiting.push(text)),
 		classes,
+		timeout,
 	});
 	if (onMessage) session.listeners.push(onMessage);
 
@@ -76,7 +79,17 @@ export async function openSession(url, classes, onMessage = null) {
 		session.lost(reason);
 	}
 
-	if (!(await open(url))) session.lost('the server could not be reached');
-	await session.ready;
+	const address = url.split('?')[0];   // no token in messages
+	const opened = (async () => {
+		if (!(await open(url))) session.lost(`${address} could not be reached`);
+		await session.ready;
+	})();
+	try {
+		await within(opened, session.timeout, () => `no snapshot from ${address}`);
+	} catch (error) {
+		session.closing = true;   // given up: not a loss to come back from
+		session.socket?.close();
+		throw error;
+	}
 	return session;
 }

@@ -12,7 +12,7 @@ export { AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, G
 	MotorX, MotorY, MotorZ, Part, RoundFinger, RoundPalm, Slot } from './objects.js';
 export { AnthroHand, EdgedHand, RoundHand, Robot } from './robot.js';
 export { Sensor } from './sensor.js';
-export { ConnectionLost, ProtocolError, ServerError, VPError } from './errors.js';
+export { ConnectionLost, ProtocolError, ServerError, Timeout, VPError } from './errors.js';
 export { Recording, startRecording, stopRecording } from './recordings.js';
 export { VERSION, close, connect, getPhysics, getScene, getTime, pause, resume, setAnimation,
 	setCameraPosition, setCameraTarget, setPhysics, step, sync } from './runtime.js';

@@ -18,8 +18,8 @@ from websockets.sync.client import connect as ws_connect
 
 from .errors import ConnectionLost, ServerError, ServerWarning, Timeout
 from .protocol import Handler, ProtocolCore, Request
+from .waiting import bound
 
-ANSWER_TIMEOUT = 30.0
 RETRY_FIRST, RETRY_MAX = 0.1, 1.0  # seconds between attempts to connect again
 REPLACED = 4001  # close code: this client connected again elsewhere (no coming back here)
 TEXT_BYTES = 512 * 1024  # gathered requests per text at most (as the JS client): well under
@@ -32,15 +32,21 @@ class Connection:
     :meth:`settle` waits until every request sent so far is answered, which is what makes
     reads see earlier writes. Errors of requests nobody waits for are raised by the
     caller's next call (:meth:`raise_deferred`), warnings issued in the caller's thread.
+    ``timeout``: seconds to wait for the handshake and for answers (:mod:`.waiting`).
     """
 
-    def __init__(self, url: str, on_message: Handler, on_changes: Handler) -> None:
+    def __init__(self, url: str, on_message: Handler, on_changes: Handler,
+                 timeout: float) -> None:
         self._url = url
+        self.timeout = timeout
         self._closing = False
         self._reconnecting = False
         self._generation = 0  # connections made so far after the first
-        # entered by hand: the connection outlives this constructor (closed by close())
-        self._ws = ws_connect(url, max_size=None, open_timeout=10).__enter__()
+        try:
+            self._ws = _open(url, timeout)
+        except TimeoutError:
+            address = urlunsplit(urlsplit(url)._replace(query=""))  # no token in messages
+            raise Timeout(f"no WebSocket handshake from {address}", timeout) from None
         self.core = ProtocolCore(on_message, on_changes)
         self._lock = threading.Condition()
         self._reader = threading.Thread(target=self._read, name="vp-reader", daemon=True)
@@ -95,8 +101,9 @@ class Connection:
             return None
         with self._lock:
             if not self._lock.wait_for(lambda: request.id in self.core.answers or self.closed
-                                       or request.id in self.core.interrupted, ANSWER_TIMEOUT):
-                raise Timeout(f"no answer to {message['op']} within {ANSWER_TIMEOUT} s")
+                                       or request.id in self.core.interrupted,
+                                       bound(self.timeout)):
+                raise Timeout(f"no answer to {message['op']}", self.timeout)
             if request.id in self.core.interrupted:
                 self.core.interrupted.discard(request.id)
                 raise ConnectionLost(f"the connection dropped before {message['op']} was "
@@ -136,13 +143,15 @@ class Connection:
                         raise ConnectionLost(f"connection closed: {error}") from None
         raise AssertionError("unreachable")
 
-    def settle(self, timeout: float = ANSWER_TIMEOUT) -> None:
+    def settle(self) -> None:
         """Wait until every request sent so far is answered; raise a kept error."""
         if self._held:
             self.flush()
         with self._lock:
-            if not self._lock.wait_for(lambda: not self.core.unanswered or self.closed, timeout):
-                raise Timeout(f"{len(self.core.unanswered)} requests unanswered after {timeout} s")
+            if not self._lock.wait_for(lambda: not self.core.unanswered or self.closed,
+                                       bound(self.timeout)):
+                raise Timeout(f"no answer to {len(self.core.unanswered)} requests",
+                              self.timeout)
             if self.core.unanswered:
                 self._check_open()
         self.raise_deferred()
@@ -202,7 +211,7 @@ class Connection:
         url = _with_query(self._url, resume=self.core.resume)
         while time.monotonic() < deadline and not self._closing:
             try:
-                socket = ws_connect(url, max_size=None, open_timeout=5).__enter__()
+                socket = _open(url, min(self.timeout, 5.0))
             except (OSError, InvalidHandshake, TimeoutError, ConnectionClosed):
                 # a server going down (or still starting) may drop us mid-handshake
                 time.sleep(min(pause, max(0.0, deadline - time.monotonic())))
@@ -216,6 +225,12 @@ class Connection:
                 self._lock.notify_all()
             return True
         return False
+
+
+def _open(url: str, timeout: float) -> Any:
+    """An open WebSocket to ``url`` (entered by hand: the connection outlives the caller,
+    closed by :meth:`Connection.close`)."""
+    return ws_connect(url, max_size=None, open_timeout=bound(timeout)).__enter__()
 
 
 def _texts(requests: list[Request]) -> Iterator[str]:

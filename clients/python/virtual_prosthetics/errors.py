@@ -15,6 +15,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from .waiting import ENVIRONMENT
+
 
 class VPError(Exception):
     """Base of every exception raised by the client."""
@@ -51,7 +53,15 @@ class ConnectionLost(VPError):
 
 
 class Timeout(VPError):
-    """The server did not answer within the time limit."""
+    """The server did not answer within the time limit: ``what`` did not come within
+    ``seconds``; the message names how to wait longer."""
+
+    HOW_TO_WAIT_LONGER = f"connect(..., timeout=S) or {ENVIRONMENT}=S waits longer"
+
+    def __init__(self, what: str, seconds: float) -> None:
+        super().__init__(f"{what} within {seconds:g} s ({self.HOW_TO_WAIT_LONGER})")
+        self.what = what
+        self.seconds = seconds
 
 
 class ServerWarning(UserWarning):

@@ -8,10 +8,9 @@ import urllib.error
 import urllib.request
 from urllib.parse import quote
 
-from .errors import ConnectionLost, ServerError
+from .errors import ConnectionLost, ServerError, Timeout
 from .session import Session
-
-HTTP_TIMEOUT = 60.0
+from .waiting import bound
 
 
 def http_url(session: Session) -> str:
@@ -34,11 +33,15 @@ def request(session: Session, path: str, what: str, data: bytes | None = None) -
     call = urllib.request.Request(f"{http}{path}", data=data, headers=headers,
                                   method="POST" if data is not None else "GET")
     try:
-        with urllib.request.urlopen(call, timeout=HTTP_TIMEOUT) as answer:
+        with urllib.request.urlopen(call, timeout=bound(session.connection.timeout)) as answer:
             return answer.read()
+    except TimeoutError:
+        raise Timeout(f"no answer to {what} from {http}", session.connection.timeout) from None
     except urllib.error.HTTPError as error:
         body = json.loads(error.read() or b"{}")
         raise ServerError(body.get("code", "http_error"), body.get("message", str(error)),
                           what, body.get("details")) from None
     except urllib.error.URLError as error:
+        if isinstance(error.reason, TimeoutError):
+            raise Timeout(f"no answer to {what} from {http}", session.connection.timeout) from None
         raise ConnectionLost(f"could not reach {http}: {error.reason}") from None

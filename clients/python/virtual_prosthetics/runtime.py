@@ -25,11 +25,14 @@ sessions.CLASSES.update(CLASSES, Node=Node)
 
 
 def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",
-            role: str = "controller", token: str | None = None, keep: bool = False) -> Session:
+            role: str = "controller", token: str | None = None, keep: bool = False,
+            timeout: float | None = None) -> Session:
     """Connect to a scene of a server and make it the current scene; ``token`` (default:
     the ``VP_TOKEN`` environment variable) when the server asks for one; ``keep``: what
-    this script makes stays in the scene after it ends."""
-    opened = Session(url, scene, role, token=token, keep=keep)
+    this script makes stays in the scene after it ends; ``timeout``: seconds to wait for
+    the scene and for each answer (default: the ``VP_TIMEOUT`` environment variable, else
+    60)."""
+    opened = Session(url, scene, role, token=token, keep=keep, timeout=timeout)
     set_current_session(opened)
     return opened
 

@@ -14,6 +14,7 @@ from .codec import encode_arg
 from .connection import Connection
 from .errors import ConnectionLost, ServerError, Timeout, VPError
 from .mirror import Mirror
+from .waiting import bound, wait_seconds
 from .wire_messages import Call, Create, Delete
 
 T = TypeVar("T")
@@ -64,11 +65,14 @@ class Session:
 
     Writes are sent at once and return; reads come from the mirror after every earlier
     write of this client has been answered, so a read always sees this client's writes.
+    ``timeout``: the seconds to wait for the scene's snapshot and for every answer waited
+    on (default: ``VP_TIMEOUT``, else 60; :mod:`.waiting`).
     """
 
     def __init__(self, url: str = "ws://127.0.0.1:8000", scene: str = "default",
-                 role: str = "controller", timeout: float = 10.0,
+                 role: str = "controller", timeout: float | None = None,
                  token: str | None = None, keep: bool = False) -> None:
+        timeout = wait_seconds(timeout)
         self.url = url.rstrip("/")
         self.mirror = Mirror(self._listens)
         self.lock = threading.RLock()
@@ -83,11 +87,11 @@ class Session:
         query = urlencode({"scene": scene, "role": role, **({"token": token} if token else {}),
                            **({"keep": "true"} if keep else {})})
         self.connection = Connection(f"{url.rstrip('/')}/ws?{query}", self._on_message,
-                                     self._on_changes)
+                                     self._on_changes, timeout)
         self.connection.start()
-        if not self._ready.wait(timeout):
+        if not self._ready.wait(bound(timeout)):
             self.connection.close()
-            raise Timeout(f"no snapshot from {url} within {timeout} s")
+            raise Timeout(f"no snapshot of scene {scene!r} from {self.url}", timeout)
         if "client" not in self.hello:
             self.connection.raise_deferred()
             raise ConnectionLost(self.connection.closed or "the server refused the connection")

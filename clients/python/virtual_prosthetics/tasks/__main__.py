@@ -10,7 +10,9 @@ import json
 import sys
 from typing import Any, Callable, Sequence
 
+from ..errors import Timeout
 from ..runtime import connect
+from ..waiting import DEFAULT_SECONDS, ENVIRONMENT, wait_seconds
 from . import TASKS
 from .scale import FIGURES
 
@@ -38,18 +40,33 @@ def parser() -> argparse.ArgumentParser:
     parse.add_argument("--controller", type=_function,
                        help="module:function making your controller (see the task's docs)")
     parse.add_argument("--token", help="the server's token, when it asks for one")
+    parse.add_argument("--timeout", type=_seconds, metavar="S",
+                       help="seconds to wait for the scene and for each answer (default: "
+                            f"${ENVIRONMENT}, else {DEFAULT_SECONDS:g})")
     return parse
+
+
+def _seconds(text: str) -> float:
+    try:
+        return wait_seconds(float(text))
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = parser().parse_args(argv)
     if args.trials < 1 or args.side_by_side < 1:
         parser().error("--trials and --side-by-side must be at least 1")
-    session = connect(args.url, scene=args.scene, token=args.token)
     try:
-        result = TASKS[args.task](session, args)
-    finally:
-        session.close()
+        session = connect(args.url, scene=args.scene, token=args.token, timeout=args.timeout)
+        try:
+            result = TASKS[args.task](session, args)
+        finally:
+            session.close()
+    except Timeout as error:
+        print(f"error: {error.what} within {error.seconds:g} s (--timeout S or "
+              f"{ENVIRONMENT}=S waits longer)", file=sys.stderr)
+        return 1
     json.dump(result, sys.stdout, indent=2)
     print()
     return 0
