@@ -2,8 +2,9 @@
 
 A server with ``count`` scenes that clients opened and left (each scene's process then
 stops ticking and waits): the proportional memory (PSS) of the scene processes, the CPU
-of the whole server (every process) over a few seconds, and how long a new client waits
-for its ``hello`` on a fresh scene and on a running one. These figures set the default
+of the whole server (every process) over a few seconds, how long a new client waits for
+its ``hello`` on a fresh scene and on a running one, and the CPU a fresh scene's process
+took to start (until that hello). These figures set the default
 ``scenes`` limit (server/core/kit/limits.py).
 """
 
@@ -54,9 +55,13 @@ def measure(count: int, seconds: float) -> dict[str, Any]:
         before = cpu_seconds([running.process.pid, *processes])
         time.sleep(seconds)
         cpu = cpu_seconds([running.process.pid, *processes]) - before
-        fresh = [hello_ms(running, f"fresh{k}") for k in range(10)]
-        again = [hello_ms(running, f"idle{k}") for k in range(10)]
+        hellos = min(10, count)  # a few of each kind (the idle ones that were opened)
+        fresh = [hello_ms(running, f"fresh{k}") for k in range(hellos)]
+        started = running.get("/api/metrics")["scenes"]
+        start_cpu = [1000 * cpu_seconds([started[f"fresh{k}"]["pid"]]) for k in range(hellos)]
+        again = [hello_ms(running, f"idle{k}") for k in range(hellos)]
         return {"scenes": count, "open_hello_ms": figure(opened),
+                "scene_start_cpu_ms": figure(start_cpu),
                 "scene_pss_mb": figure(memory), "scenes_pss_mb": sum(memory),
                 "server_cpu_pct": 100 * cpu / seconds,
                 "hello_new_scene_ms": figure(fresh), "hello_idle_scene_ms": figure(again)}

@@ -155,7 +155,8 @@ def figure_table(found: dict[str, Any]) -> list[str]:
                 f"{_ms(idle['hello_new_scene_ms'].median)} / {_ms(idle['hello_idle_scene_ms'].median)} | "
                 f"{_ms(idle['hello_new_scene_ms'].p95)} / {_ms(idle['hello_idle_scene_ms'].p95)} | "
                 f"memory of a scene's process (PSS): {idle['scene_pss_mb'].median:.0f} MB, all "
-                f"{idle['scenes_pss_mb'] / 1024:.1f} GB | |")
+                f"{idle['scenes_pss_mb'] / 1024:.1f} GB; a fresh scene's process took "
+                f"{_ms(idle['scene_start_cpu_ms'].median)} of CPU to start | |")
     return rows
 
 

@@ -7,14 +7,19 @@ import json
 import math
 import subprocess
 
+import pytest
+
 from bench.report import BEGIN, END, TARGETS
 from bench.run import commit
 from tests.conftest import ROOT
 
 
+# The whole bench on tiny scenes: 55-85 s on a 2-core machine alongside the rest of the
+# suite; its own hang guard leaves room for a machine several times slower.
+@pytest.mark.timeout(900)
 def test_bench_quick_writes_every_figure(tmp_path):
     subprocess.run(["make", "-s", "bench-quick", f"BENCH_OUT={tmp_path}"], cwd=ROOT, check=True,
-                   capture_output=True, timeout=300)
+                   capture_output=True, timeout=850)
     results = json.loads((tmp_path / "results.json").read_text())
     for name in TARGETS:
         assert isinstance(results[name], (int, float)) and math.isfinite(results[name]), name
@@ -25,6 +30,7 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert [(row["viewers"], row["stalled"]) for row in figures["viewers"]] == [(2, False), (2, True)]
     assert all(row["fps_median"] > 0 for row in figures["viewers"])  # frames reached them
     assert figures["latency"]["rounds"] == 5
+    assert figures["idle_scenes"]["scene_start_cpu_ms"]["count"] == 3  # a fresh scene each
     chaos = figures["chaos"]
     assert chaos["faults"] == 7 and set(chaos["by_kind"].values()) == {1}
     assert chaos["acknowledged"] > 0 and chaos["lost"] == 0  # the journal's promise
