@@ -15,15 +15,21 @@ HOST ?= 127.0.0.1
 PORT ?= 8000
 
 COMPOSE   := /usr/bin/docker-compose
+DEBIAN_PROGRAMS := $(CHROMIUM) $(COMPOSE) $(NATS) $(NGINX)
 HOST_CA   ?= /etc/ssl/certs/ca-certificates.crt
 
-.PHONY: run test test-container bench bench-quick bench-browser install install-server js-packages clean
+.PHONY: run test test-long test-container bench bench-quick bench-browser install install-server js-packages clean
 
 run: install
 	$(BIN)/vp-server --host $(HOST) --port $(PORT) $(if $(STATE_DIR),--state-dir $(STATE_DIR))
 
-test: install $(CHROMIUM) $(COMPOSE) $(NATS) $(NGINX)
+test: install $(DEBIAN_PROGRAMS)
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
+
+# The fuzzers at full length, 10 000 cases each (the suite runs 1 000 of each; CI does
+# not run this): a few minutes, and a hang guard of 20 minutes a fuzzer.
+test-long: install $(DEBIAN_PROGRAMS)
+	VP_FUZZ_CASES=10000 $(BIN)/python -m pytest -m fuzz --timeout 1200 $(PYTEST_ARGS)
 
 # The image built and its tests run inside it (the tests service: `make test` there).
 # Needs a Docker engine. The host's certificate authorities go into the image (a proxy
@@ -77,11 +83,15 @@ $(JS_STAMP): clients/js/package.json clients/js/package-lock.json
 
 # The browser tests drive Debian's chromium (headless, software WebGL); the container
 # files are checked with docker-compose (no engine needed for that); the cluster's tests
-# start Debian's nats-server (the bus) and nginx (the gateways' load balancer).
-$(CHROMIUM) $(COMPOSE) $(NATS) $(NGINX):
-	$(SUDO) apt-get update -q
-	DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends \
-		$(notdir $@)
+# start Debian's nats-server (the bus) and nginx (the gateways' load balancer). Each
+# program is its package's name; those missing are installed together, with one update.
+$(DEBIAN_PROGRAMS):
+	missing="$$(for p in $(DEBIAN_PROGRAMS); do [ -x $$p ] || basename $$p; done)"; \
+	if [ -n "$$missing" ]; then \
+		$(SUDO) apt-get update -q && \
+		DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends \
+			$$missing; \
+	fi
 
 clean:
 	rm -rf $(VENV) clients/js/node_modules

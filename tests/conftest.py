@@ -20,6 +20,11 @@ from typing import Any, Iterator
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+# How long a test waits for what the product will do (a frame, a file saved, a process
+# gone): a hang guard, never a measure. A wait ends as soon as its condition holds, so a
+# long guard costs nothing on a fast machine and keeps a slow or loaded one (a single core
+# running the whole suite) from failing a test that would have passed.
+WAIT_SECONDS = 60.0
 VP_SERVER = Path(sys.executable).with_name("vp-server")
 _scene_numbers = count(1)
 
@@ -44,7 +49,7 @@ class RunningServer:
         """GET a REST path; the decoded JSON body (raises HTTPError for 4xx/5xx)."""
         headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
         request = urllib.request.Request(self.http + path, headers=headers)
-        with urllib.request.urlopen(request, timeout=10) as response:
+        with urllib.request.urlopen(request, timeout=WAIT_SECONDS) as response:
             return json.loads(response.read())
 
     def post(self, path: str) -> tuple[int, Any]:
@@ -53,7 +58,7 @@ class RunningServer:
         headers = {"Authorization": f"Bearer {self.token}"} if self.token else {}
         request = urllib.request.Request(self.http + path, data=b"", method="POST",
                                          headers=headers)
-        with urllib.request.urlopen(request, timeout=30) as response:
+        with urllib.request.urlopen(request, timeout=WAIT_SECONDS) as response:
             return response.status, json.loads(response.read())
 
     def nodes(self, scene: str) -> list[dict[str, Any]]:
@@ -70,7 +75,7 @@ class RunningServer:
         return [n for n in self.nodes(scene) if "motors" in n]
 
 
-def eventually(check: Any, timeout: float = 5.0) -> None:
+def eventually(check: Any, timeout: float = WAIT_SECONDS) -> None:
     """Wait until ``check()`` is true: frames, closes and clean-ups happen on the server's
     schedule, not the test's."""
     deadline = time.monotonic() + timeout
@@ -114,7 +119,7 @@ def start_server(*args: str, port: int | None = None, log: Path | None = None) -
                                 *args], cwd=ROOT, stdout=output, stderr=output,
                                start_new_session=True)
     server = RunningServer(process, port)
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + WAIT_SECONDS
     while time.monotonic() < deadline:
         if process.poll() is not None:
             raise RuntimeError(f"vp-server exited with {process.returncode}")
@@ -131,13 +136,13 @@ def crash_server(server: RunningServer) -> None:
     """``kill -9`` the server and every process of its scenes at once: nothing gets to
     save anything."""
     os.killpg(server.process.pid, signal.SIGKILL)
-    server.process.wait(timeout=10)
+    server.process.wait(timeout=WAIT_SECONDS)
 
 
 def stop_server(server: RunningServer) -> None:
     server.process.send_signal(signal.SIGINT)
     try:
-        server.process.wait(timeout=10)
+        server.process.wait(timeout=WAIT_SECONDS)
     except subprocess.TimeoutExpired:
         server.process.kill()
 

@@ -13,6 +13,7 @@ from websockets.sync.client import connect
 from server.core.protocol.messages import check_server_message
 from server.core.scene.scene import Scene
 from server.core.protocol.session import Session
+from tests.conftest import WAIT_SECONDS
 
 from .vectors import mismatch, steps, vector_files
 
@@ -41,7 +42,7 @@ def test_vectors_against_a_session(path):
 def _answers_until_ping(ws, ping_id):
     answers = []
     while True:
-        message = json.loads(ws.recv(timeout=10))
+        message = json.loads(ws.recv(timeout=WAIT_SECONDS))
         check_server_message(message)
         if message["op"] == "ok" and message["id"] == ping_id:
             return answers
@@ -52,7 +53,7 @@ def _answers_until_ping(ws, ping_id):
 @pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
 def test_vectors_against_the_server(server, scene_name, path):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        hello = json.loads(ws.recv(timeout=10))
+        hello = json.loads(ws.recv(timeout=WAIT_SECONDS))
         check_server_message(hello)
         for number, (text, expected) in enumerate(steps(path, hello["client"])):
             ws.send(text)

@@ -7,7 +7,7 @@ from websockets.sync.client import connect
 
 import pytest
 
-from ..conftest import start_server, stop_server
+from ..conftest import WAIT_SECONDS, start_server, stop_server
 
 
 @pytest.fixture(scope="module")
@@ -29,7 +29,7 @@ def test_default_demo_shows_a_left_and_a_right_hand_of_each_kind_moving(demo_ser
 @pytest.fixture
 def diggers(demo_server):
     with connect(f"{demo_server.ws}/ws?scene=diggers&role=viewer") as ws:
-        ws.recv(timeout=10)
+        ws.recv(timeout=WAIT_SECONDS)
         yield ws
 
 
@@ -52,13 +52,13 @@ def test_the_demo_robots_are_shared_and_nobody_deletes_them(demo_server):
         robots = demo_server.get(f"/api/scenes/{scene}/robots")
         assert all(r["shared"] and r["owner"] == "demo" for r in robots)
     with connect(f"{demo_server.ws}/ws?scene={scene}") as ws:  # the diggers
-        ws.recv(timeout=10)  # hello
+        ws.recv(timeout=WAIT_SECONDS)  # hello
         ws.send(json.dumps([{"op": "call", "id": 1, "object": robots[0]["id"], "method": "setAngle",
                              "args": [0, 0.1]},
                             {"op": "delete", "id": 2, "object": robots[0]["id"]}]))
         answers = {}
         while len(answers) < 2:
-            message = json.loads(ws.recv(timeout=10))
+            message = json.loads(ws.recv(timeout=WAIT_SECONDS))
             if message.get("id") in (1, 2):
                 answers[message["id"]] = message
     assert answers[1]["op"] == "ok"

@@ -8,6 +8,7 @@ import pytest
 from playwright.sync_api import Browser, Page, sync_playwright
 
 import virtual_prosthetics as vp
+from tests.conftest import WAIT_SECONDS
 from tests.clients.python.conftest import scene  # noqa: F401  (a fixture, shared)
 
 CHROMIUM = "/usr/bin/chromium"
@@ -50,6 +51,7 @@ def close_page(page: Page) -> None:
 def open_page(browser: Browser, pages: list[Page], url: str) -> Page:
     """A new page at ``url`` that records uncaught errors in ``window.__errors``."""
     page = browser.new_context(viewport=VIEWPORT).new_page()
+    page.set_default_timeout(WAIT_SECONDS * 1000)  # a guard: software WebGL on a loaded core
     page.add_init_script("window.__errors = []; window.addEventListener('error', "
                          "(e) => window.__errors.push(String(e.message)));")
     pages.append(page)
@@ -60,11 +62,11 @@ def open_page(browser: Browser, pages: list[Page], url: str) -> Page:
 def open_viewer(browser: Browser, pages: list[Page], server, query: str) -> Page:
     """A viewer page that has its first snapshot."""
     page = open_page(browser, pages, f"{server.http}/view?{query}")
-    page.wait_for_function("() => window.VP && window.VP.snapshots > 0", timeout=20_000)
+    wait_until(page, "() => window.VP && window.VP.snapshots > 0")
     return page
 
 
-def wait_until(page: Page, script: str, arg=None, timeout: float = 10_000) -> None:
+def wait_until(page: Page, script: str, arg=None, timeout: float = WAIT_SECONDS * 1000) -> None:
     """Wait until a JavaScript predicate holds in the page."""
     page.wait_for_function(script, arg=arg, timeout=timeout)
 

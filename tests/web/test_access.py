@@ -5,7 +5,7 @@ import time
 
 import pytest
 
-from ..conftest import start_server, stop_server
+from ..conftest import WAIT_SECONDS, start_server, stop_server
 from .conftest import open_page, open_viewer, wait_until
 
 CONTROL, VIEW = "page-control-token", "page-view-token"
@@ -21,7 +21,7 @@ def locked():
 
 def test_pages_with_the_token_build_and_watch(browser, pages, locked):
     open_page(browser, pages, f"{locked.http}/examples/edged-hand.html?scene=locked&token={CONTROL}")
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + WAIT_SECONDS
     while len(locked.robots("locked")) < 2:
         assert time.monotonic() < deadline, "the page's hands never reached the server"
         time.sleep(0.2)

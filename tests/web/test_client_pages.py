@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import free_port
+from tests.conftest import WAIT_SECONDS, free_port
 
 from .conftest import open_page, open_viewer, wait_until
 
@@ -44,7 +44,7 @@ def _yaw(quaternion: list[float]) -> float:
 
 
 def _wait_for_robots(server, scene: str, count: int) -> None:
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + WAIT_SECONDS
     while time.monotonic() < deadline:
         if len(server.robots(scene)) == count:
             return
@@ -89,7 +89,7 @@ def own_folder(tmp_path):
                                 "127.0.0.1"], cwd=tmp_path, stdout=subprocess.DEVNULL,
                                stderr=subprocess.DEVNULL)
     try:
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + WAIT_SECONDS
         while time.monotonic() < deadline:
             with contextlib.suppress(OSError), socket.create_connection(("127.0.0.1", port)):
                 break
@@ -126,7 +126,7 @@ def test_a_page_from_the_users_own_folder_runs_as_the_servers_own_do(browser, pa
     (folder / "reads.html").write_text(page_text)
     page = open_page(browser, pages, f"{address}/reads.html?scene={scene_name}")
     wait_until(page, "(n) => document.getElementById('reads').textContent.trim().split('\\n')"
-               ".length === n", len(READS), timeout=30_000)
+               ".length === n", len(READS))
     assert page.inner_text("#reads").strip().split("\n") == READS
     check_reads_page_robots(server, scene_name)
     # its REST reads work too: the server answers its origin with CORS headers
@@ -157,7 +157,7 @@ def test_a_pages_own_mesh_file_is_uploaded_and_drawn(browser, pages, server, sce
     (folder / "meshes" / "gripper.glb").write_bytes((ASSETS / "round-finger-8.glb").read_bytes())
     (folder / "mesh.html").write_text(OWN_MESH_PAGE.replace("SERVER", server.http))
     page = open_page(browser, pages, f"{address}/mesh.html?scene={scene_name}")
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + WAIT_SECONDS
     while not (fingers := [n for n in server.nodes(scene_name) if n["type"] == "RoundFinger"]):
         assert time.monotonic() < deadline, "the page's finger was never made"
         time.sleep(0.2)
@@ -167,7 +167,7 @@ def test_a_pages_own_mesh_file_is_uploaded_and_drawn(browser, pages, server, sce
     assert _moves(server, scene_name, True)
     # drawn from the server's copy in the page itself (not the page's site) and in a viewer
     for drawing in (page, open_viewer(browser, pages, server, f"scene={scene_name}")):
-        wait_until(drawing, MESH_DRAWN, finger["id"], timeout=20_000)
+        wait_until(drawing, MESH_DRAWN, finger["id"])
 
 
 def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scene_name):
@@ -185,7 +185,7 @@ def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scen
 
 def test_a_page_without_a_scene_gets_its_own_with_a_watch_link(browser, pages, server):
     page = open_page(browser, pages, f"{server.http}/examples/simple-robot-2.html")
-    wait_until(page, "() => document.querySelector('#status a')", timeout=20_000)
+    wait_until(page, "() => document.querySelector('#status a')")
     link = page.get_attribute("#status a", "href")
     scene = link.split("scene=")[1]
     assert scene.startswith("page-")
@@ -200,7 +200,7 @@ def test_the_custom_meshes_page_shares_its_meshes_and_senses_them(browser, pages
                                                                    scene_name):
     page = open_page(browser, pages, f"{server.http}/examples/custom-meshes.html?scene={scene_name}")
     _wait_for_robots(server, scene_name, 1)
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + WAIT_SECONDS
     while len(_meshes(server, scene_name)) < 123 and time.monotonic() < deadline:
         time.sleep(0.2)
     meshes = _meshes(server, scene_name)
@@ -211,13 +211,12 @@ def test_the_custom_meshes_page_shares_its_meshes_and_senses_them(browser, pages
     # the markers move with the page's loop
     markers = sorted(i for i, n in meshes.items() if n["geometry"]["kind"] == "sphere")
     before = _meshes(server, scene_name)[markers[0]]["position"]
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + WAIT_SECONDS
     while _meshes(server, scene_name)[markers[0]]["position"] == before and time.monotonic() < deadline:
         time.sleep(0.2)
     assert _meshes(server, scene_name)[markers[0]]["position"] != before
     # the sweeping sensor measures the wall at some point of its sweep (1.64 m straight on)
-    wait_until(page, "() => /distance: 1\\.[6-9]/.test(document.getElementById('reading').textContent)",
-               timeout=30_000)
+    wait_until(page, "() => /distance: 1\\.[6-9]/.test(document.getElementById('reading').textContent)")
     # a second browser draws the page's meshes; the page does not draw them twice
     viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(viewer, "(ids) => ids.every((id) => VP.objects.get(id)?.userData.shape)", markers)
@@ -239,19 +238,18 @@ def test_the_distance_page_measures_the_ground_and_the_step_it_added(browser, pa
     page = _sensor_page(browser, pages, server, scene_name, "sensor-distance")
     # 1.5 above the ground, 0.9 above the 0.6-high step (a page mesh)
     wait_until(page, "() => /least 0\\.(89|90|91)\\d*, most 1\\.(49|50)/.test("
-                     "document.getElementById('reading').textContent)", timeout=30_000)
+                     "document.getElementById('reading').textContent)")
     _seen_by_a_viewer(browser, pages, server, scene_name)
 
 
 def test_the_touch_page_feels_the_box_and_lets_go(browser, pages, server, scene_name):
     page = _sensor_page(browser, pages, server, scene_name, "sensor-touch")
-    wait_until(page, "() => /most 1\\.00/.test(document.getElementById('reading').textContent)",
-               timeout=30_000)
+    wait_until(page, "() => /most 1\\.00/.test(document.getElementById('reading').textContent)")
     wait_until(page, "() => /touch: 0\\.00/.test(document.getElementById('reading').textContent)")
     # the page recolours its box while touched: the server has both colours in turn
     box = next(iter(_meshes(server, scene_name).values()))
     colours = {box["color"]}
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + WAIT_SECONDS
     while len(colours) < 2 and time.monotonic() < deadline:
         colours.add(_meshes(server, scene_name)[box["id"]]["color"])
         time.sleep(0.05)
@@ -261,10 +259,9 @@ def test_the_touch_page_feels_the_box_and_lets_go(browser, pages, server, scene_
 
 def test_the_position_page_reads_a_circle_and_leaves_a_trail(browser, pages, server, scene_name):
     page = _sensor_page(browser, pages, server, scene_name, "sensor-position")
-    wait_until(page, "() => /position: \\[/.test(document.getElementById('reading').textContent)",
-               timeout=30_000)
+    wait_until(page, "() => /position: \\[/.test(document.getElementById('reading').textContent)")
     points = set()
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + WAIT_SECONDS
     while len(points) < 5 and time.monotonic() < deadline:
         points.add(tuple(json.loads(_reading(page).removeprefix("position: "))))
         time.sleep(0.2)
@@ -281,7 +278,7 @@ def test_the_position_page_reads_a_circle_and_leaves_a_trail(browser, pages, ser
     def on_circle(x: float, y: float, z: float) -> bool:
         return abs(math.hypot(x, z) - radii[0]) < 0.01 and abs(y - height) < 0.01
 
-    deadline = time.monotonic() + 20
+    deadline = time.monotonic() + WAIT_SECONDS
     while time.monotonic() < deadline:
         trail = [n["position"] for n in _meshes(server, scene_name).values() if n["visible"]]
         if len(trail) == 40 and all(on_circle(*point) for point in trail):
@@ -295,9 +292,9 @@ def test_the_position_page_reads_a_circle_and_leaves_a_trail(browser, pages, ser
 def test_the_collision_page_feels_the_ball_and_counts_contacts(browser, pages, server, scene_name):
     page = _sensor_page(browser, pages, server, scene_name, "sensor-collision")
     wait_until(page, "() => /collision: true, objects: [1-9]\\d*, ball: true/.test("
-                     "document.getElementById('reading').textContent)", timeout=30_000)
+                     "document.getElementById('reading').textContent)")
     wait_until(page, "() => /hits: [1-9].*begun: [1-9]\\d*, ended: [1-9]/.test("
-                     "document.getElementById('reading').textContent)", timeout=30_000)
+                     "document.getElementById('reading').textContent)")
     _seen_by_a_viewer(browser, pages, server, scene_name)
 
 
@@ -314,7 +311,7 @@ def test_the_motor_panel_page_moves_its_arm_and_a_viewer_follows(browser, pages,
     field.fill("1.2")
     field.press("Enter")
     shoulder = [n for n in server.nodes(scene_name) if n["type"] == "MotorZ"][0]
-    deadline = time.monotonic() + 10
+    deadline = time.monotonic() + WAIT_SECONDS
     while server.nodes(scene_name) and time.monotonic() < deadline:
         if {n["id"]: n for n in server.nodes(scene_name)}[shoulder["id"]]["angle"] == 1.2:
             break

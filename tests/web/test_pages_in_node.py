@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import WAIT_SECONDS
 from .conftest import open_viewer, wait_until
 from .test_client_pages import EXAMPLES, READS, _moves, _wait_for_robots, check_reads_page_robots
 
@@ -46,7 +47,7 @@ def test_an_example_page_runs_in_node(browser, pages, server, scene_name, tmp_pa
         viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
         wait_until(viewer, "(ids) => ids.every((id) => VP.objects.has(id))", ids)
         node.send_signal(signal.SIGINT)
-        out, err = node.communicate(timeout=10)
+        out, err = node.communicate(timeout=WAIT_SECONDS)
     finally:
         node.kill()
     assert node.returncode == 0, err
@@ -54,7 +55,7 @@ def test_an_example_page_runs_in_node(browser, pages, server, scene_name, tmp_pa
         assert [line for line in out.splitlines() if line in READS] == READS
         # one warning per call that left coordinates out, naming what it kept
         assert err.count("left out") == 2 and "setRotation left out z" in err, err
-    deadline = time.monotonic() + 5
+    deadline = time.monotonic() + WAIT_SECONDS
     while server.robots(scene_name) and time.monotonic() < deadline:
         time.sleep(0.1)
     assert server.robots(scene_name) == []

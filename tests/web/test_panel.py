@@ -8,6 +8,7 @@ import pytest
 
 import virtual_prosthetics as vp
 
+from tests.conftest import WAIT_SECONDS
 from .conftest import open_viewer, wait_until
 
 SLIDER_INPUTS = "() => [...document.querySelectorAll('.lil-gui .lil-controller.lil-number input')]"
@@ -43,7 +44,7 @@ def test_a_controller_moves_motors_and_every_viewer_follows(browser, pages, serv
     field.press("Enter")
     motor_id = arm.get_motors()[1].id
     wait_until(viewer, "(id) => VP.angle(id) === 0.5", motor_id)
-    deadline = time.monotonic() + 10    # the script hears it with its own next frame
+    deadline = time.monotonic() + WAIT_SECONDS    # the script hears it with its own next frame
     while arm.get_angles() != [0, 0.5] and time.monotonic() < deadline:
         time.sleep(0.05)
     assert arm.get_angles() == [0, 0.5]  # the server has it

@@ -65,7 +65,7 @@ def test_playing_and_stepping_move_the_timeline(browser, pages, server, scene, s
     wait_until(page, "(id) => VP.objects.has(id)", motor.id)
     page.select_option("#timeline select", "2")
     page.click("#timeline button[title='play / pause']")
-    wait_until(page, "([id, a]) => VP.angle(id) === a", [motor.id, ANGLES[2]], timeout=10_000)
+    wait_until(page, "([id, a]) => VP.angle(id) === a", [motor.id, ANGLES[2]])
     wait_until(page, "() => !VP.replay.playing && VP.replay.time === VP.replay.duration")  # played to the end
     page.evaluate("(t) => VP.replay.seek(t)", times[0])
     wait_until(page, "(t) => VP.replay.time === t", times[0])

@@ -88,7 +88,7 @@ def test_viewers_come_back_after_a_server_restart(browser, pages):
         wait_until(page, "() => document.getElementById('status').textContent"
                          ".startsWith('reconnecting')")
         own = start_server("--no-demo", port=own.port)
-        wait_until(page, "() => VP.snapshots >= 2", timeout=20_000)
+        wait_until(page, "() => VP.snapshots >= 2")
         wait_until(page, "() => document.getElementById('status').textContent"
                          ".startsWith('connected')")
         assert page.evaluate("() => VP.objects.size") == 0  # the fresh server's scene

@@ -10,6 +10,7 @@ import time
 from pathlib import Path
 
 import pytest
+from tests.conftest import WAIT_SECONDS
 
 CLIENT = Path(__file__).resolve().parents[3] / "clients" / "js"
 
@@ -33,7 +34,7 @@ def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
     node = subprocess.Popen(["node", f"examples/step{step}.mjs"], cwd=CLIENT, env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        deadline = time.monotonic() + 20
+        deadline = time.monotonic() + WAIT_SECONDS
         while len(server.robots(scene_name)) < robots and time.monotonic() < deadline:
             time.sleep(0.1)
         assert len(server.robots(scene_name)) == robots
@@ -41,12 +42,12 @@ def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
         time.sleep(0.5)
         assert (_angles(server, scene_name) != first) == moving
         node.send_signal(signal.SIGINT)
-        out, err = node.communicate(timeout=10)
+        out, err = node.communicate(timeout=WAIT_SECONDS)
     finally:
         node.kill()
     assert node.returncode == 0, err
     assert "Virtual Prosthetics 1.0" in out
-    deadline = time.monotonic() + 5
+    deadline = time.monotonic() + WAIT_SECONDS
     while server.robots(scene_name) and time.monotonic() < deadline:
         time.sleep(0.1)
     assert server.robots(scene_name) == []

@@ -11,6 +11,7 @@ import time
 import pytest
 
 import virtual_prosthetics as vp
+from tests.conftest import WAIT_SECONDS
 
 
 class CuttableProxy:
@@ -84,7 +85,7 @@ def test_a_dropped_script_comes_back_with_its_robots_and_makes_nothing_twice(ser
         hand.flex_fingers(0.3)
         scene.sync()
         proxy.cut()
-        deadline = time.monotonic() + 5
+        deadline = time.monotonic() + WAIT_SECONDS
         while proxy.accepted < 2:  # requests sent into the dead link before the client
             assert time.monotonic() < deadline  # noticed would be reported lost
             time.sleep(0.01)
@@ -106,7 +107,7 @@ def test_connections_dropped_mid_handshake_do_not_stop_the_reconnection(server, 
         scene.sync()
         proxy.reset_next = 3  # as a server going down and coming up does
         proxy.cut()
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + WAIT_SECONDS
         while proxy.accepted < 2:  # three attempts reset, the fourth goes through
             assert time.monotonic() < deadline, "the client gave up reconnecting"
             time.sleep(0.01)

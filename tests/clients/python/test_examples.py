@@ -26,7 +26,8 @@ def test_collision_sensors_every_arm_stops_at_a_box(server, scene_name, seed):
     scene = vp.connect(server.ws, scene=f"{scene_name}-{seed}")
     try:
         robots, boxes = example.build(random.Random(seed))
-        example.sweep(robots, speed=3.0, seconds=15.0)
+        with scene.paused():  # stepped: each animation step a tick, however loaded the machine
+            example.sweep(robots, speed=3.0, seconds=15.0)
         stopped = [robot.get_angle(0) for robot in robots]
         for robot in robots:
             touched = robot.sensor.sense_objects(exact=True)

@@ -7,6 +7,7 @@ import time
 import pytest
 
 import virtual_prosthetics as vp
+from tests.conftest import WAIT_SECONDS
 
 
 def test_reads_see_this_clients_writes_at_once(scene):
@@ -28,7 +29,7 @@ def test_two_clients_share_a_scene_and_viewers_cannot_change_it(server, scene, s
         assert isinstance(seen, vp.EdgedHand)
         assert seen.get_angles() == hand.get_angles()
         hand.spread_finger(2, 0.2)
-        deadline = time.monotonic() + 5
+        deadline = time.monotonic() + WAIT_SECONDS
         while seen.get_angles()[8] != pytest.approx(-0.2) and time.monotonic() < deadline:
             time.sleep(0.01)
         assert seen.get_angles()[8] == pytest.approx(-0.2)
@@ -58,7 +59,7 @@ def test_disconnect_removes_the_clients_robots(server, scene_name):
         vp.EdgedHand()
         vp.current_session().sync()
         assert server.get(f"/api/scenes/{scene_name}")["robots"] == 1
-    deadline = time.monotonic() + 5
+    deadline = time.monotonic() + WAIT_SECONDS
     while server.get(f"/api/scenes/{scene_name}")["robots"] and time.monotonic() < deadline:
         time.sleep(0.05)
     assert server.get(f"/api/scenes/{scene_name}")["robots"] == 0
@@ -150,7 +151,9 @@ def test_a_pause_ends_when_its_client_leaves_and_stepping_a_running_scene_is_ref
     try:
         with vp.connect(server.ws, scene=scene_name) as pauser:
             pauser.pause()
-            held = watcher.read(lambda mirror: mirror.time)
+            held = pauser.read(lambda mirror: mirror.time)  # the last tick's (its answer's)
+            # frames sent before the pause may still be on their way to the watcher
+            _eventually(lambda: watcher.read(lambda mirror: mirror.time) == held)
             time.sleep(0.5)
             assert watcher.read(lambda mirror: mirror.time) == held  # nothing ticks
         _eventually(lambda: watcher.read(lambda mirror: mirror.time) > held + 0.5)

@@ -13,19 +13,20 @@ import threading
 import pytest
 import schemathesis
 from schemathesis.checks import positive_data_acceptance
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, given, seed, settings
 from websockets.sync.client import connect
 
 from tests.server.web.ws_requests import request_all
+from tests.conftest import WAIT_SECONDS
 
-EXAMPLES = 60  # per operation
+from . import CASES
 
 
 @pytest.fixture(scope="module")
 def api_schema(server):
     with connect(f"{server.ws}/ws?scene=default", max_size=None) as ws:
-        me = json.loads(ws.recv(timeout=10))["client"]
-        ws.recv(timeout=10)
+        me = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
+        ws.recv(timeout=WAIT_SECONDS)
         request_all(ws, [
             {"op": "create", "object": f"{me}.h", "type": "EdgedHand"},
             {"op": "create", "object": f"{me}.s", "type": "Sensor"},
@@ -40,11 +41,14 @@ def api_schema(server):
         yield schemathesis.openapi.from_url(f"{server.http}/openapi.json")
 
 
+@pytest.mark.fuzz
 def test_every_rest_operation_answers_as_documented(api_schema):
     operations = [result.ok() for result in api_schema.get_all_operations()]
     assert len(operations) >= 8
+    examples = -(-CASES // len(operations))  # CASES calls in all, at least
     for operation in operations:
-        @settings(max_examples=EXAMPLES, deadline=None, database=None,
+        @seed(CASES)
+        @settings(max_examples=examples, deadline=None, database=None,
                   suppress_health_check=list(HealthCheck))
         @given(case=operation.as_strategy())
         def call(case) -> None:

@@ -19,7 +19,7 @@ import pytest
 
 from server.cluster.bus import PLACE, Bus
 from server.cluster.leases import lease_holder
-from tests.conftest import ROOT, VP_SERVER, RunningServer, free_port, start_server
+from tests.conftest import ROOT, VP_SERVER, WAIT_SECONDS, RunningServer, free_port, start_server
 
 NATS_SERVER = "/usr/sbin/nats-server"
 
@@ -95,7 +95,7 @@ def start_worker(url: str, name: str, state: Path, log: Path,
                                 "--worker-name", name, "--state-dir", str(state), "--no-demo",
                                 "--log-level", "warning", *extra], cwd=ROOT, stdout=output,
                                stderr=output, start_new_session=True)
-    deadline = time.monotonic() + 30
+    deadline = time.monotonic() + WAIT_SECONDS
     while name not in workers(url):
         if process.poll() is not None or time.monotonic() > deadline:
             raise RuntimeError(f"worker {name} did not start: {log.read_text()[-2000:]}")
@@ -195,7 +195,7 @@ http {{
     process = subprocess.Popen([NGINX, "-c", str(config), "-p", str(folder)],
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        deadline = time.monotonic() + 10
+        deadline = time.monotonic() + WAIT_SECONDS
         while True:
             try:
                 socket.create_connection(("127.0.0.1", port), timeout=0.2).close()

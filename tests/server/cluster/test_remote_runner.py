@@ -12,6 +12,7 @@ from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect as ws_connect
 
 from tests.server.cluster.conftest import Cluster, holder, running_bus
+from tests.conftest import WAIT_SECONDS
 
 TRY_AGAIN_LATER = 1013
 
@@ -28,7 +29,7 @@ def small_cluster(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Cluster]
 
 
 def _first_messages(socket: Any, count: int) -> list[dict[str, Any]]:
-    return [json.loads(socket.recv(timeout=20)) for _ in range(count)]
+    return [json.loads(socket.recv(timeout=WAIT_SECONDS)) for _ in range(count)]
 
 
 def test_a_scene_no_worker_has_room_for_is_refused_at_once_naming_the_limit(small_cluster, scene_name):
@@ -43,11 +44,11 @@ def test_a_scene_no_worker_has_room_for_is_refused_at_once_naming_the_limit(smal
             # well within the 30 s a scene waits for a worker that may still come
             [refusal] = _first_messages(refused, 1)
             with pytest.raises(ConnectionClosed) as closed:
-                refused.recv(timeout=20)
+                refused.recv(timeout=WAIT_SECONDS)
         ball = json.dumps({"op": "create", "id": 1, "object": f"{hello['client']}.ball",
                            "type": "Ball"})
         first.send(ball)  # the scenes already placed carry on
-        answer = next(m for m in map(json.loads, iter(lambda: first.recv(timeout=20), None))
+        answer = next(m for m in map(json.loads, iter(lambda: first.recv(timeout=WAIT_SECONDS), None))
                       if m.get("id") == 1)
     assert refusal["op"] == "error" and refusal["code"] == "limit_exceeded"
     assert refusal["details"] == {"limit": "scenes", "value": 1, "flag": "--limit scenes=N",

@@ -17,7 +17,7 @@ from websockets.sync.client import connect as ws_connect
 
 import virtual_prosthetics as vp
 
-from tests.conftest import eventually
+from tests.conftest import WAIT_SECONDS, eventually
 from server.cluster.leases import worker_lives
 from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus, start_worker
 
@@ -43,7 +43,7 @@ def test_a_burst_of_new_scenes_stops_at_the_cores_the_workers_may_use(small_core
 
     def first_message(k: int) -> dict[str, Any]:
         with ws_connect(f"{gateway.ws}/ws?scene={scene_name}{k}") as socket:
-            return json.loads(socket.recv(timeout=30))
+            return json.loads(socket.recv(timeout=WAIT_SECONDS))
 
     with ThreadPoolExecutor(10) as pool:
         firsts = list(pool.map(first_message, range(10)))
@@ -68,7 +68,7 @@ def test_a_killed_workers_scene_comes_back_on_the_other_with_its_objects(cluster
     try:
         first = holder(cluster.url, scene_name)
         cluster.kill_worker(first)
-        eventually(lambda: holder(cluster.url, scene_name) not in (None, first), timeout=30)
+        eventually(lambda: holder(cluster.url, scene_name) not in (None, first))
         refusals = _move_until_seen(script, viewer, ball)  # both reconnect by themselves
         # "failed; reconnect" at most: not unknown_object (the ball came back from the journal)
         assert {getattr(error, "code", "lost") for error in refusals} <= {"unknown_scene", "lost"}

@@ -16,7 +16,7 @@ import virtual_prosthetics as vp
 from server.web.access import AccessPolicy
 from server.errors import Forbidden
 
-from ...conftest import start_server, stop_server
+from ...conftest import WAIT_SECONDS, start_server, stop_server
 
 CONTROL, VIEW = "s3cret-control", "s3cret-view"
 
@@ -35,7 +35,7 @@ def locked(tmp_path_factory):
 def first_message(server, query, origin=None):
     headers = {"Origin": origin} if origin else {}
     with connect(f"{server.ws}/ws?{query}", additional_headers=headers) as ws:
-        return json.loads(ws.recv(timeout=10))
+        return json.loads(ws.recv(timeout=WAIT_SECONDS))
 
 
 @pytest.mark.parametrize("query, allowed", [
@@ -78,11 +78,11 @@ def test_rest_changes_need_the_control_token(locked):
     request = urllib.request.Request(f"{locked.http}/api/assets?token={VIEW}", data=b"glb?",
                                      method="POST")
     with pytest.raises(urllib.error.HTTPError) as refused:
-        urllib.request.urlopen(request, timeout=10)
+        urllib.request.urlopen(request, timeout=WAIT_SECONDS)
     assert refused.value.code == 403 and json.loads(refused.value.read())["code"] == "forbidden"
     request.add_header("Authorization", f"Bearer {CONTROL}")
     with pytest.raises(urllib.error.HTTPError) as judged:  # let in: then judged as a file
-        urllib.request.urlopen(request, timeout=10)
+        urllib.request.urlopen(request, timeout=WAIT_SECONDS)
     assert judged.value.code == 400
 
 
@@ -127,13 +127,13 @@ def test_rest_reads_need_the_view_token_but_health_does_not(locked):
     assert locked.get(f"/api/scenes?token={VIEW}")
     request = urllib.request.Request(f"{locked.http}/api/metrics",
                                      headers={"Authorization": f"Bearer {CONTROL}"})
-    with urllib.request.urlopen(request, timeout=10) as answer:
+    with urllib.request.urlopen(request, timeout=WAIT_SECONDS) as answer:
         assert "scenes" in json.loads(answer.read())
 
 
 def raw(server, method: str, path: str, headers: dict, body: bytes | None = None):
     """Status and JSON body of a request sent exactly so (Host included)."""
-    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=10)
+    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=WAIT_SECONDS)
     try:
         connection.putrequest(method, path, skip_host=True)
         for name, value in {"Content-Length": str(len(body or b"")), **headers}.items():
@@ -171,9 +171,9 @@ def test_a_name_the_server_does_not_answer_to_is_refused_dns_rebinding(locked):
 
 def test_resume_keys_never_reach_the_log(locked):
     with connect(f"{locked.ws}/ws?scene=resumed&token={CONTROL}") as ws:
-        key = json.loads(ws.recv(timeout=10))["resume"]
+        key = json.loads(ws.recv(timeout=WAIT_SECONDS))["resume"]
     with connect(f"{locked.ws}/ws?scene=resumed&token={CONTROL}&resume={key}") as ws:
-        assert json.loads(ws.recv(timeout=10))["resume"] == key  # the same client again
+        assert json.loads(ws.recv(timeout=WAIT_SECONDS))["resume"] == key  # the same client again
     text = locked.log.read_text()
     assert "resume=***" in text and key not in text and key.split(":")[1] not in text
 
@@ -189,7 +189,7 @@ def test_loopback_pages_are_allowed_only_by_a_server_on_loopback(address, allowe
 
 
 def answer_headers(server, method: str, path: str, headers: dict) -> tuple[int, dict]:
-    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=10)
+    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=WAIT_SECONDS)
     try:
         connection.request(method, path, headers=headers)
         answer = connection.getresponse()

@@ -13,7 +13,7 @@ import pytest
 import trimesh
 
 import virtual_prosthetics as vp
-from tests.conftest import eventually, start_server, stop_server
+from tests.conftest import WAIT_SECONDS, eventually, start_server, stop_server
 from tests.features.fuzz.gltf_files import glb_parts, pack_glb, peak_megabytes
 
 SMALL = ["--limit", "assetBytes=200000", "--limit", "assetTriangles=5000", "--limit", "assets=3"]
@@ -29,7 +29,7 @@ def small_server():
 
 def request(server, method: str, path: str, body: bytes | None = None) -> tuple[int, dict, bytes]:
     """The raw status, headers and body (the path is sent exactly as given)."""
-    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=30)
+    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=WAIT_SECONDS)
     try:
         connection.request(method, path, body=body,
                            headers={"Content-Type": "application/octet-stream"})

@@ -8,7 +8,7 @@ import urllib.error
 import pytest
 from websockets.sync.client import connect
 
-from tests.conftest import eventually, start_server, stop_server
+from tests.conftest import WAIT_SECONDS, eventually, start_server, stop_server
 
 
 @pytest.fixture(scope="module")
@@ -22,7 +22,7 @@ def strict():
 
 
 def raw(server, data=b""):
-    conn = socket.create_connection(("127.0.0.1", server.port), timeout=10)
+    conn = socket.create_connection(("127.0.0.1", server.port), timeout=WAIT_SECONDS)
     if data:
         conn.sendall(data)
     return conn
@@ -89,9 +89,9 @@ def test_a_silent_websocket_peer_is_closed_by_ping_timeout(strict):
 
 def test_scenes_without_clients_are_removed_after_the_grace_period(strict):
     with connect(f"{strict.ws}/ws?scene=passing") as ws:
-        json.loads(ws.recv(timeout=10))
+        json.loads(ws.recv(timeout=WAIT_SECONDS))
     assert "passing" in [s["name"] for s in strict.get("/api/scenes")]
-    deadline = time.monotonic() + 10
+    deadline = time.monotonic() + WAIT_SECONDS
     while "passing" in [s["name"] for s in strict.get("/api/scenes")]:
         assert time.monotonic() < deadline
         time.sleep(0.2)

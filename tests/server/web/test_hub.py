@@ -17,7 +17,7 @@ from server.core.protocol.scene_document import encode_document, export_scene
 
 from server.web.hub import Hubs, clients_objects
 from server.web.state_dir import StateDir
-from tests.conftest import eventually, start_server, stop_server
+from tests.conftest import WAIT_SECONDS, eventually, start_server, stop_server
 from tests.server.web.test_state_dir import saved_scene
 
 
@@ -57,10 +57,10 @@ def test_the_owners_of_a_restored_scene_are_never_handed_out_again(tmp_path):
     try:
         for scene, owner in (("lab", "c1001"), ("hall", "c1")):
             with connect(f"{server.ws}/ws?scene={scene}") as ws:
-                me = json.loads(ws.recv(timeout=10))["client"]
+                me = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
                 assert int(me[1:]) > 1001  # a stranger is nobody the scene knows
                 ws.send(json.dumps({"op": "delete", "object": f"{owner}.arm", "id": 1}))
-                while (answer := json.loads(ws.recv(timeout=10)))["op"] not in ("ok", "error"):
+                while (answer := json.loads(ws.recv(timeout=WAIT_SECONDS)))["op"] not in ("ok", "error"):
                     pass
                 assert answer["code"] == "forbidden" and owner in answer["message"]
             assert [n["id"] for n in server.nodes(scene)] == [f"{owner}.arm"]
@@ -82,7 +82,7 @@ def test_a_failed_demo_scene_starts_again_by_itself_and_rest_answers_meanwhile()
             seen.add(figures["state"])
             assert "default" in listed
             return figures["state"] == "running" and figures["pid"] != pid
-        eventually(back, 15)
+        eventually(back)
         assert "failed" in seen or "starting" in seen
         assert len(server.robots("default")) == 6  # the demo's hands are back
         assert server.get("/api/health")["status"] == "ok"

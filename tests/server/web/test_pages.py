@@ -5,12 +5,13 @@ from __future__ import annotations
 import http.client
 
 import pytest
+from tests.conftest import WAIT_SECONDS
 
 
 
 def raw_get(server, path):
     """GET a path exactly as written (no client-side normalisation of '..')."""
-    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=10)
+    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=WAIT_SECONDS)
     connection.request("GET", path)
     response = connection.getresponse()
     return response.status, response.getheader("content-type"), response.read()

@@ -10,6 +10,7 @@ import urllib.request
 import pytest
 from mcap.reader import make_reader
 from websockets.sync.client import connect
+from tests.conftest import WAIT_SECONDS
 
 from .ws_requests import request_all, wait_ticks
 
@@ -28,7 +29,7 @@ def _send_and_collect(ws, text, frames):
     ws.send(text)
     sent = json.loads(text)["id"]
     while True:
-        message = json.loads(ws.recv(timeout=10))
+        message = json.loads(ws.recv(timeout=WAIT_SECONDS))
         if message["op"] == "frame":
             frames.append(message)
         elif message["op"] in ("ok", "error") and message.get("id") == sent:
@@ -52,7 +53,7 @@ def _scene_with_two_hands_and_a_watched_sensor(ws, client):
 
 def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        client = json.loads(ws.recv(timeout=10))["client"]
+        client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
         left, right, sensor = _scene_with_two_hands_and_a_watched_sensor(ws, client)
         wait_ticks(ws)
         status, started = server.post(f"/api/scenes/{scene_name}/recordings")
@@ -71,7 +72,7 @@ def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server,
     listed = {r["id"]: r for r in server.get("/api/recordings")}[started["id"]]
     assert listed["state"] == "stopped" and listed["scene"] == scene_name
     assert listed["messages"]["/vp/requests"] == len(texts)
-    with urllib.request.urlopen(f"{server.http}/api/recordings/{started['id']}", timeout=30) as answer:
+    with urllib.request.urlopen(f"{server.http}/api/recordings/{started['id']}", timeout=WAIT_SECONDS) as answer:
         data = answer.read()
     assert len(data) == listed["bytes"]
     by_topic = {}

@@ -15,7 +15,7 @@ from websockets.sync.client import connect
 from server.core.protocol.operations import Operations
 from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene
-from tests.conftest import crash_server, eventually, start_server, stop_server
+from tests.conftest import WAIT_SECONDS, crash_server, eventually, start_server, stop_server
 
 from .ws_requests import request_all, wait_ticks
 
@@ -27,7 +27,7 @@ def test_health(server):
 
 def test_robot_report_lists_motors_in_order(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        client = json.loads(ws.recv(timeout=10))["client"]
+        client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
         request_all(ws, [
             {"op": "create", "object": f"{client}.1", "type": "EdgedHand", "args": [False]},
             {"op": "call", "object": f"{client}.1", "method": "setPosition", "args": [1, 2, 3]},
@@ -54,7 +54,7 @@ def test_robot_report_lists_motors_in_order(server, scene_name):
 
 def test_infinite_limits_are_strings_in_rest(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        client = json.loads(ws.recv(timeout=10))["client"]
+        client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
         request_all(ws, [
             {"op": "create", "object": f"{client}.1", "type": "Robot"},
             {"op": "create", "object": f"{client}.2", "type": "MotorY"},
@@ -82,13 +82,13 @@ def test_unknown_things_are_structured_404s(server, path, code):
 
 def test_a_robot_downloads_as_a_urdf_zip_and_a_glb(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        client = json.loads(ws.recv(timeout=10))["client"]
+        client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
         hand = f"{client}.1"
         request_all(ws, [{"op": "create", "object": hand, "type": "AnthroHand", "args": [True]}])
         for kind, media, check in (("urdf", "application/zip", lambda b: b[:2] == b"PK"),
                                    ("glb", "model/gltf-binary", lambda b: b[:4] == b"glTF")):
             url = f"{server.http}/api/scenes/{scene_name}/robots/{hand}/{kind}"
-            with urllib.request.urlopen(url, timeout=30) as answer:
+            with urllib.request.urlopen(url, timeout=WAIT_SECONDS) as answer:
                 body = answer.read()
                 assert answer.headers["Content-Type"] == media and check(body)
                 suffix = "zip" if kind == "urdf" else "glb"
@@ -97,7 +97,7 @@ def test_a_robot_downloads_as_a_urdf_zip_and_a_glb(server, scene_name):
 
 def test_sensor_readings_and_contacts(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        client = json.loads(ws.recv(timeout=10))["client"]
+        client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
         finger, sensor, box = (f"{client}.{name}" for name in ("finger", "sensor", "box"))
         request_all(ws, [
             {"op": "create", "object": finger, "type": "EdgedFinger"},
@@ -133,11 +133,11 @@ def test_openapi_documents_the_routes(server):
 
 def test_metrics_report_ticks_of_a_watched_scene_and_do_not_wake_a_sleeping_one(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as ws:
-        ws.recv(timeout=10)
+        ws.recv(timeout=WAIT_SECONDS)
         first = server.get("/api/metrics")["scenes"][scene_name]["ticks"]
         time.sleep(0.2)
         assert server.get("/api/metrics")["scenes"][scene_name]["ticks"] > first
-    eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["asleep"], timeout=10)
+    eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["asleep"])
     asleep = server.get("/api/metrics")["scenes"][scene_name]
     time.sleep(0.2)
     again = server.get("/api/metrics")["scenes"][scene_name]
@@ -146,7 +146,7 @@ def test_metrics_report_ticks_of_a_watched_scene_and_do_not_wake_a_sleeping_one(
 
 def test_metrics_give_recent_tick_percentiles_and_request_rates(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        client = json.loads(ws.recv(timeout=10))["client"]
+        client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
         request_all(ws, [{"op": "create", "object": f"{client}.r", "type": "Robot"}]
                     + [{"op": "call", "object": f"{client}.r", "method": "setPosition",
                         "args": [[n / 100, 0, 0]]} for n in range(200)])
@@ -160,9 +160,9 @@ def test_metrics_give_recent_tick_percentiles_and_request_rates(server, scene_na
 
 def test_metrics_in_prometheus_text(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as ws:
-        ws.recv(timeout=10)
+        ws.recv(timeout=WAIT_SECONDS)
         eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["ticks"] > 0)
-        with urllib.request.urlopen(f"{server.http}/api/metrics?format=prometheus", timeout=10) as response:
+        with urllib.request.urlopen(f"{server.http}/api/metrics?format=prometheus", timeout=WAIT_SECONDS) as response:
             assert response.headers["Content-Type"].startswith("text/plain; version=0.0.4")
             lines = response.read().decode().splitlines()
     ticks = next(line for line in lines if line.startswith(f'vp_ticks_total{{scene="{scene_name}"}}'))
@@ -176,7 +176,7 @@ def test_metrics_in_prometheus_text(server, scene_name):
 
 def test_robots_with_unlimited_motors_report_and_impossible_limits_are_refused(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        me = json.loads(ws.recv(timeout=10))["client"]
+        me = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
         request_all(ws, [
             {"op": "create", "object": f"{me}.1", "type": "Robot"},
             {"op": "create", "object": f"{me}.2", "type": "MotorZ"},
@@ -186,7 +186,7 @@ def test_robots_with_unlimited_motors_report_and_impossible_limits_are_refused(s
         ])
         ws.send(json.dumps({"op": "create", "id": 5, "object": f"{me}.3", "type": "MotorZ",
                             "args": ["Infinity", "Infinity"]}))
-        while (answer := json.loads(ws.recv(timeout=10)))["op"] not in ("ok", "error"):
+        while (answer := json.loads(ws.recv(timeout=WAIT_SECONDS)))["op"] not in ("ok", "error"):
             pass
         assert answer["code"] == "out_of_range" and "no finite angle" in answer["message"]
         [motor] = server.get(f"/api/scenes/{scene_name}/robots/{me}.1")["motors"]
@@ -200,7 +200,7 @@ def test_deeply_nested_json_to_import_is_a_structured_error(server, scene_name):
     request = urllib.request.Request(f"{server.http}/api/scenes/{scene_name}/import",
                                      data=b"[" * 200_000 + b"]" * 200_000, method="POST")
     with pytest.raises(urllib.error.HTTPError) as refused:
-        urllib.request.urlopen(request, timeout=30)
+        urllib.request.urlopen(request, timeout=WAIT_SECONDS)
     assert refused.value.code == 400 and refused.value.headers["Content-Type"] == "application/json"
     assert json.loads(refused.value.read())["code"] == "bad_json"
     assert scene_name not in [s["name"] for s in server.get("/api/scenes")]  # none left behind
@@ -238,7 +238,7 @@ def test_a_large_import_is_read_and_checked_in_its_scenes_process_not_the_server
 
 def test_a_stopped_scene_is_marked_as_such_and_holds_up_no_list(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
-        json.loads(ws.recv(timeout=10))
+        json.loads(ws.recv(timeout=WAIT_SECONDS))
         pid = server.get("/api/metrics")["scenes"][scene_name]["pid"]
         os.kill(pid, signal.SIGSTOP)
         try:
@@ -247,7 +247,7 @@ def test_a_stopped_scene_is_marked_as_such_and_holds_up_no_list(server, scene_na
                 listed = {s["name"]: s for s in server.get("/api/scenes")}
                 assert figures["default"]["state"] == "running"
                 return figures[scene_name]["state"] == listed[scene_name]["state"] == "unresponsive"
-            eventually(marked, 10)
+            eventually(marked)
             health = server.get("/api/health")
             assert health["status"] == "degraded"
             assert any(f"scene {scene_name} has sent nothing" in p for p in health["problems"])
@@ -264,7 +264,7 @@ def test_a_scene_working_through_a_backlog_still_gives_its_figures_at_once(scene
             for _ in range(3):  # each may have 4 MiB of text waiting on the scene
                 ws = stack.enter_context(connect(f"{server.ws}/ws?scene={scene_name}",
                                                  max_size=None, close_timeout=0.5))
-                me = json.loads(ws.recv(timeout=10))["client"]
+                me = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
                 request_all(ws, [{"op": "create", "object": f"{me}.h", "type": "EdgedHand"}])
                 text = json.dumps([{"op": "call", "object": f"{me}.h", "method": "flexFingers",
                                     "args": [k / 1000]} for k in range(1000)])

@@ -14,7 +14,7 @@ from server.core.physics.assets import AssetLibrary
 from server.core.kit.limits import DEFAULT
 from server.web.runner import SceneRunner
 from server.web.scene_store import SceneStore
-from tests.conftest import start_server, stop_server, unwritable
+from tests.conftest import WAIT_SECONDS, start_server, stop_server, unwritable
 
 from .test_socket import open_client
 from .ws_requests import next_message
@@ -30,7 +30,7 @@ def test_a_flooded_scene_does_not_stop_another_scenes_frames(server, scene_name)
     def watch():
         while len(seen) < 10_000:
             try:
-                message = json.loads(watcher.recv(timeout=5))
+                message = json.loads(watcher.recv(timeout=WAIT_SECONDS))
             except Exception:
                 return
             if message["op"] == "frame":
@@ -45,7 +45,7 @@ def test_a_flooded_scene_does_not_stop_another_scenes_frames(server, scene_name)
             {"op": "create", "object": f"{me}.{k}", "type": "EdgedHand"} for k in range(100)]}))
         answer = next_message(flooder, "ok", timeout=60)
         answered.set()
-        reader.join(timeout=30)
+        reader.join(timeout=WAIT_SECONDS)
         assert answer["id"] == 1 and len(server.get(f"/api/scenes/{scene_name}f/robots")) == 100
     during = [seq for seq, done in seen if not done]
     # while the flooded scene applied 7 300 objects, the other scene kept sending frames
@@ -64,7 +64,7 @@ def test_a_scene_whose_process_dies_takes_no_other_scene_with_it(server, scene_n
         farewell = next_message(doomed, "error")
         assert farewell["code"] == "unknown_scene" and "failed" in farewell["message"]
         with pytest.raises(ConnectionClosed):
-            doomed.recv(timeout=10)
+            doomed.recv(timeout=WAIT_SECONDS)
         seqs = [next_message(other, "frame")["seq"] for _ in range(5)]
         assert seqs == sorted(set(seqs))
         assert [n["id"] for n in server.nodes(f"{scene_name}o")] == [
@@ -94,8 +94,8 @@ def test_scene_processes_end_when_the_server_is_killed(scene_name):
             pids = [s["pid"] for s in server.get("/api/metrics")["scenes"].values()]
             assert len(pids) == 2 and all(_running(pid) for pid in pids)
             server.process.kill()  # no goodbye: as an out-of-memory kill would end it
-            server.process.wait(timeout=10)
-            deadline = time.monotonic() + 15
+            server.process.wait(timeout=WAIT_SECONDS)
+            deadline = time.monotonic() + WAIT_SECONDS
             while any(_running(pid) for pid in pids) and time.monotonic() < deadline:
                 time.sleep(0.1)
             assert not any(_running(pid) for pid in pids), "scene processes outlived the server"

@@ -17,7 +17,7 @@ from server.core.scene.scene import Scene
 from server.core.protocol.session import Session
 from server.web.saving import SceneSaver
 from server.web.scene_store import SceneStore
-from tests.conftest import crash_server, eventually, start_server, stop_server, unwritable
+from tests.conftest import WAIT_SECONDS, crash_server, eventually, start_server, stop_server, unwritable
 
 
 @pytest.fixture
@@ -124,11 +124,11 @@ def test_a_change_answered_ok_survives_a_kill_9_right_after(tmp_path, scene_name
         server = start_server(*options)
         try:
             with connect(f"{server.ws}/ws?scene={scene_name}&keep=true") as ws:
-                client = json.loads(ws.recv(timeout=10))["client"]
+                client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
                 for k in (1, 2):
                     ws.send(json.dumps({"op": "create", "object": f"{client}.{k}",
                                         "type": "Box", "id": k}))
-                    while json.loads(ws.recv(timeout=10))["op"] != "ok":
+                    while json.loads(ws.recv(timeout=WAIT_SECONDS))["op"] != "ok":
                         pass
                     time.sleep(0.2 if k == 1 else 0)
                 crash_server(server)  # within a millisecond of the second ok

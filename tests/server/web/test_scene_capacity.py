@@ -5,7 +5,7 @@ import json
 from websockets.sync.client import connect
 
 from server.web.scene_capacity import FEWEST, MOST, SCENE_BYTES, machine_memory, scenes_held
-from tests.conftest import start_server, stop_server
+from tests.conftest import WAIT_SECONDS, start_server, stop_server
 
 
 def test_scenes_held_is_a_share_of_memory_at_an_idle_scene_each_within_bounds():
@@ -32,6 +32,6 @@ def test_the_server_says_its_default_in_hello_and_a_flag_still_changes_it():
         server = start_server("--no-demo", *flags)
         try:
             with connect(f"{server.ws}/ws?scene=capacity") as ws:
-                assert json.loads(ws.recv(timeout=10))["limits"]["scenes"] == expected
+                assert json.loads(ws.recv(timeout=WAIT_SECONDS))["limits"]["scenes"] == expected
         finally:
             stop_server(server)

@@ -10,15 +10,15 @@ from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
 from server.core.protocol.messages import check_server_message
-from tests.conftest import eventually, start_server, stop_server
+from tests.conftest import WAIT_SECONDS, eventually, start_server, stop_server
 
 from .ws_requests import next_message, request_all, wait_ticks
 
 
 def open_client(server, scene, role="controller"):
     ws = connect(f"{server.ws}/ws?scene={scene}&role={role}", max_size=None).__enter__()
-    hello = json.loads(ws.recv(timeout=10))
-    snapshot = json.loads(ws.recv(timeout=10))
+    hello = json.loads(ws.recv(timeout=WAIT_SECONDS))
+    snapshot = json.loads(ws.recv(timeout=WAIT_SECONDS))
     check_server_message(hello)
     check_server_message(snapshot)
     return ws, hello, snapshot
@@ -87,7 +87,7 @@ def test_disconnecting_removes_what_the_client_made(server, scene_name):
         removed = next_message(watcher, "removed")
         assert sorted(removed["ids"]) == sorted(n["id"] for n in added["nodes"])
         assert f"{me}.1" in removed["ids"] and len(removed["ids"]) == 77
-    deadline = time.monotonic() + 5
+    deadline = time.monotonic() + WAIT_SECONDS
     while server.get(f"/api/scenes/{scene_name}")["objects"] and time.monotonic() < deadline:
         time.sleep(0.05)
     assert server.get(f"/api/scenes/{scene_name}")["objects"] == 0
@@ -111,7 +111,7 @@ def test_bad_role_scene_name_or_engine_is_refused_with_a_reason(server):
     for query, word in (("scene=ok&role=admin", "role"), ("scene=bad%20name", "scene"),
                         ("scene=ok&engine=cannon", "pybullet")):
         with connect(f"{server.ws}/ws?{query}") as ws:
-            error = json.loads(ws.recv(timeout=10))
+            error = json.loads(ws.recv(timeout=WAIT_SECONDS))
             assert error["op"] == "error" and error["code"] == "out_of_range"
             assert word in error["message"]
     ws, hello, _ = open_client(server, "ok")
@@ -165,7 +165,7 @@ def test_messages_are_sent_uncompressed_even_when_the_client_offers_deflate(serv
     # compressing on the loop every scene shares would hold every other scene's frames
     with connect(f"{server.ws}/ws?scene={scene_name}", compression="deflate") as ws:
         assert "Sec-WebSocket-Extensions" not in ws.response.headers
-        assert json.loads(ws.recv(timeout=10))["op"] == "hello"
+        assert json.loads(ws.recv(timeout=WAIT_SECONDS))["op"] == "hello"
 
 
 def test_clients_change_only_their_own_objects_unless_shared(server, scene_name):
@@ -209,7 +209,7 @@ def test_a_client_that_comes_back_in_time_is_itself_again(server, scene_name):
     forged, hello3, _ = open_client(server, scene_name + f"&resume={me}:{'0' * 32}")
     with forged:
         assert hello3["client"] != me
-    deadline = time.monotonic() + 5
+    deadline = time.monotonic() + WAIT_SECONDS
     while f"{me}.1" in [n["id"] for n in server.nodes(scene_name)]:
         assert time.monotonic() < deadline, "what a client made goes after the grace period"
         time.sleep(0.1)
@@ -233,8 +233,8 @@ def test_with_the_default_grace_a_script_robots_go_ten_seconds_after_it_leaves()
         left = time.monotonic()
         time.sleep(8)
         assert [r["id"] for r in server.robots("default")] == [hand.id]  # still in its grace
-        while server.robots("default"):
-            assert time.monotonic() - left < 13, "the robot did not go 10 s after its script left"
+        while server.robots("default"):  # gone once the grace is over (a loaded machine
+            assert time.monotonic() - left < 10 + WAIT_SECONDS, "the robot stayed"  # may lag)
             time.sleep(0.1)
         assert time.monotonic() - left >= 10
     finally:
@@ -248,7 +248,7 @@ def test_a_connection_its_client_replaced_is_closed_with_a_reason_and_stays_clos
         with again:
             with pytest.raises(ConnectionClosed) as closed:
                 while True:
-                    first.recv(timeout=10)
+                    first.recv(timeout=WAIT_SECONDS)
             assert closed.value.rcvd.code == 4001 and "replaced" in closed.value.rcvd.reason
             assert hello2["client"] == hello["client"]
 
@@ -257,11 +257,11 @@ def test_a_python_client_replaced_elsewhere_does_not_fight_back(server, scene_na
     with vp.connect(server.ws, scene=scene_name) as client:
         resume = client.connection.core.resume
         with connect(f"{server.ws}/ws?scene={scene_name}&resume={resume}") as thief:
-            json.loads(thief.recv(timeout=10))
+            json.loads(thief.recv(timeout=WAIT_SECONDS))
             eventually(lambda: client.connection.closed is not None)
             assert "replaced" in client.connection.closed
             thief.send(json.dumps({"op": "ping", "id": 1}))
-            while json.loads(thief.recv(timeout=10))["op"] != "ok":
+            while json.loads(thief.recv(timeout=WAIT_SECONDS))["op"] != "ok":
                 pass  # the newer connection is still the client's
 
 

@@ -12,6 +12,7 @@ from server.core.scene.scene import Scene
 from server.errors import UnknownObject
 from server.web.rest import _robot
 from server.web.worker import SceneWorker
+from tests.conftest import WAIT_SECONDS
 
 
 @pytest.fixture
@@ -23,7 +24,7 @@ def worker():
     thread.start()
     yield server_end
     server_end.send([("stop",)])
-    thread.join(timeout=10)
+    thread.join(timeout=WAIT_SECONDS)
     assert not thread.is_alive()
     scene.close()
 

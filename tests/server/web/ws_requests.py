@@ -6,6 +6,8 @@ import json
 from itertools import count
 from typing import Any
 
+from tests.conftest import WAIT_SECONDS
+
 _ids = count(1_000_000)
 
 
@@ -17,14 +19,14 @@ def request_all(ws: Any, ops: list[dict[str, Any]]) -> list[dict[str, Any]]:
         ws.send(json.dumps({**op, "id": ids[-1]}))
     answers: dict[int, dict[str, Any]] = {}
     while len(answers) < len(ids):
-        message = json.loads(ws.recv(timeout=10))
+        message = json.loads(ws.recv(timeout=WAIT_SECONDS))
         if message["op"] in ("ok", "error") and message["id"] in ids:
             assert message["op"] == "ok", message
             answers[message["id"]] = message
     return [answers[i] for i in ids]
 
 
-def next_message(ws: Any, op: str, timeout: float = 10) -> dict[str, Any]:
+def next_message(ws: Any, op: str, timeout: float = WAIT_SECONDS) -> dict[str, Any]:
     """The next message with this op (others are skipped)."""
     while True:
         message = json.loads(ws.recv(timeout=timeout))
