@@ -10,6 +10,7 @@ import time
 from pathlib import Path
 
 import pytest
+
 from tests.conftest import WAIT_SECONDS
 
 CLIENT = Path(__file__).resolve().parents[3] / "clients" / "js"

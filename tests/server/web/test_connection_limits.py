@@ -49,7 +49,7 @@ def test_a_connection_that_sends_nothing_is_closed_with_408(strict):
         started = time.monotonic()
         assert read_all(idle).startswith(b"HTTP/1.1 408")
         assert read_all(slow).startswith(b"HTTP/1.1 408")
-        assert time.monotonic() - started < 5
+        assert 1 <= time.monotonic() - started < WAIT_SECONDS  # after headerSeconds
     assert strict.get("/api/health")["status"] == "ok"
 
 
@@ -76,13 +76,15 @@ def test_an_upgrade_line_too_long_for_the_handshake_gets_431(strict):
 
 
 def test_a_silent_websocket_peer_is_closed_by_ping_timeout(strict):
-    head = ("GET /ws?scene=silent HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\n"
+    head = ("GET /ws?scene=silent HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\n"
             "Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
             "Sec-WebSocket-Version: 13\r\n\r\n")
     with raw(strict, head.encode()) as conn:  # completes the handshake, never answers a ping
         started = time.monotonic()
-        read_all(conn)  # frames and pings arrive, then the server closes
-        assert time.monotonic() - started < 8
+        received = read_all(conn)  # frames and pings arrive, then the server closes
+        assert received.startswith(b"HTTP/1.1 101")
+        assert b"\x89" in received  # a ping frame (opcode 9, final), never answered
+        assert 1 <= time.monotonic() - started < WAIT_SECONDS  # after a ping unanswered
     eventually(lambda: {s["name"]: s["clients"] for s in strict.get("/api/scenes")}
                .get("silent", 0) == 0)
 

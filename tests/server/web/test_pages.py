@@ -5,6 +5,7 @@ from __future__ import annotations
 import http.client
 
 import pytest
+
 from tests.conftest import WAIT_SECONDS
 
 
