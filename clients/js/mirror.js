@@ -42,7 +42,7 @@ export class Mirror {
 				}
 				this.camera = message.camera;
 				this.physics = message.physics ?? this.physics;
-				this.forces.clear();
+				this.forces = new Map(Object.entries(message.forces ?? {}));   // pressing now (frames: changes)
 				for (const node of message.nodes) {
 					if (this.nodes.has(node.id)) this.change(node.id, node);
 					else this.add([node]);

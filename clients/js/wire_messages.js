@@ -66,6 +66,7 @@
  * @property {Object<string, *>} physics
  * @property {Array<Object<string, *>>} nodes
  * @property {Array<Array<string>>} contacts
+ * @property {Object<string, number>} [forces]
  */
 
 /**

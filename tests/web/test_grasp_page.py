@@ -3,6 +3,7 @@ an EdgedHand comes down over a ball on a table and closes on it, and a viewer sh
 
 from __future__ import annotations
 
+import colorsys
 import time
 
 from tests.conftest import WAIT_SECONDS
@@ -56,5 +57,9 @@ def test_the_grasp_page_closes_the_hand_on_the_ball_and_a_viewer_shows_it(
 
 
 def _shows_orange(picture: Picture) -> bool:
-    return any(r > 200 and 120 < g < 190 and b < 60
-               for r, g, b in picture.image.get_flattened_data())
+    """Some pixels of the ball's orange, lit or shaded (at every drawing level): its hue,
+    saturated (the tan table is not), not dark."""
+    def orange(r: int, g: int, b: int) -> bool:
+        hue, saturation, value = colorsys.rgb_to_hsv(r / 255, g / 255, b / 255)
+        return 20 / 360 < hue < 45 / 360 and saturation > 0.8 and value > 0.4
+    return sum(orange(*pixel) for pixel in picture.image.get_flattened_data()) >= 20

@@ -48,7 +48,7 @@ class Mirror:
             self.nodes.clear()
             self.camera = message["camera"]
             self.physics = message["physics"]
-            self.forces.clear()
+            self.forces = dict(message.get("forces", {}))  # pressing now (frames: changes)
             self._add(message["nodes"])
             self.contacts = {tuple(pair) for pair in message["contacts"]}  # type: ignore[misc]
             self._clock(message)

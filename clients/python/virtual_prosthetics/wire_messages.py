@@ -67,6 +67,7 @@ class Snapshot(TypedDict):
     physics: dict[str, Any]
     nodes: list[dict[str, Any]]
     contacts: list[list[str]]
+    forces: NotRequired[dict[str, float]]
 
 
 class Ok(TypedDict):

@@ -168,6 +168,11 @@ class SceneBodies:
         self._forces_sent = {key: force for key, force in now.items() if force}
         return changed
 
+    def forces_told(self) -> dict[str, float]:
+        """Newtons on each pressed part as the frames sent so far have told them: what a
+        snapshot gives a newcomer, so that a force that stopped changing is still known."""
+        return dict(self._forces_sent)
+
     def peak_force(self) -> float:
         """The most newtons pressing on any one part at the last tick (0 in kinematic mode)."""
         return max(self.physics.forces.values(), default=0.0)

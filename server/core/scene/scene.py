@@ -298,11 +298,16 @@ class Scene:
         self.revision += 1
 
     def snapshot(self) -> Snapshot:
-        """The whole scene: every node (parents before children), camera, time."""
+        """The whole scene: every node (parents before children), camera, time, the pairs
+        touching and (dynamic mode) the forces pressing."""
         nodes = [encode_numbers(n.describe()) for root in self.roots() for n in root.walk()]
-        return Snapshot(op="snapshot", scene=self.name, seq=self.seq, time=self.time,
-                        camera=self.camera.wire(), physics=self.physics.wire(), nodes=nodes,
-                        contacts=self.bodies.contacts.wire())
+        snapshot = Snapshot(op="snapshot", scene=self.name, seq=self.seq, time=self.time,
+                            camera=self.camera.wire(), physics=self.physics.wire(), nodes=nodes,
+                            contacts=self.bodies.contacts.wire())
+        forces = self.bodies.forces_told()
+        if forces:
+            snapshot["forces"] = forces
+        return snapshot
 
     # --- scene calls (the manual's Scene API) --------------------------------------------
 

@@ -14,19 +14,14 @@ export class Heat {
 	}
 
 	receive(message) {
-		if (message.op === 'snapshot') {
+		if (message.op === 'snapshot') {   // the forces pressing now; frames then change them
 			this.forces.clear();
 			this.values.clear();
+			this.take(message);
 			return this.paintAll();
 		}
 		if (message.op !== 'frame') return;
-		const changed = new Set();
-		for (const [id, newtons] of Object.entries(message.forces ?? {})) {
-			if (newtons > 0) this.forces.set(id, newtons); else this.forces.delete(id);
-			this.peak = Math.max(this.peak, newtons);
-			changed.add(id);
-		}
-		for (const id of changed) this.values.set(id, (this.forces.get(id) ?? 0) / (this.peak || 1));
+		const changed = this.take(message);
 		for (const [sensor, reading] of Object.entries(message.sensors ?? {})) {
 			if (typeof reading.touch === 'number') {
 				this.values.set(sensor, reading.touch);
@@ -37,6 +32,18 @@ export class Heat {
 			for (const id of changed) this.paint(id);
 			this.invalidate();
 		}
+	}
+
+	// The forces a message carries (0: ended); the ids whose heat changed.
+	take(message) {
+		const changed = new Set();
+		for (const [id, newtons] of Object.entries(message.forces ?? {})) {
+			if (newtons > 0) this.forces.set(id, newtons); else this.forces.delete(id);
+			this.peak = Math.max(this.peak, newtons);
+			changed.add(id);
+		}
+		for (const id of changed) this.values.set(id, (this.forces.get(id) ?? 0) / (this.peak || 1));
+		return changed;
 	}
 
 	toggle(on) {

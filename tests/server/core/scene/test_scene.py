@@ -108,6 +108,20 @@ def test_snapshot_lists_parents_before_children_and_encodes_infinity(scene):
     assert (motor["min"], motor["max"]) == ("-Infinity", "Infinity")
 
 
+
+def test_a_snapshot_gives_the_forces_the_frames_told_so_a_newcomer_sees_a_resting_load(scene):
+    box = Box(scene, "b", 1, 1, 1)
+    box.set_position((0, 0.6, 0))
+    assert "forces" not in scene.snapshot()  # kinematic mode: nothing presses
+    scene.set_physics("dynamic")
+    told: dict[str, float] = {}
+    for _ in range(240):  # it lands and lies still: the frames stop telling its force
+        told |= scene.tick(1 / 60)[-1].get("forces", {})
+    assert "forces" not in scene.tick(1 / 60)[-1]
+    forces = scene.snapshot()["forces"]
+    assert forces == {k: v for k, v in told.items() if v} and forces["b"] > 0
+
+
 @pytest.mark.parametrize("make", [
     lambda scene: EdgedFinger(scene, "flat", 1, 0, 0.3),   # no thickness
     lambda scene: EdgedFinger(scene, "flat", 1, 0.3, 0),   # no width
