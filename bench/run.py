@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import chaos, cluster, core, idle_scenes, live, recording, scenes
+from . import busy_connect, chaos, cluster, core, idle_scenes, live, recording, scenes
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -51,6 +51,7 @@ class Sizes:
     cluster_busy: int  # busy scenes placed over two workers
     cluster_objects: int  # kept objects of the scene whose worker is killed
     cluster_idle_wait: float  # seconds for the busy scenes to go before that
+    loaded_scenes: int  # animated while a script connects (busy_connect)
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -60,13 +61,14 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
              cluster_viewers=(500, 750, 875, 1000, 1125, 1250, 2000), cluster_busy=200, cluster_objects=50,
-             cluster_idle_wait=20.0)
+             cluster_idle_wait=20.0, loaded_scenes=13)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
               document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
-              cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0)
+              cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0,
+              loaded_scenes=2)
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -101,6 +103,8 @@ def measure(sizes: Sizes) -> dict[str, Any]:
                                             sizes.viewer_seconds),
             "two_scenes": lambda: live.two_scenes(running, sizes.busy_hands,
                                                   sizes.outside_seconds),
+            "busy_connect": lambda: busy_connect.measure(
+                running, sizes.loaded_scenes, 2, min(5, sizes.latency_rounds), 600),
         }
         for name, step in outside.items():
             found[name] = _timed(name, step)
@@ -142,6 +146,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],
         "hands100_outside_ticks_per_s": found["outside"][2]["ticks_per_second"],
         "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),
+        "busy_server_connect_s": found["busy_connect"]["connect_fresh_s"].p95,
         "idle_scenes_server_cpu_pct": found["idle_scenes"]["server_cpu_pct"],
         "idle_scene_mb": found["idle_scenes"]["scene_pss_mb"].median,
         "chaos_faults": found["chaos"]["faults"],

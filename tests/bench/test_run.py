@@ -31,6 +31,8 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert all(row["fps_median"] > 0 for row in figures["viewers"])  # frames reached them
     assert figures["latency"]["rounds"] == 5
     assert figures["idle_scenes"]["scene_start_cpu_ms"]["count"] == 3  # a fresh scene each
+    busy = figures["busy_connect"]
+    assert busy["scenes"] == 2 and busy["connect_fresh_s"]["count"] == 5
     chaos = figures["chaos"]
     assert chaos["faults"] == 7 and set(chaos["by_kind"].values()) == {1}
     assert chaos["acknowledged"] > 0 and chaos["lost"] == 0  # the journal's promise
