@@ -8,13 +8,23 @@ from collections import Counter
 
 from server.cluster.bus import PLACE, Bus
 from server.cluster.placement import Placement
+from tests.conftest import eventually
 from tests.server.cluster.conftest import ask_bus
 
 
-def _loads(url: str) -> dict[str, int]:
+def _loads(url: str, workers: frozenset[str] = frozenset({"wa", "wb"})) -> dict[str, int]:
+    """The scenes each worker holds, once every one of ``workers`` has answered a survey (a
+    worker busy starting scenes may miss a survey's 0.2 s)."""
     async def gather(bus: Bus) -> dict[str, int]:
         return {name: scenes for name, scenes, room in await bus.gather(PLACE, None, 0.2)}
-    return ask_bus(url, gather)
+    found: dict[str, int] = {}
+
+    def answered() -> bool:
+        found.clear()
+        found.update(ask_bus(url, gather))
+        return workers <= found.keys()
+    eventually(answered)
+    return found
 
 
 def test_scenes_placed_at_once_by_two_gateways_spread_over_the_workers(workers_only, scene_name):
