@@ -34,9 +34,14 @@ def exposition(metrics: dict[str, Any]) -> str:
     lines = ["# HELP vp_scenes_removed_total Scenes removed since the server started",
              "# TYPE vp_scenes_removed_total counter",
              f"vp_scenes_removed_total {metrics['scenesRemoved']}"]
-    scenes = metrics["scenes"]
+    scenes = sorted(metrics["scenes"].items())
+    lines += ["# HELP vp_scene_state The scene's state (starting, running, unresponsive, failed)",
+              "# TYPE vp_scene_state gauge"]
+    lines += [f'vp_scene_state{{scene="{_label(scene)}",state="{_label(figures["state"])}"}} 1'
+              for scene, figures in scenes if "state" in figures]
     for field, (name, kind, text) in SCENE_METRICS.items():
         lines += [f"# HELP {name} {text}", f"# TYPE {name} {kind}"]
+        # a scene that failed before it reported has no figures: no sample, only its state
         lines += [f'{name}{{scene="{_label(scene)}"}} {float(figures[field])!r}'
-                  for scene, figures in sorted(scenes.items())]
+                  for scene, figures in scenes if field in figures]
     return "\n".join(lines) + "\n"
