@@ -27,6 +27,8 @@ Hierarchy::
     │   ├── NotPaused            not_paused     stepping a scene whose clock runs
     │   └── RecordingBusy        recording_busy starting a second recording of a scene, or
     │                                           downloading one still being recorded
+    ├── RecordingDamaged         recording_damaged a recording whose file cannot be read
+    │                                           (cut short, changed, not a recording)
     ├── Forbidden                forbidden      a viewer asked to change something
     ├── LimitExceeded            limit_exceeded a documented limit was reached
     ├── StorageFailure           storage_failure a file the server must write cannot be
@@ -207,6 +209,10 @@ class RecordingBusy(ConflictError):
     code = "recording_busy"
 
 
+class RecordingDamaged(VPError):
+    code = "recording_damaged"
+
+
 class Forbidden(VPError):
     code = "forbidden"
 
@@ -231,5 +237,6 @@ ERROR_CODES: tuple[str, ...] = tuple(
     cls.code for cls in (BadJSON, BadMessage, UnknownOp, TooLarge, UnknownType, UnknownMethod,
                          UnknownObject, UnknownScene, UnknownAsset, UnknownRecording, BadArguments,
                          WrongType, OutOfRange, BadAsset, DuplicateId, ForeignId, Cycle, NotPaused,
-                         RecordingBusy, Forbidden, LimitExceeded, StorageFailure, InternalError)
+                         RecordingBusy, RecordingDamaged, Forbidden, LimitExceeded, StorageFailure,
+                         InternalError)
 )

@@ -23,6 +23,9 @@ WINDOW_SECONDS = 10.0  # of ticks one request may ask for (a player asks for the
 BUSY: dict[int | str, dict[str, Any]] = {
     **NOT_FOUND, 409: {"model": ErrorBody, "description": "Recording already, or still (recording_busy)"},
     403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"}}
+READ: dict[int | str, dict[str, Any]] = {
+    **BUSY, 422: {"model": ErrorBody, "description": "The file cannot be read: cut short, changed "
+                                                     "(recording_damaged, naming why)"}}
 
 
 @router.post("/scenes/{scene}/recordings", status_code=201, responses=BUSY,
@@ -54,7 +57,7 @@ async def stop(request: Request, recording_id: str) -> dict[str, Any]:
     return answer
 
 
-@router.post("/recordings/{recording_id}/resimulate", responses=BUSY,
+@router.post("/recordings/{recording_id}/resimulate", responses=READ,
              summary="Run a recording's requests again in a new scene; where the run differs")
 async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0) -> dict[str, Any]:
     """The scene the recording started from is made anew, its requests are applied and its
@@ -63,27 +66,27 @@ async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0
     ``field``, ``id``, ``recorded``, ``now``). Kinematic mode: none."""
     changing_allowed(request)  # minutes of a core, maybe
     hubs = hubs_of(request)
-    path = hubs.recordings.finished(recording_id)
+    path = hubs.recordings.readable(recording_id)
     if not 0 <= tolerance <= 1e6:
         raise OutOfRange(f"tolerance must be within [0, 1000000], got {tolerance}", argument="tolerance")
     return await hubs.resimulations.run(resimulate_file, str(path), hubs.limits, hubs.assets, tolerance)
 
 
-@router.get("/recordings/{recording_id}/at", responses=BUSY,
+@router.get("/recordings/{recording_id}/at", responses=READ,
             summary="A recording at a time (s from its start): a snapshot and one folded frame")
 async def at(request: Request, recording_id: str, time: float = 0.0) -> dict[str, Any]:
     """What a player shows after a seek: ``time`` (clamped), ``duration`` and the
     ``messages`` that make the scene as it was then."""
     hubs = hubs_of(request)
-    path = hubs.recordings.finished(recording_id)
+    path = hubs.recordings.readable(recording_id)
     return await hubs.replays.run(replay.seek, str(path), _seconds(time, "time"))
 
 
-@router.get("/recordings/{recording_id}/ticks", responses=BUSY,
+@router.get("/recordings/{recording_id}/ticks", responses=READ,
             summary="A recording's ticks in (after, until], at most 10 s of them: [time, messages] each")
 async def ticks(request: Request, recording_id: str, after: float, until: float) -> dict[str, Any]:
     hubs = hubs_of(request)
-    path = hubs.recordings.finished(recording_id)
+    path = hubs.recordings.readable(recording_id)
     start, end = _seconds(after, "after"), _seconds(until, "until")
     if not 0 <= end - start <= WINDOW_SECONDS:
         raise OutOfRange(f"until - after must be within [0, {WINDOW_SECONDS}] s, got {end - start:g}",

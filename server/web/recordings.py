@@ -20,7 +20,7 @@ from typing import Any
 
 from mcap.reader import make_reader
 
-from ..errors import RecordingBusy, UnknownRecording
+from ..errors import RecordingBusy, RecordingDamaged, UnknownRecording
 
 RECORDING_ID = re.compile(r"[A-Za-z0-9_-]{1,64}-\d{8}T\d{6}Z-[0-9a-f]{4}")
 SUFFIX = ".mcap"
@@ -61,9 +61,10 @@ class Recordings:
             self.ended(recording_id)
 
     def path(self, recording_id: str) -> Path:
-        """The file of a recording (``unknown_recording`` for an id the server has not)."""
+        """The file of a recording (``unknown_recording`` for an id the server has not; a
+        symbolic link is none: the server reads only files its scenes wrote there)."""
         path = self.folder / f"{recording_id}{SUFFIX}"  # type: ignore[operator]
-        if not RECORDING_ID.fullmatch(recording_id) or not path.is_file():
+        if not RECORDING_ID.fullmatch(recording_id) or path.is_symlink() or not path.is_file():
             raise UnknownRecording(f"no recording {recording_id[:80]!r}", recording=recording_id[:80])
         return path
 
@@ -83,13 +84,24 @@ class Recordings:
                                 f"(POST /api/recordings/{recording_id}/stop)", recording=recording_id)
         return path
 
+    def readable(self, recording_id: str) -> Path:
+        """The file of a finished recording that reads as one (``recording_damaged``,
+        naming why, for a file cut short or changed: a replay or resimulation of it would
+        fail part-way)."""
+        path = self.finished(recording_id)
+        damage = self.describe(recording_id).get("damage")
+        if damage is not None:
+            raise RecordingDamaged(f"recording {recording_id} cannot be read: {damage}",
+                                   recording=recording_id)
+        return path
+
     def listing(self) -> list[dict[str, Any]]:
         """Every recording, newest first: id, scene, state, bytes, and for a finished one
         its start, duration and message counts."""
         found = []
         for path in sorted(self.folder.glob(f"*{SUFFIX}"), reverse=True):  # type: ignore[union-attr]
             recording_id = path.name[:-len(SUFFIX)]
-            if RECORDING_ID.fullmatch(recording_id):
+            if RECORDING_ID.fullmatch(recording_id) and not path.is_symlink():
                 found.append(self.describe(recording_id))
         return found
 
@@ -133,17 +145,18 @@ def new_recording(folder: Path, scene: str) -> tuple[str, Path]:
 
 
 def _summary(path: Path) -> dict[str, Any]:
-    """What a finished file's MCAP summary says (a file cut short: ``damaged``)."""
+    """What a finished file's MCAP summary says (a file cut short: ``damaged``, with the
+    ``damage`` the reader found)."""
     try:
         with open(path, "rb") as stream:
             reader = make_reader(stream)
             summary = reader.get_summary()
             metadata = {m.name: m.metadata for m in reader.iter_metadata()}
-    except Exception:  # the mcap reader raises many kinds for a file without its end
-        return {"state": "damaged"}
+    except Exception as error:  # the mcap reader raises many kinds for a file without its end
+        return {"state": "damaged", "damage": (str(error) or type(error).__name__)[:200]}
     statistics = summary.statistics if summary is not None else None
     if statistics is None:
-        return {"state": "damaged"}
+        return {"state": "damaged", "damage": "it has no MCAP summary: it was cut short"}
     channels = {c.id: c.topic for c in summary.channels.values()}  # type: ignore[union-attr]
     counts = {channels[k]: v for k, v in statistics.channel_message_counts.items()}
     return {"state": "stopped", "stopped": metadata.get("stopped", {}).get("reason"),

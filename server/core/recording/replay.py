@@ -19,6 +19,7 @@ from typing import IO, Any, Iterator
 from mcap.reader import SeekingReader, make_reader
 
 from ..scene.frames import merge_frames
+from .damage import reading
 
 SNAPSHOTS, TICKS = "/vp/snapshot", "/vp/ticks"
 
@@ -102,14 +103,16 @@ def opened(path: str) -> Replay:
 def seek(path: str, seconds: float) -> dict[str, Any]:
     """The recording at ``path`` at ``seconds``: its time, duration and the messages that
     show the scene then (what ``GET /api/recordings/{id}/at`` answers)."""
-    replay = opened(path)
-    clamped = min(max(0.0, seconds), replay.duration)
-    return {"time": clamped, "duration": replay.duration, "messages": replay.at(clamped)}
+    with reading(path):
+        replay = opened(path)
+        clamped = min(max(0.0, seconds), replay.duration)
+        return {"time": clamped, "duration": replay.duration, "messages": replay.at(clamped)}
 
 
 def window(path: str, after: float, until: float) -> dict[str, Any]:
     """The ticks of the recording at ``path`` in (after, until] (``…/ticks``)."""
-    return {"ticks": [[time, messages] for time, messages in opened(path).ticks(after, until)]}
+    with reading(path):
+        return {"ticks": [[time, messages] for time, messages in opened(path).ticks(after, until)]}
 
 
 def fold(messages: list[dict[str, Any]]) -> list[dict[str, Any]]:

@@ -31,6 +31,7 @@ from ..protocol.messages import encode
 from ..protocol.scene_document import import_scene
 from ..protocol.session import Session
 from ..scene.scene import Scene
+from .damage import reading
 
 COMPARED = ("poses", "angles", "updates", "sensors")  # contacts and forces: as they stand
 MAX_LISTED = 100  # differences listed in a report (all are counted)
@@ -90,7 +91,7 @@ def resimulate_file(path: str, limits: Limits, assets: AssetLibrary, tolerance: 
     """:func:`resimulate` of the recording at ``path`` in a scene made for it (and closed)."""
     scene = Scene("resimulation", limits, assets)
     try:
-        with open(path, "rb") as stream:
+        with open(path, "rb") as stream, reading(path):
             return resimulate(stream, scene, tolerance)
     finally:
         scene.close()
