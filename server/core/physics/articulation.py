@@ -20,10 +20,25 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable
 
+from ...errors import LimitExceeded
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
 
 NO_POSE: Pose = (ORIGIN, IDENTITY)
 UNSCALED: Vec3 = (1.0, 1.0, 1.0)
+# PyBullet's multibody holds at most this many links. It drops the rest without a word,
+# and a scene addressing link 127 then ended its process (signal 11): a larger tree is
+# refused, naming this (a fixed figure of the engine, no flag changes it).
+MAX_LINKS = 127
+
+
+def check_links(root: str, links: int) -> None:
+    """Refuse a tree of ``root`` that would have ``links`` links, past :data:`MAX_LINKS`."""
+    if links > MAX_LINKS:
+        raise LimitExceeded(
+            f"{root} would be a tree of {links} links (its parts that move or sit apart, and "
+            f"a link between two motors with no part between them); the physics engine holds "
+            f"at most {MAX_LINKS} in one tree: attach the rest to a robot of its own",
+            limit="treeLinks", value=MAX_LINKS, object=root)
 
 
 @dataclass(frozen=True)

@@ -46,7 +46,7 @@ def _quiet_import():  # type: ignore[no-untyped-def]
 pybullet = _quiet_import()
 
 from ..kit.math3d import Pose, Vec3, rotate
-from .articulation import NO_POSE, Articulation, multibody_arguments
+from .articulation import NO_POSE, Articulation, check_links, multibody_arguments
 from .dynamics import Dynamics, Physics, forces_by_part
 from .geometry import solid_points
 from .hulls import HAIR
@@ -157,7 +157,9 @@ class PhysicsWorld:
         return None if built is None else built.tree
 
     def add_tree(self, tree: Articulation, base_pose: Pose, angles: Mapping[str, float]) -> None:
-        """Build ``tree`` as one multibody, its base at ``base_pose``, its joints at ``angles``."""
+        """Build ``tree`` as one multibody, its base at ``base_pose``, its joints at ``angles``
+        (a tree past the engine's links is refused: PyBullet would cut it short)."""
+        check_links(tree.root, len(tree.links))
         client, dynamics = self._client, self.dynamics
         arguments = multibody_arguments(tree, base_pose, self._shape, pybullet.JOINT_REVOLUTE,
                                         pybullet.JOINT_FIXED)

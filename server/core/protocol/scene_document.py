@@ -236,6 +236,7 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     scene.set_physics(mode, physics)
     for entry in entries:
         _restore_state(scene, entry, later=True)
+    scene.bodies.check_trees()  # a tree the engine cannot hold: the document is refused
     scene.ids.absorb(document["ids"])
     scene.set_camera_position(tuple(document["camera"]["position"]))
     scene.set_camera_target(tuple(document["camera"]["target"]))

@@ -98,6 +98,7 @@ class Session:
             self._authorize(message)
             with self.scene.recording() as changes, self.scene.journal.transaction():
                 result = self.operations.apply(message)
+                self.scene.bodies.check_trees()  # inside: a tree too large undoes the request
                 answer = self._answer(answer_id, result, changes)
             if changes and self.on_change is not None:
                 self.on_change(self, message)

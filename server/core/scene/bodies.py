@@ -21,6 +21,7 @@ from ..kit.limits import Limits
 from ..model.node import Node
 from ..model.readings import Reading, read_sensors
 from ..model.structure import base_pose, structure_of
+from ..physics.articulation import check_links
 from ..physics.assets import AssetLibrary
 from ..physics.contacts import ContactBook, ContactTracker, Overlaps
 from ..physics.dynamics import Physics
@@ -87,6 +88,15 @@ class SceneBodies:
         """The trees of these roots changed shape (a node made, deleted, attached, scaled,
         shown, flipped, or moved below its root): built again at the next sync."""
         self._restructured.update(root_ids)
+
+    def check_trees(self) -> None:
+        """Refuse (``limit_exceeded``) a tree changed since the last sync that the engine
+        could not hold: called before a request's changes are kept, so that it changes
+        nothing, rather than at the sync, which could only leave the tree out."""
+        for root_id in self._restructured:
+            node = self._nodes.get(root_id)
+            if node is not None and node.parent is None:
+                check_links(root_id, len(structure_of(node).links))
 
     def rebased(self, root_id: str, field: str) -> None:
         """A root's ``position`` or ``quaternion`` was set: its base is placed at the next sync."""

@@ -268,3 +268,22 @@ def test_batches_are_bounded_by_the_batch_limit():
         assert error["details"] == {"limit": "batchOps", "value": 5, "flag": "--limit batchOps=N"} and scene.nodes == {}
     finally:
         scene.close()
+
+
+@pytest.mark.parametrize("count", [127, 128, 200])
+def test_a_robot_past_the_engines_links_is_refused_and_one_within_them_ticks(session, scene, count):
+    """attachChain of 128 boxes ended the scene's process (PyBullet keeps 127 links of a
+    multibody and drops the rest without a word); now it is refused naming the limit."""
+    boxes = [create(f"c1.b{k}", "Box", 0.1, 0.1, 0.1) for k in range(count)]
+    send(session, create("c1.r", "Robot"), *boxes)
+    chain = [{"ref": f"c1.b{k}"} for k in range(count)]  # a link each: the robot has no part
+    [answer] = send(session, {"op": "call", "object": "c1.r", "method": "attachChain",
+                              "args": chain, "id": 1})
+    if count <= 127:
+        assert answer["op"] == "ok"
+        assert scene.get(f"c1.b{count - 1}").root().id == "c1.r"
+    else:
+        assert answer["code"] == "limit_exceeded" and "at most 127" in answer["message"]
+        assert answer["details"]["limit"] == "treeLinks" and answer["details"]["value"] == 127
+        assert all(scene.get(f"c1.b{k}").parent is None for k in range(count))  # none attached
+    assert ticks_cleanly(scene, 3)
