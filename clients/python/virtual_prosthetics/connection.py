@@ -13,7 +13,7 @@ import warnings
 from typing import Any, Iterator
 from urllib.parse import parse_qsl, urlencode, urlsplit, urlunsplit
 
-from websockets.exceptions import ConnectionClosed, InvalidHandshake
+from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus, InvalidURI
 from websockets.sync.client import connect as ws_connect
 
 from .errors import ConnectionLost, ServerError, ServerWarning, Timeout
@@ -42,11 +42,7 @@ class Connection:
         self._closing = False
         self._reconnecting = False
         self._generation = 0  # connections made so far after the first
-        try:
-            self._ws = _open(url, timeout)
-        except TimeoutError:
-            address = urlunsplit(urlsplit(url)._replace(query=""))  # no token in messages
-            raise Timeout(f"no WebSocket handshake from {address}", timeout) from None
+        self._ws = _first_open(url, timeout)
         self.core = ProtocolCore(on_message, on_changes)
         self._lock = threading.Condition()
         self._reader = threading.Thread(target=self._read, name="vp-reader", daemon=True)
@@ -225,6 +221,24 @@ class Connection:
                 self._lock.notify_all()
             return True
         return False
+
+
+def _first_open(url: str, timeout: float) -> Any:
+    """The first connection: a refusal or a wrong address as the client's own errors,
+    naming the address without its query (the token)."""
+    address = urlunsplit(urlsplit(url)._replace(query=""))
+    try:
+        return _open(url, timeout)
+    except TimeoutError:
+        raise Timeout(f"no WebSocket handshake from {address}", timeout) from None
+    except InvalidURI:
+        raise ValueError(f"{address} is not a WebSocket address: ws://HOST:PORT or "
+                         f"wss://HOST:PORT") from None
+    except InvalidStatus as refused:
+        raise ConnectionLost(f"{address} refused the connection: HTTP "
+                             f"{refused.response.status_code}") from None
+    except (OSError, InvalidHandshake) as error:
+        raise ConnectionLost(f"could not reach {address}: {error}") from None
 
 
 def _open(url: str, timeout: float) -> Any:

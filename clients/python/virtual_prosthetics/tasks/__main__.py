@@ -10,7 +10,7 @@ import json
 import sys
 from typing import Any, Callable, Sequence
 
-from ..errors import Timeout
+from ..errors import ConnectionLost, ServerError, Timeout, VPError
 from ..runtime import connect
 from ..waiting import DEFAULT_SECONDS, ENVIRONMENT, wait_seconds
 from . import TASKS
@@ -22,7 +22,13 @@ def _function(spec: str) -> Callable[..., Any]:
     module, _, name = spec.partition(":")
     if not name:
         raise argparse.ArgumentTypeError(f"expected module:function, got {spec!r}")
-    return getattr(importlib.import_module(module), name)  # type: ignore[no-any-return]
+    try:
+        return getattr(importlib.import_module(module), name)  # type: ignore[no-any-return]
+    except ImportError as error:
+        raise argparse.ArgumentTypeError(f"cannot import {module!r} ({error}); run from the "
+                                         f"folder that holds it, or set PYTHONPATH") from None
+    except AttributeError:
+        raise argparse.ArgumentTypeError(f"module {module!r} has no {name!r}") from None
 
 
 def parser() -> argparse.ArgumentParser:
@@ -63,13 +69,28 @@ def main(argv: Sequence[str] | None = None) -> int:
             result = TASKS[args.task](session, args)
         finally:
             session.close()
-    except Timeout as error:
-        print(f"error: {error.what} within {error.seconds:g} s (--timeout S or "
-              f"{ENVIRONMENT}=S waits longer)", file=sys.stderr)
+    except (VPError, ValueError) as error:
+        print(f"error: {_fix(error, args.url)}", file=sys.stderr)
         return 1
     json.dump(result, sys.stdout, indent=2)
     print()
     return 0
+
+
+def _fix(error: Exception, url: str) -> str:
+    """What went wrong, in one line, and what to do about it."""
+    if isinstance(error, Timeout):
+        return (f"{error.what} within {error.seconds:g} s (--timeout S or {ENVIRONMENT}=S "
+                f"waits longer)")
+    if isinstance(error, ServerError) and error.code == "forbidden":
+        return f"{error.message}: give the server's token with --token T (or VP_TOKEN=T)"
+    if isinstance(error, ServerError):
+        return f"the server refused: {error}"
+    if isinstance(error, ConnectionLost) and error.args[0].startswith("could not reach"):
+        return f"{error}; start a server (make run) or give its address with --url"
+    if isinstance(error, ConnectionLost):
+        return f"{error}; the run did not finish"
+    return f"{error} (--url {url!r})" if "WebSocket address" in str(error) else str(error)
 
 
 if __name__ == "__main__":
