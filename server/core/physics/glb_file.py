@@ -16,6 +16,7 @@ from typing import Any, Sequence
 
 import numpy as np
 import trimesh
+from trimesh.exchange.gltf import export_glb
 
 from ..kit.math3d import Pose, to_matrix
 from .assets import AssetLibrary, placed
@@ -36,12 +37,15 @@ class DrawnPart:
 
 
 def glb_bytes(parts: Sequence[DrawnPart], assets: AssetLibrary) -> bytes:
-    """The binary glTF of ``parts``, each a mesh at its pose."""
+    """The binary glTF of ``parts``, each a mesh at its pose (none: a valid file that
+    draws nothing)."""
     scene = trimesh.Scene()
     for part in parts:
         scene.add_geometry(part_mesh(part, assets), node_name=part.id, geom_name=part.id,
                            transform=_matrix(part.pose))
-    return scene.export(file_type="glb")
+    # the GLB writer itself: trimesh's generic export refuses a scene without meshes, and
+    # a robot with no parts yet is a file with its root node and nothing drawn
+    return export_glb(scene)
 
 
 def part_mesh(part: DrawnPart, assets: AssetLibrary) -> trimesh.Trimesh:
