@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any, Sequence
 
 from server.core.kit.math3d import Pose
-from server.core.physics.engine import pybullet, shape_arguments
+from server.core.physics.bullet import pybullet, shape_arguments
 
 
 class BareWorld:

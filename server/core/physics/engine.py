@@ -16,40 +16,15 @@ kept out of Bullet's pairing in a crowd. :mod:`server.core.physics.contacts` dec
 
 from __future__ import annotations
 
-import ctypes
 import math
-import os
-import sys
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping, Sequence
-
-
-def _quiet_import():  # type: ignore[no-untyped-def]
-    # PyBullet prints its build time when imported; the server's output belongs to its log.
-    sys.stdout.flush()
-    sys.stderr.flush()
-    saved = [os.dup(fd) for fd in (1, 2)]
-    devnull = os.open(os.devnull, os.O_WRONLY)
-    for fd in (1, 2):
-        os.dup2(devnull, fd)
-    try:
-        import pybullet
-        ctypes.CDLL(None).fflush(None)  # the C library buffers it; flush while muted
-    finally:
-        for fd, copy in zip((1, 2), saved):
-            os.dup2(copy, fd)
-            os.close(copy)
-        os.close(devnull)
-    return pybullet
-
-
-pybullet = _quiet_import()
+from typing import Any, Mapping, Sequence
 
 from ..kit.math3d import Pose, Vec3, rotate
 from .articulation import NO_POSE, Articulation, check_links, multibody_arguments
+from .bullet import pybullet, shape_arguments
+from .clearance import Clearance
 from .dynamics import Dynamics, Physics, forces_by_part
-from .geometry import solid_points
-from .hulls import HAIR
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"
@@ -122,6 +97,8 @@ class PhysicsWorld:
                                            physicsClientId=self._client)
         self.dynamics = Dynamics(pybullet, self._client, self.physics) \
             if self.physics.dynamic else None
+        self._clearance = Clearance(pybullet, self._client, self._bodies,
+                                    lambda: self.dynamics.steps) if self.dynamics else None  # type: ignore[union-attr]
         self._where[GROUND] = (self._ground, -1)
         # body -> the part of each link, the base's last (so that link -1 finds it)
         self._keys_of: dict[int, list[str | None]] = {self._ground: [GROUND]}
@@ -161,6 +138,7 @@ class PhysicsWorld:
         (a tree past the engine's links is refused: PyBullet would cut it short)."""
         check_links(tree.root, len(tree.links))
         client, dynamics = self._client, self.dynamics
+        free = self._clearance is not None and not tree.mounted and not tree.static
         arguments = multibody_arguments(tree, base_pose, self._shape, pybullet.JOINT_REVOLUTE,
                                         pybullet.JOINT_FIXED)
         if dynamics is not None:
@@ -191,12 +169,26 @@ class PhysicsWorld:
             keys_of[link] = key
             self._padding[key] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
         self.turn(tree.root, [angles[motor] for motor in joints])
+        if free:  # where it is, or the nearest clear spot (read after the next step)
+            self._clearance.place(body, *pybullet.getBasePositionAndOrientation(  # type: ignore[union-attr]
+                body, physicsClientId=client))
+
+    @property
+    def cleared(self) -> int:
+        """Dynamic mode: free bodies moved out of others so far (:mod:`.clearance`)."""
+        return 0 if self._clearance is None else self._clearance.moved
+
+    def _bodies(self) -> tuple[list[int], set[int]]:
+        """Every body but the ground, and the robots among them."""
+        return ([built.body for built in self._trees.values()],
+                {built.body for built in self._trees.values() if built.mount is not None})
 
     def remove_tree(self, root: str) -> None:
         """Take the tree of ``root`` out of the world."""
         built = self._trees.pop(root)
         if self.dynamics is not None:
             self.dynamics.removed(built.body, built.mount)
+            self._clearance.removed(built.body)  # type: ignore[union-attr]
         for key in built.tree.parts():
             del self._where[key], self._padding[key]
         del self._keys_of[built.body]
@@ -214,6 +206,8 @@ class PhysicsWorld:
             self.dynamics.mount(built.mount, pose)
         else:  # a script's setPosition puts even a static part elsewhere
             self.dynamics.teleport(built.body, _shifted(pose, built.base_centre))
+            if not built.tree.static:
+                self._clearance.place(built.body, *_shifted(pose, built.base_centre))  # type: ignore[union-attr]
         built.base_pose = pose
 
     def turn(self, root: str, angles: list[float]) -> None:
@@ -390,18 +384,3 @@ def _shifted(pose: Pose, centre: Vec3, sign: int = 1) -> Pose:
         return pose
     offset = rotate(pose[1], centre)
     return tuple(p + sign * o for p, o in zip(pose[0], offset)), pose[1]  # type: ignore[return-value]
-
-
-def shape_arguments(geometry: dict[str, Any]) -> dict[str, Any]:
-    """``createCollisionShape`` arguments for a part geometry (the bench's floor uses them too)."""
-    kind = geometry["kind"]
-    if kind == "sphere":  # Bullet refuses a sphere of radius 0: a point gets a hair's
-        return {"shapeType": pybullet.GEOM_SPHERE, "radius": max(geometry["radius"], HAIR)}
-    if kind == "box":
-        return {"shapeType": pybullet.GEOM_BOX,
-                "halfExtents": [s / 2 for s in geometry["size"]]}
-    if kind in ("convex", "mesh"):  # a mesh part's envelope: its hull's points
-        return {"shapeType": pybullet.GEOM_MESH, "vertices": geometry["points"]}
-    if kind in ("cylinder", "triangles"):  # contacts measure a triangle mesh by its hull
-        return {"shapeType": pybullet.GEOM_MESH, "vertices": solid_points(geometry)}
-    raise ValueError(f"no collision shape for geometry kind {kind!r}")

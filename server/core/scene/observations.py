@@ -24,8 +24,11 @@ def observe(bodies: SceneBodies, watches: Watches, nodes: Mapping[str, Node]) ->
     readings = watched_readings(bodies, watches, nodes)
     if readings:
         out["sensors"] = {i: reading.wire() for i, reading in readings.items()}
-    tracker = bodies.tracker
-    out.update(frames.held_back(contactTests=tracker.deferred, contactPairs=tracker.unrecorded))
+    tracker, dynamics = bodies.tracker, bodies.physics.dynamics
+    steps, iterations = (0, 0) if dynamics is None else \
+        (dynamics.held_back, dynamics.physics.solverIterations - dynamics.iterations)
+    out.update(frames.held_back(contactTests=tracker.deferred, contactPairs=tracker.unrecorded,
+                                physicsSteps=steps, solverIterations=iterations))
     return out
 
 

@@ -4,6 +4,8 @@ import math
 
 import pytest
 
+from server.core.model.parts import Box
+from server.core.physics import dynamics
 from server.core.physics.dynamics import DEFAULT_MAX_TORQUE, Physics
 from server.errors import BadArguments, OutOfRange, WrongType
 
@@ -39,3 +41,24 @@ def test_the_default_torque_holds_a_hand_level():
     # an edged finger of 1000 kg/m³ (about 80 kg a segment, three of them, their centres
     # 0.5, 1.5 and 2.5 m out) held level under 9.81 m/s², with room to grip
     assert DEFAULT_MAX_TORQUE > 2 * 80 * 9.81 * (0.5 + 1.5 + 2.5)
+
+
+def test_a_tick_takes_no_more_steps_than_its_budget_and_costly_steps_get_fewer_iterations(scene):
+    # 500 iterations of 20 substeps under gravity 1000 took one tick 10.7 s: past the
+    # budget a tick leaves its other steps out, and a step that costs more than the whole
+    # budget gets fewer iterations, given back once steps are cheap again
+    scene.set_physics("dynamic", {"gravity": 1000, "substeps": 20, "solverIterations": 500})
+    Box(scene, "box").set_position((0, 3, 0))
+    scene.tick(1 / 60)
+    world = scene.bodies.physics.dynamics
+    cost = [3 * dynamics.STEP_BUDGET]  # CPU-seconds a step costs, as the clock tells it
+    readings = iter(range(10**6))
+    world.clock = lambda: next(readings) * cost[0]  # a step: from one reading to the next
+    before = scene.time
+    scene.tick(1 / 60)
+    assert world.held_back == 19 and scene.time - before == pytest.approx(1 / 1200)
+    assert world.iterations == int(500 / 3 * 0.8)
+    cost[0] = dynamics.STEP_BUDGET / 10
+    for _ in range(4):
+        scene.tick(1 / 60)
+    assert world.iterations == 500 and world.held_back < 19

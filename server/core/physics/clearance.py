@@ -1,0 +1,200 @@
+"""Dynamic mode: free bodies put inside others are moved to the nearest clear spot first.
+
+Bullet's multibody solver grows its arrays one contact at a time, each growth a copy
+of the whole array (``btAlignedObjectArray::resize`` reserves exactly what is asked),
+so the first step after n bodies appear in one spot costs about n⁴: 80 balls of radius
+0.2 made at one point took 0.9 s of one step, 160 took 16 s, and 300 never finished a
+tick. Their pairs (n²/2) alone would take gigabytes. So a free body that is made, or put
+by a script, deep inside another free or static body goes to the nearest spot where it
+is inside nothing (searched on a lattice of its own size around where it was put, the
+nearest first, upward before downward), before the solver sees it: a pile made in one
+batch becomes a heap of bodies side by side that falls and settles. Touching and shallow
+overlaps (less than DEEP of the body's thinnest half-size) are left to the solver, which
+pushes such bodies apart gently.
+
+No library does this: Bullet has no "place without overlap", and the broadphase holds
+stale boxes for bodies put since the last step, so the search keeps its own grid.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cache
+from itertools import product
+from typing import Any, Callable, Iterable, Iterator
+
+from ..kit.math3d import Vec3
+
+Box = tuple[Vec3, Vec3]
+DEEP = 0.25  # of the arriving body's thinnest half-size: deeper overlaps are moved out
+REACH = 10  # lattice steps searched each way (21³ spots: room for thousands in one spot)
+GAP = 1.02  # lattice spacing, in the body's own box sizes: side by side, not touching
+
+
+class Clearance:
+    """Places free bodies clear of others in one dynamic world (``bodies()``: every body
+    but the ground, and which of them are robots)."""
+
+    def __init__(self, pybullet: Any, client: int,
+                 bodies: Callable[[], tuple[Iterable[int], set[int]]],
+                 steps: Callable[[], int]) -> None:
+        self.p, self.client, self._bodies, self._steps = pybullet, client, bodies, steps
+        self._grid: _Grid | None = None  # where bodies are, until the next step
+        self._grid_steps = -1  # the world's steps when the grid was built
+        self._robots: set[int] = set()
+        self._searches: dict[tuple[Any, ...], Iterator[Vec3]] = {}
+        self.moved = 0  # bodies moved out of others, ever
+
+    def removed(self, body: int) -> None:
+        if self._grid is not None:
+            self._grid.remove(body)
+
+    def place(self, body: int, position: Vec3, orientation: Any) -> bool:
+        """Put the free ``body`` (its centre of mass) at a pose, or, if it would be deep
+        inside a free or static body there (not a robot: a hand closes on what it is
+        given), at the nearest clear spot; True if it was moved."""
+        self._put(body, position, orientation)
+        grid = self._grid_without(body)
+        box = self._box(body)
+        depth = DEEP * min(high - low for low, high in zip(*box)) / 2
+        moved = False
+        if self._inside(body, box, grid, depth, skip=self._robots, ground=False):
+            spot = self._clear_spot(body, box, position, orientation, grid, depth)
+            if spot is not None:
+                box, moved = _shifted(box, spot), True
+                self.moved += 1
+        grid.add(body, box)
+        return moved
+
+    def _grid_without(self, body: int) -> _Grid:
+        """Where every other body is (built again once the world has stepped since)."""
+        if self._grid is None or self._grid_steps != self._steps():
+            self._grid_steps, self._searches = self._steps(), {}
+            others, self._robots = self._bodies()
+            self._grid = _Grid(max(max(high - low for low, high in zip(*self._box(body))), 1e-3))
+            for other in others:
+                if other != body:
+                    self._grid.add(other, self._box(other))
+        else:
+            self._grid.remove(body)
+        return self._grid
+
+    def _clear_spot(self, body: int, box: Box, position: Vec3, orientation: Any, grid: _Grid,
+                    depth: float) -> Vec3 | None:
+        """Put ``body`` at the nearest lattice spot around it where it is inside nothing;
+        the offset (None: none within REACH, and it stays). Bodies of one size put at one
+        spot share a search: the spots it passed are taken for the next one too."""
+        sizes = tuple(round((high - low) * GAP, 9) for low, high in zip(*box))
+        key = (tuple(round(x, 6) for x in box[0]), sizes)
+        spots = self._searches.setdefault(key, _lattice(sizes))  # type: ignore[arg-type]
+        for offset in spots:
+            shifted = _shifted(box, offset)
+            if shifted[0][1] < -depth:
+                continue  # under the ground
+            crowded = grid.meets(shifted)
+            self._put(body, _plus(position, offset), orientation)
+            if not crowded or not self._inside(body, shifted, grid, depth):
+                return offset
+        self._put(body, position, orientation)
+        return None
+
+    def _put(self, body: int, position: Vec3, orientation: Any) -> None:
+        self.p.resetBasePositionAndOrientation(body, position, orientation,
+                                               physicsClientId=self.client)
+
+    def _inside(self, body: int, box: Box, grid: _Grid, depth: float,
+                skip: set[int] = frozenset(), ground: bool = True) -> bool:  # type: ignore[assignment]
+        """Is ``body`` (at ``box``) deeper than ``depth`` inside any body of the grid (or
+        the ground)?"""
+        if ground and box[0][1] < -depth:
+            return True
+        for other in grid.near(box):
+            if other not in skip and any(
+                    point[8] < -depth for point in self.p.getClosestPoints(
+                        body, other, 0.0, physicsClientId=self.client)):
+                return True
+        return False
+
+    def _box(self, body: int) -> Box:
+        """The world box around every link of ``body``."""
+        get, client = self.p.getAABB, self.client
+        boxes = [get(body, link, physicsClientId=client)
+                 for link in range(-1, self.p.getNumJoints(body, physicsClientId=client))]
+        return (tuple(min(b[0][k] for b in boxes) for k in range(3)),  # type: ignore[return-value]
+                tuple(max(b[1][k] for b in boxes) for k in range(3)))
+
+
+class _Grid:
+    """Bodies by the cells of a uniform grid their boxes cover (a body larger than
+    BIG cells is kept aside and always looked at)."""
+
+    BIG = 512
+
+    def __init__(self, cell: float) -> None:
+        self.cell = cell
+        self._cells: dict[tuple[int, int, int], list[int]] = {}
+        self._boxes: dict[int, Box] = {}
+        self._big: list[int] = []
+
+    def _span(self, box: Box) -> list[range]:
+        return [range(math.floor(low / self.cell), math.floor(high / self.cell) + 1)
+                for low, high in zip(*box)]
+
+    def add(self, body: int, box: Box) -> None:
+        self._boxes[body] = box
+        spans = self._span(box)
+        if math.prod(len(span) for span in spans) > self.BIG:
+            self._big.append(body)
+            return
+        for cell in product(*spans):
+            self._cells.setdefault(cell, []).append(body)
+
+    def remove(self, body: int) -> None:
+        box = self._boxes.pop(body, None)
+        if box is None:
+            return
+        if body in self._big:
+            self._big.remove(body)
+            return
+        for cell in product(*self._span(box)):
+            self._cells[cell].remove(body)
+
+    def near(self, box: Box) -> list[int]:
+        """The bodies whose boxes overlap ``box``."""
+        found = dict.fromkeys(self._big)
+        spans = self._span(box)
+        if math.prod(len(span) for span in spans) <= self.BIG:
+            for cell in product(*spans):
+                found.update(dict.fromkeys(self._cells.get(cell, ())))
+        else:
+            found.update(dict.fromkeys(self._boxes))
+        return [body for body in found if _overlap(self._boxes[body], box)]
+
+    def meets(self, box: Box) -> bool:
+        return bool(self.near(box))
+
+
+def _overlap(a: Box, b: Box) -> bool:
+    return all(a[0][k] < b[1][k] and b[0][k] < a[1][k] for k in range(3))
+
+
+def _shifted(box: Box, offset: Vec3) -> Box:
+    return _plus(box[0], offset), _plus(box[1], offset)
+
+
+def _plus(a: Vec3, b: Vec3) -> Vec3:
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+@cache
+def _steps() -> list[tuple[int, int, int]]:
+    """Lattice steps within REACH, the nearest first (upward before downward), the
+    spot itself left out."""
+    return sorted((k for k in product(range(-REACH, REACH + 1), repeat=3) if any(k)),
+                  key=lambda k: (k[0] ** 2 + k[1] ** 2 + k[2] ** 2, -k[1], k))
+
+
+def _lattice(sizes: Vec3) -> Iterator[Vec3]:
+    """Offsets of a lattice of ``sizes``, in the order of :func:`_steps`."""
+    for i, j, k in _steps():
+        yield (i * sizes[0], j * sizes[1], k * sizes[2])
