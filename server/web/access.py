@@ -70,6 +70,10 @@ class AccessPolicy:
         if role == "viewer" and not self._may_view(token):
             raise Forbidden("viewing this server needs its view token (?token=…)", role=role)
 
+    def trusts(self, token: str | None) -> bool:
+        """Did a client present the control token (there is one)?"""
+        return self.control_token is not None and _matches(token, self.control_token)
+
     def check_view(self, authorization: str | None, token: str | None) -> None:
         """Refuse a REST read without the view (or control) token, as a bearer or ?token=."""
         if not self._may_view(_bearer(authorization) or token):

@@ -43,6 +43,7 @@ class Connection:
     outbox: Outbox
     resume: str | None = None  # sent in hello: how this client comes back as itself
     keep: bool = False  # what it made stays in the scene when it leaves
+    trusted: bool = False  # it presented the server's control token
     number: int = field(default_factory=lambda: next(_numbers))
     closed: asyncio.Event = field(default_factory=asyncio.Event)
     admitted: asyncio.Event = field(default_factory=asyncio.Event)
@@ -201,7 +202,7 @@ class SceneHub:
         self.members[connection.number] = connection
         self.idle_since = None
         self.runner.post("join", connection.number, connection.client_id, connection.role,
-                         connection.resume, connection.keep)
+                         connection.resume, connection.keep, connection.trusted)
         await connection.admitted.wait()
 
     def _admit(self, number: int, items: list[Outgoing]) -> None:

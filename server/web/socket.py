@@ -53,7 +53,8 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
         await websocket.close(code, error.message[:120])
         return
     client_id, resume_key = hubs.client_for(scene, resume)
-    connection = Connection(client_id, role, Outbox(hubs.limits.outbox_bytes), resume_key, keep)
+    connection = Connection(client_id, role, Outbox(hubs.limits.outbox_bytes), resume_key, keep,
+                            trusted=role == "controller" and access.trusts(token))
     tasks: list[asyncio.Task[object]] = []
     try:
         await hub.join(connection)

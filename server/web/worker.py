@@ -12,7 +12,7 @@ Commands (tuples) come from the server in lists; events go back in lists:
 command                                   events it causes
 ========================================  =============================================
 ``("join", cid, client_id, role, resume,   ``("admit", cid, [hello, snapshot])``
-keep)``
+keep, trusted)``
 ``("text", cid, text)``                   ``("answers", cid, [answers], bytes_applied)``
 ``("leave", cid)``                        the client's objects deleted (seen in frames)
                                           after ``leaveGraceSeconds``, unless it comes
@@ -41,6 +41,7 @@ each tick                                 ``("frame", [messages])`` for every cl
 
 from __future__ import annotations
 
+import ctypes
 import logging
 import os
 import signal
@@ -59,6 +60,7 @@ from ..core.physics.assets import AssetLibrary
 from ..core.protocol.command_log import replay
 from ..core.protocol.messages import encode
 from ..core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
+from ..core.protocol.ownership import SERVER_KEEPER
 from ..core.protocol.session import Session
 from ..core.scene.scene import Scene
 from ..errors import InternalError, UnknownRecording, VPError
@@ -74,6 +76,7 @@ Animator = Callable[[Scene, float], None]
 SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
 SERVER_OWNER = "demo"  # what the server's own setups make: never anyone's to leave
+PR_SET_PDEATHSIG = 1  # prctl(2): the signal this process gets when its parent ends
 SAVE_FAILED = 75  # exit code of a scene's process that stopped with changes it could not save
 
 
@@ -84,6 +87,7 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
     saved document says, when there is one), then serve it (``nice``: this much below the
     server's own priority)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
+    _end_with_the_server()
     if nice:
         os.nice(nice)
     logging.basicConfig(level=log_level)
@@ -95,6 +99,7 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
     try:
         worker.run()
     finally:
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)  # stopping already: let it finish
         if worker.recordings.current is not None:
             worker.recordings.end("the scene stopped")
             worker.flush()  # the server hears of it
@@ -102,6 +107,23 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
         scene.close()
     if not durable:
         sys.exit(SAVE_FAILED)
+
+
+def _end_with_the_server() -> None:
+    """Stop (as the server would stop it: recording closed, document saved) once the
+    process that started this one has gone, kill -9 included. The pipe's end tells the
+    loop so between ticks; Linux's parent-death signal (from the fork server, which ends
+    with the server) also reaches a process busy in one long call into PyBullet."""
+    signal.signal(signal.SIGTERM, _stop_now)
+    parent = os.getppid()
+    if sys.platform.startswith("linux"):
+        ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+    if os.getppid() != parent:  # the parent went before the signal was asked for
+        raise SystemExit(0)
+
+
+def _stop_now(signum: int, frame: Any) -> None:
+    raise SystemExit(0)
 
 
 class SceneWorker:
@@ -218,10 +240,13 @@ class SceneWorker:
             log.exception("command %s of scene %s failed", command[0], self.scene.name)
 
     def _join(self, cid: int, client_id: str, role: str, resume: str | None = None,
-              keep: bool = False) -> None:
+              keep: bool = False, trusted: bool = False) -> None:
         self._departed.pop(client_id, None)  # back within the grace period: nothing goes
         self._left.discard(client_id)
-        session = self._sessions[cid] = Session(self.scene, client_id, role, resume=resume)
+        session = self._sessions[cid] = Session(self.scene, client_id, role, resume=resume,
+                                                trusted=trusted)
+        if role == "controller" and self.scene.keeper is None:
+            self.scene.keeper = client_id
         session.operations.keep = keep
         session.on_change = self.saver.changed
         self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
@@ -258,6 +283,9 @@ class SceneWorker:
             if now >= deadline:
                 del self._departed[client_id]
                 self._left.discard(client_id)
+                if self.scene.keeper == client_id:  # gone for good: the longest-connected
+                    self.scene.keeper = next((s.client_id for s in self._sessions.values()
+                                              if s.role == "controller"), None)
                 deleted = session.close()
                 self.saver.left(client_id)
                 if deleted:
@@ -308,6 +336,8 @@ class SceneWorker:
         """Make the scene as its store last saved it, the server's own objects as ``setup``
         says: the saved ones (in their last state) when the file has them, new ones when it
         has none (a server without this setup saved it), none without a setup."""
+        if setup is not None:
+            self.scene.keeper = SERVER_KEEPER
         document = self._store.load() if self._store is not None else None
         saved_own = _holds_server_objects(document)
         if setup is not None and saved_own:

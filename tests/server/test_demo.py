@@ -63,3 +63,31 @@ def test_the_demo_robots_are_shared_and_nobody_deletes_them(demo_server):
                 answers[message["id"]] = message
     assert answers[1]["op"] == "ok"
     assert answers[2]["code"] == "forbidden" and answers[2]["details"]["owner"] == "demo"
+
+
+def test_a_stranger_cannot_change_the_demos_physics(demo_server):
+    # any client on default could set it dynamic and make 100 balls: its viewers got 5
+    # frames in 80 s
+    with connect(f"{demo_server.ws}/ws?scene=default") as ws:
+        ws.recv(timeout=WAIT_SECONDS)  # hello
+        ws.send(json.dumps({"op": "call", "id": 1, "object": "scene", "method": "setPhysics",
+                            "args": ["dynamic"]}))
+        while (answer := json.loads(ws.recv(timeout=WAIT_SECONDS))).get("id") != 1:
+            pass
+    assert answer["op"] == "error" and answer["code"] == "forbidden"
+    assert "the server's" in answer["message"] and "--token" in answer["message"]
+    assert demo_server.get("/api/scenes/default")["physics"]["mode"] == "kinematic"
+
+
+def test_with_the_control_token_the_demos_physics_may_change():
+    running = start_server("--token", "secret-control")
+    try:
+        with connect(f"{running.ws}/ws?scene=default&token=secret-control") as ws:
+            ws.recv(timeout=WAIT_SECONDS)
+            ws.send(json.dumps({"op": "call", "id": 1, "object": "scene", "method": "setPhysics",
+                                "args": ["dynamic"]}))
+            while (answer := json.loads(ws.recv(timeout=WAIT_SECONDS))).get("id") != 1:
+                pass
+        assert answer["op"] == "ok"
+    finally:
+        stop_server(running)

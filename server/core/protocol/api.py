@@ -69,7 +69,8 @@ class Method:
     mutates: bool = True
     client: bool = False
     # who may call it on another client's robot once shared (server.core.protocol.ownership):
-    # "owner" nobody else, "steer" anyone (motor angles), "attach" anyone, with their own parts
+    # "owner" nobody else, "steer" anyone (motor angles), "attach" anyone, with their own parts;
+    # on the scene, "keeper": only the client whose scene it is, or one with the control token
     access: str = "owner"
 
     @functools.cached_property
@@ -133,7 +134,8 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("getTime", returns="number", mutates=False),
         Method("setTransforms", (Param("transforms", "transforms"),)),
         # not in the manual: dynamic mode (server.core.physics.dynamics)
-        Method("setPhysics", (Param("mode", "mode"), Param("options", "options", None))),
+        Method("setPhysics", (Param("mode", "mode"), Param("options", "options", None)),
+               access="keeper"),
         Method("getPhysics", returns="physics", mutates=False),
         # not in the manual: a script's own clock (server.core.scene.clock)
         Method("pause", client=True),

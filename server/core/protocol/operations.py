@@ -49,10 +49,10 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
 class Operations:
     """Turns checked protocol messages into calls on a scene and results into wire values."""
 
-    def __init__(self, scene: Scene, client_id: str) -> None:
+    def __init__(self, scene: Scene, client_id: str, trusted: bool = False) -> None:
         self.scene = scene
         self.client_id = client_id
-        self.ownership = Ownership(client_id)
+        self.ownership = Ownership(client_id, trusted)
         self.keep = False  # what this client makes stays when it leaves (Node.keep)
 
     def type_of(self, object_id: str) -> str:
@@ -124,7 +124,8 @@ class Operations:
         target = self.scene if object_id == SCENE_ID else self.scene.get(object_id)
         args = bind(method.params, raw_args, self.scene.get, f"{name} of {object_id}")
         if method.mutates:
-            self.ownership.check_call(None if target is self.scene else target, method, args)
+            self.ownership.check_call(None if target is self.scene else target, method, args,
+                                      self.scene.keeper)
         extra = {"client": self.client_id} if method.client else {}
         value = getattr(target, method.python)(*args, **extra)
         return RESULTS[method.returns](target, value)

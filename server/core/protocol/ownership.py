@@ -6,6 +6,13 @@ open: a robot its owner shared (``share()``; the demo's robots are) may be steer
 anyone (the methods the API table marks ``steer``: motor angles) and others may attach
 their own parts to it (``attach``, and parameters marked ``destination``). Reading,
 sensing and watching stay open to all. Refusals name the owner.
+
+A scene has a keeper: the controller that made it (the first to join; when it has gone
+for good, the longest-connected controller left, or the next to join), or the server for
+a scene its own setup makes (the demo). What changes the whole scene for everyone who
+watches it (the methods marked ``keeper``: its physics) is the keeper's, or a controller's
+that presented the server's control token: a stranger on the demo cannot make it
+unwatchable.
 """
 
 from __future__ import annotations
@@ -26,11 +33,16 @@ def shared_robot(node: Node) -> Robot | None:
     return root if isinstance(root, Robot) and root.shared else None
 
 
-class Ownership:
-    """The checks for one client (its id is the owner part of what it makes)."""
+SERVER_KEEPER = "the server"  # the keeper of a scene the server's own setup makes
 
-    def __init__(self, client_id: str) -> None:
+
+class Ownership:
+    """The checks for one client (its id is the owner part of what it makes; ``trusted``:
+    it presented the server's control token)."""
+
+    def __init__(self, client_id: str, trusted: bool = False) -> None:
         self.client_id = client_id
+        self.trusted = trusted
 
     def owns(self, node: Node) -> bool:
         """True when the client made ``node``."""
@@ -41,8 +53,16 @@ class Ownership:
         if not self.owns(node):
             raise _refusal(node, "only its owner deletes it")
 
-    def check_call(self, target: Node | None, method: Method, values: Sequence[Any]) -> None:
-        """A changing call on ``target`` (None: the scene) with bound arguments ``values``."""
+    def check_call(self, target: Node | None, method: Method, values: Sequence[Any],
+                   keeper: str | None = None) -> None:
+        """A changing call on ``target`` (None: the scene, kept by ``keeper``) with bound
+        arguments ``values``."""
+        if target is None and method.access == "keeper" and not self.trusted and \
+                keeper is not None and keeper != self.client_id:
+            raise Forbidden(f"this scene is {keeper}'s: only it, or a controller with the "
+                            f"server's control token (vp-server --token, connect with token=), "
+                            f"may {method.name}; a scene of your own (?scene=NAME) is yours",
+                            keeper=keeper)
         if target is not None and not self.owns(target):
             self._check_foreign_target(target, method)
         for node, destination in _nodes_named(method.params, values):

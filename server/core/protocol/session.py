@@ -29,13 +29,13 @@ class Session:
     """A connected client: its id (``c7``), its role, and the objects it created."""
 
     def __init__(self, scene: Scene, client_id: str, role: str = "controller",
-                 resume: str | None = None) -> None:
+                 resume: str | None = None, trusted: bool = False) -> None:
         if role not in ROLES:
             raise ValueError(f"role must be one of {ROLES}, got {role!r}")
         self.scene = scene
         self.client_id = client_id
         self.role = role
-        self.operations = Operations(scene, client_id)
+        self.operations = Operations(scene, client_id, trusted)
         self.resume = resume  # what a reconnecting client sends to be this client again
         # told of every request that changed the scene, once it is applied (the journal)
         self.on_change: Callable[[Session, dict[str, Any]], None] | None = None

@@ -73,6 +73,8 @@ class Scene:
         self.revision = 0  # ticks that sent changes: a document of the scene is out of date
         self.failures = 0  # ticks whose contacts or sensing failed (a bug; logged)
         self.physics = Physics()  # kinematic until setPhysics
+        # whose scene it is (server.core.protocol.ownership): none until a controller joins
+        self.keeper: str | None = None
         self.moving = False  # dynamic mode: something moved in the last tick
 
     @property

@@ -115,3 +115,18 @@ def test_every_kind_that_names_objects_is_checked(scene):
             except Exception:
                 pass
         assert not named or kind in NODE_KINDS, kind
+
+
+def test_only_the_scenes_keeper_or_a_controller_with_the_token_changes_its_physics(scene, alice, bob):
+    # a stranger on the demo set it dynamic and made 100 balls: its viewers got 5 frames
+    # in 80 s
+    scene.keeper = "c1"
+    refused = ask(bob, call("scene", "setPhysics", "dynamic"))
+    assert refused["op"] == "error" and refused["code"] == "forbidden"
+    assert "c1's" in refused["message"] and "--token" in refused["message"]
+    assert scene.get_physics()["mode"] == "kinematic"
+    assert ask(Session(scene, "c3", trusted=True), call("scene", "setPhysics", "dynamic"))["op"] == "ok"
+    assert ask(alice, call("scene", "setPhysics", "kinematic"))["op"] == "ok"
+    assert ask(bob, call("scene", "setCameraPosition", 1, 2, 3))["op"] == "ok"  # not the scene's kind
+    scene.keeper = "the server"
+    assert "the server's" in ask(alice, call("scene", "setPhysics", "dynamic"))["message"]
