@@ -11,19 +11,23 @@ from __future__ import annotations
 import asyncio
 import logging
 import resource
+import signal
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable
 
 from ..errors import InternalError, TooLarge
+from .parent_death import end_with_parent
 from .runner import CONTEXT
 
 log = logging.getLogger(__name__)
 MEMORY_BYTES = 3 << 30  # address space of the checking process (numpy and trimesh included)
 
 
-def _cap_memory() -> None:
+def _start() -> None:
+    """A checking process: its memory capped, and it ends with the server."""
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_BYTES, resource.RLIM_INFINITY))
+    end_with_parent(signal.SIGKILL)  # it keeps nothing that a stop should save
 
 
 class Offload:
@@ -35,7 +39,7 @@ class Offload:
     async def run(self, function: Callable[..., Any], *args: Any) -> Any:
         """``function(*args)`` in the checking process; its VPErrors are raised here."""
         if self._pool is None:
-            self._pool = ProcessPoolExecutor(1, mp_context=CONTEXT, initializer=_cap_memory)
+            self._pool = ProcessPoolExecutor(1, mp_context=CONTEXT, initializer=_start)
         pool = self._pool
         try:
             return await asyncio.get_running_loop().run_in_executor(pool, function, *args)

@@ -41,7 +41,6 @@ each tick                                 ``("frame", [messages])`` for every cl
 
 from __future__ import annotations
 
-import ctypes
 import logging
 import os
 import signal
@@ -62,6 +61,7 @@ from ..core.protocol.messages import encode
 from ..core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
 from ..core.protocol.ownership import SERVER_KEEPER
 from ..core.protocol.session import Session
+from .parent_death import end_with_parent
 from ..core.scene.scene import Scene
 from ..errors import InternalError, UnknownRecording, VPError
 from . import heap
@@ -76,7 +76,6 @@ Animator = Callable[[Scene, float], None]
 SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
 SERVER_OWNER = "demo"  # what the server's own setups make: never anyone's to leave
-PR_SET_PDEATHSIG = 1  # prctl(2): the signal this process gets when its parent ends
 SAVE_FAILED = 75  # exit code of a scene's process that stopped with changes it could not save
 
 
@@ -111,15 +110,10 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
 
 def _end_with_the_server() -> None:
     """Stop (as the server would stop it: recording closed, document saved) once the
-    process that started this one has gone, kill -9 included. The pipe's end tells the
-    loop so between ticks; Linux's parent-death signal (from the fork server, which ends
-    with the server) also reaches a process busy in one long call into PyBullet."""
+    server's process has gone, kill -9 included: the pipe's end tells the loop so between
+    ticks, the parent-death signal also during one long call into PyBullet."""
     signal.signal(signal.SIGTERM, _stop_now)
-    parent = os.getppid()
-    if sys.platform.startswith("linux"):
-        ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
-    if os.getppid() != parent:  # the parent went before the signal was asked for
-        raise SystemExit(0)
+    end_with_parent(signal.SIGTERM)
 
 
 def _stop_now(signum: int, frame: Any) -> None:
