@@ -33,6 +33,7 @@ from .worker import SERVER_OWNER, SceneSetup
 __all__ = ["DEFAULT_SCENE", "Hubs", "SceneSetup"]
 
 log = logging.getLogger(__name__)
+BESIDE_NICE = 10  # how far below the scenes exports, replays and resimulations run
 
 CLIENT_ID = re.compile(r"c[0-9]{1,15}")
 DEFAULT_SCENE = "default"
@@ -66,8 +67,12 @@ class Hubs:
         self._stopping: dict[str, Runner] = {}  # removed scenes whose process may run on
         self.removed = 0
         self.offload = Offload()  # reading saved files and checking uploads, off this process
-        self.resimulations = Offload()  # recordings run again (minutes, maybe): a process of their own
-        self.replays = Offload()  # recordings read for players (JSON parsing: not in this process)
+        # beside the scenes, below their priority: a scene's ticks never wait for them
+        self.resimulations = Offload(("resimulations", limits.resimulations),
+                                     "resimulations", BESIDE_NICE)  # minutes, maybe
+        self.replays = Offload(("replayReads", limits.replay_reads), "replay reads",
+                               BESIDE_NICE)  # JSON parsing: not in this process
+        self.files = Offload(("fileJobs", limits.file_jobs), "robot files", BESIDE_NICE)
         self._setups: dict[str, SceneSetup] = {}
         self._restarts: dict[str, float] = {}  # a failed setup scene's next pause
         self.runners = runners  # scene processes here, or on a cluster's workers (server.cluster)
@@ -247,6 +252,7 @@ class Hubs:
         self.offload.close()
         self.resimulations.close()
         self.replays.close()
+        self.files.close()
         await asyncio.to_thread(lambda: [runner.join(10) for runner in runners])
         self.recordings.close()  # after the processes finished their files
         return sorted({runner.name for runner in runners if runner.unsaved})

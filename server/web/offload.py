@@ -10,13 +10,14 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import os
 import resource
 import signal
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable
 
-from ..errors import InternalError, TooLarge
+from ..errors import InternalError, LimitExceeded, TooLarge
 from .parent_death import end_with_parent
 from .runner import CONTEXT
 
@@ -24,23 +25,38 @@ log = logging.getLogger(__name__)
 MEMORY_BYTES = 3 << 30  # address space of the checking process (numpy and trimesh included)
 
 
-def _start() -> None:
-    """A checking process: its memory capped, and it ends with the server."""
+def _start(nice: int) -> None:
+    """A checking process: its memory capped, below the scenes' priority by ``nice``, and
+    it ends with the server."""
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_BYTES, resource.RLIM_INFINITY))
+    if nice:
+        os.nice(nice)
     end_with_parent(signal.SIGKILL)  # it keeps nothing that a stop should save
 
 
 class Offload:
-    """One checking process, started on first use and again after it died."""
+    """One process (started on first use, and again after it died) for one kind of work,
+    at a lower priority than the scenes' (``nice``). With a ``limit`` (a name of
+    :class:`~server.core.kit.limits.Limits` and its value), at most that many calls run or
+    wait at once: the next is refused with ``limit_exceeded`` (HTTP 429) naming it."""
 
-    def __init__(self) -> None:
+    def __init__(self, limit: tuple[str, int] | None = None, what: str = "jobs",
+                 nice: int = 0) -> None:
         self._pool: ProcessPoolExecutor | None = None
+        self._limit, self._what, self._nice = limit, what, nice
+        self.waiting = 0  # calls running or waiting now
 
     async def run(self, function: Callable[..., Any], *args: Any) -> Any:
-        """``function(*args)`` in the checking process; its VPErrors are raised here."""
+        """``function(*args)`` in the process; its VPErrors are raised here."""
+        if self._limit is not None and self.waiting >= self._limit[1]:
+            name, value = self._limit
+            raise LimitExceeded(f"the server is busy: {value} {self._what} are running or "
+                                f"waiting; try again once one is done", limit=name, value=value)
         if self._pool is None:
-            self._pool = ProcessPoolExecutor(1, mp_context=CONTEXT, initializer=_start)
+            self._pool = ProcessPoolExecutor(1, mp_context=CONTEXT, initializer=_start,
+                                             initargs=(self._nice,))
         pool = self._pool
+        self.waiting += 1
         try:
             return await asyncio.get_running_loop().run_in_executor(pool, function, *args)
         except MemoryError:
@@ -52,6 +68,8 @@ class Offload:
                 self._pool = None
                 pool.shutdown(wait=False, cancel_futures=True)
             raise InternalError("the process checking this ended; nothing was kept") from None
+        finally:
+            self.waiting -= 1
 
     def close(self) -> None:
         """Stop the checking process."""

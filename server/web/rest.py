@@ -170,19 +170,23 @@ async def robot_detail(request: Request, scene: str, robot_id: str) -> Response:
 async def robot_urdf(request: Request, scene: str, robot_id: str) -> Response:
     """Written from the tree the physics compiles; the base at the file's origin (load it
     at the robot's position and rotation), joints named by their motors' ids."""
-    return await _file(request, scene, robot_files.robot_urdf, robot_id, "application/zip", "zip")
+    return await _file(request, scene, robot_files.packed_urdf_job, robot_id, "application/zip", "zip")
 
 
 @router.get("/scenes/{scene}/robots/{robot_id}/glb", responses=FILE_OR_NOT_FOUND, response_class=Response,
             summary="A robot's look as a GLB: its parts' meshes, colours and poses as they are now")
 async def robot_glb(request: Request, scene: str, robot_id: str) -> Response:
-    return await _file(request, scene, robot_files.robot_glb, robot_id, "model/gltf-binary", "glb")
+    return await _file(request, scene, robot_files.packed_glb_job, robot_id, "model/gltf-binary", "glb")
 
 
-async def _file(request: Request, scene: str, write: Callable[..., bytes], robot_id: str,
+async def _file(request: Request, scene: str, job: Callable[..., bytes], robot_id: str,
                 media_type: str, suffix: str) -> Response:
-    """A file written in the scene's process, sent as a download named after the robot."""
-    body = await hub_of(request, scene).runner.call("read", write, (robot_id,))
+    """A file taken from the scene (quick, in its process) and written beside it (in the
+    process for files: the scene ticks on meanwhile), sent as a download named after the
+    robot."""
+    hubs = hubs_of(request)
+    packed = await hub_of(request, scene).runner.call("read", job, (robot_id,))
+    body = await hubs.files.run(robot_files.written, packed, hubs.assets)
     return Response(body, media_type=media_type, headers={
         "Content-Disposition": f'attachment; filename="{file_stem(robot_id)}.{suffix}"'})
 

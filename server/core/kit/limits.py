@@ -60,6 +60,11 @@ class Limits:
     # a recording (POST /api/scenes/{scene}/recordings): it stops itself at either
     recording_bytes: int = 256 << 20      # its file
     recording_seconds: int = 3_600        # scene time it covers
+    # work beside the scenes, each kind in a process of its own (server/web/offload.py):
+    # what runs or waits at once; more is refused (busy) until some is done
+    file_jobs: int = 8                    # robot files (URDF, GLB) being written
+    resimulations: int = 2                # recordings run again
+    replay_reads: int = 32                # seeks and windows of recordings for players
 
     def wire(self) -> dict[str, int]:
         """The limits by wire name, as ``hello`` carries them."""

@@ -3,29 +3,59 @@
 Both are written from the tree the scene's physics compiled and simulates
 (:mod:`server.core.physics.articulation`), with the scene's figures for what the tree does
 not carry: the motors' torques, the density parts are weighed with, the parts' poses and
-recolours.
+recolours. What a file needs is taken from the scene (a :class:`UrdfJob` or
+:class:`GlbJob`: quick), and the file is written from it elsewhere (meshing parts takes
+seconds for a hand): the server writes files in a process beside the scenes, so that
+a loop of exports never holds up a scene's ticks.
 """
 
 from __future__ import annotations
+
+import pickle
+from dataclasses import dataclass
 
 from ...errors import UnknownObject
 from ..model.robot import Robot
 from ..model.structure import structure_of
 from ..physics.articulation import Articulation
+from ..physics.assets import AssetLibrary
 from ..physics.glb_file import DrawnPart, glb_bytes
 from ..physics.urdf_file import urdf_zip
 from ..scene.scene import Scene
 
 
-def robot_urdf(scene: Scene, robot_id: str) -> bytes:
+@dataclass(frozen=True)
+class UrdfJob:
+    """What a robot's URDF zip is written from."""
+
+    tree: Articulation
+    robot_id: str
+    density: float
+    torques: dict[str, float]
+
+    def write(self, assets: AssetLibrary) -> bytes:
+        return urdf_zip(self.tree, self.robot_id, self.density, self.torques, assets)
+
+
+@dataclass(frozen=True)
+class GlbJob:
+    """What a robot's GLB is written from: its parts where they are now."""
+
+    parts: tuple[DrawnPart, ...]
+
+    def write(self, assets: AssetLibrary) -> bytes:
+        return glb_bytes(list(self.parts), assets)
+
+
+def urdf_job(scene: Scene, robot_id: str) -> UrdfJob:
     """``GET …/robots/{id}/urdf``: the zip of ``{id}/robot.urdf`` and its meshes; the base
     at the file's origin (load it at the robot's position and rotation)."""
     robot, tree = _compiled(scene, robot_id)
     torques = {motor.id: motor.get_max_torque() for motor in robot.get_motors()}
-    return urdf_zip(tree, robot.id, scene.physics.density, torques, scene.assets)
+    return UrdfJob(tree, robot.id, scene.physics.density, torques)
 
 
-def robot_glb(scene: Scene, robot_id: str) -> bytes:
+def glb_job(scene: Scene, robot_id: str) -> GlbJob:
     """``GET …/robots/{id}/glb``: the robot's parts as one binary glTF, where they are now."""
     _, tree = _compiled(scene, robot_id)
     geometries = ([tree.base_geometry] if tree.base_part is not None else []) + \
@@ -35,7 +65,36 @@ def robot_glb(scene: Scene, robot_id: str) -> bytes:
         node = scene.nodes[key]
         parts.append(DrawnPart(key, geometry, node.world_pose(),  # type: ignore[arg-type]
                                getattr(node, "recolors", ())))
-    return glb_bytes(parts, scene.assets)
+    return GlbJob(tuple(parts))
+
+
+def packed(job: UrdfJob | GlbJob) -> bytes:
+    """A job as the scene's process hands it over (its answers are bytes or JSON)."""
+    return pickle.dumps(job)
+
+
+def written(job: bytes, assets: AssetLibrary) -> bytes:
+    """The file of a :func:`packed` job (in the process that writes files)."""
+    unpacked: UrdfJob | GlbJob = pickle.loads(job)  # noqa: S301 (the server's own scene process made it)
+    return unpacked.write(assets)
+
+
+def robot_urdf(scene: Scene, robot_id: str) -> bytes:
+    """:func:`urdf_job`, written here."""
+    return urdf_job(scene, robot_id).write(scene.assets)
+
+
+def robot_glb(scene: Scene, robot_id: str) -> bytes:
+    """:func:`glb_job`, written here."""
+    return glb_job(scene, robot_id).write(scene.assets)
+
+
+def packed_urdf_job(scene: Scene, robot_id: str) -> bytes:
+    return packed(urdf_job(scene, robot_id))
+
+
+def packed_glb_job(scene: Scene, robot_id: str) -> bytes:
+    return packed(glb_job(scene, robot_id))
 
 
 def _compiled(scene: Scene, robot_id: str) -> tuple[Robot, Articulation]:

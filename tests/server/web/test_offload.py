@@ -1,0 +1,41 @@
+"""Work beside the scenes: one process a kind, below their priority, bounded in number."""
+
+import asyncio
+import os
+import time
+from pathlib import Path
+
+import pytest
+
+from server.errors import LimitExceeded
+from server.web.offload import Offload
+from tests.conftest import WAIT_SECONDS
+
+
+def wait_for(path: str) -> int:
+    """Runs in the offload's process: until ``path`` exists; that process's niceness."""
+    deadline = time.monotonic() + WAIT_SECONDS
+    while not Path(path).exists():
+        assert time.monotonic() < deadline
+        time.sleep(0.01)
+    return os.nice(0)
+
+
+def test_past_its_limit_a_call_is_refused_naming_the_limit_and_the_others_finish(tmp_path):
+    # three resimulations at once ran one at a time with no bound on waiting callers
+    async def scenario():
+        offload = Offload(("resimulations", 2), "resimulations", nice=10)
+        go = tmp_path / "go"
+        running = [asyncio.ensure_future(offload.run(wait_for, str(go))) for _ in range(2)]
+        await asyncio.sleep(0)  # both taken in
+        with pytest.raises(LimitExceeded) as refused:
+            await offload.run(wait_for, str(go))
+        go.touch()
+        done = await asyncio.gather(*running)
+        offload.close()
+        return refused.value, done, offload.waiting
+
+    refusal, done, waiting = asyncio.run(scenario())
+    assert refusal.details["limit"] == "resimulations" and refusal.details["value"] == 2
+    assert "--limit resimulations=N" in refusal.message
+    assert done == [os.nice(0) + 10] * 2 and waiting == 0  # below the server, and done
