@@ -77,7 +77,8 @@ class Hubs:
         self._restarts: dict[str, float] = {}  # a failed setup scene's next pause
         self.runners = runners  # scene processes here, or on a cluster's workers (server.cluster)
         self.ids = ids if ids is not None else ClientIds(state)
-        self.recordings = Recordings(state.root / "recordings" if state is not None else None)
+        self.recordings = Recordings(state.root / "recordings" if state is not None else None,
+                                     limits)
 
     def get(self, name: str) -> SceneHub | None:
         """The hub of an existing scene."""

@@ -66,7 +66,7 @@ class SceneRecordings:
         """A client's ``startRecording``: a new recording, named here."""
         if self.folder is None:
             raise StorageFailure("this server keeps no recordings")
-        recording_id, path = new_recording(self.folder, self.scene.name)
+        recording_id, path = new_recording(self.folder, self.scene.name, self.scene.limits)
         self.begin(recording_id, path)
         self._tell(("recording", recording_id))
         return recording_id

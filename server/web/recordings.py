@@ -20,7 +20,8 @@ from typing import Any
 
 from mcap.reader import make_reader
 
-from ..errors import RecordingBusy, RecordingDamaged, UnknownRecording
+from ..core.kit.limits import Limits
+from ..errors import LimitExceeded, RecordingBusy, RecordingDamaged, UnknownRecording
 
 RECORDING_ID = re.compile(r"[A-Za-z0-9_-]{1,64}-\d{8}T\d{6}Z-[0-9a-f]{4}")
 SUFFIX = ".mcap"
@@ -29,7 +30,8 @@ SUFFIX = ".mcap"
 class Recordings:
     """Recordings in ``folder`` (None: a temporary one, removed when the server stops)."""
 
-    def __init__(self, folder: Path | None = None) -> None:
+    def __init__(self, folder: Path | None = None, limits: Limits | None = None) -> None:
+        self.limits = limits or Limits()
         self._temporary = tempfile.TemporaryDirectory(prefix="vp-recordings-") if folder is None else None
         self.folder = Path(self._temporary.name) if self._temporary is not None else folder
         try:
@@ -45,8 +47,8 @@ class Recordings:
             self._temporary.cleanup()
 
     def new(self, scene: str) -> tuple[str, Path]:
-        """A new recording's id and the path of its file."""
-        return new_recording(self.folder, scene)  # type: ignore[arg-type]
+        """A new recording's id and the path of its file (the oldest go to make room)."""
+        return new_recording(self.folder, scene, self.limits)  # type: ignore[arg-type]
 
     def started(self, recording_id: str, scene: str) -> None:
         self.active[recording_id] = scene
@@ -137,11 +139,50 @@ def running(path: Path) -> bool:
     return False
 
 
-def new_recording(folder: Path, scene: str) -> tuple[str, Path]:
-    """A new recording's id (``<scene>-<UTC time>-<4 hex digits>``) and its file in ``folder``."""
+def new_recording(folder: Path, scene: str, limits: Limits) -> tuple[str, Path]:
+    """A new recording's id (``<scene>-<UTC time>-<4 hex digits>``) and its file in
+    ``folder``, once :func:`make_room` made room for it."""
+    make_room(folder, limits)
     stamp = time.strftime("%Y%m%dT%H%M%SZ", time.gmtime())
     recording_id = f"{scene}-{stamp}-{secrets.token_hex(2)}"
     return recording_id, folder / f"{recording_id}{SUFFIX}"
+
+
+def make_room(folder: Path, limits: Limits) -> None:
+    """Remove the oldest finished recordings until fewer than ``recordings`` are kept and
+    their bytes are under ``recordingsBytes``; ``limit_exceeded`` if the ones still being
+    recorded alone are that many (150 recordings started and stopped kept 153 files)."""
+    kept = sorted((p for p in folder.glob(f"*{SUFFIX}")
+                   if RECORDING_ID.fullmatch(p.name[:-len(SUFFIX)]) and not p.is_symlink()),
+                  key=_age)
+    sizes = {path: _size(path) for path in kept}
+    count, total = len(kept), sum(sizes.values())
+    for path in kept:
+        if count < limits.recordings and total < limits.recordings_bytes:
+            return
+        if not running(path):
+            path.unlink(missing_ok=True)
+            count, total = count - 1, total - sizes[path]
+    if count >= limits.recordings:
+        raise LimitExceeded(f"{count} recordings are still being recorded; stop one first",
+                            limit="recordings", value=limits.recordings)
+    if total >= limits.recordings_bytes:
+        raise LimitExceeded(f"the recordings still being recorded hold {total} bytes; stop "
+                            f"one first", limit="recordingsBytes", value=limits.recordings_bytes)
+
+
+def _age(path: Path) -> float:
+    try:
+        return path.stat().st_mtime
+    except OSError:
+        return 0.0
+
+
+def _size(path: Path) -> int:
+    try:
+        return path.stat().st_size
+    except OSError:
+        return 0
 
 
 def _summary(path: Path) -> dict[str, Any]:

@@ -60,6 +60,10 @@ class Limits:
     # a recording (POST /api/scenes/{scene}/recordings): it stops itself at either
     recording_bytes: int = 256 << 20      # its file
     recording_seconds: int = 3_600        # scene time it covers
+    # the recordings kept: when a new one starts, the oldest finished ones go until fewer
+    # than this many are kept and their bytes are under recordingsBytes
+    recordings: int = 200
+    recordings_bytes: int = 4 << 30
     # work beside the scenes, each kind in a process of its own (server/web/offload.py):
     # what runs or waits at once; more is refused (busy) until some is done
     file_jobs: int = 8                    # robot files (URDF, GLB) being written

@@ -93,3 +93,24 @@ def test_a_symbolic_link_in_the_folder_is_no_recording(recorded, tmp_path):
             status, body = _refusal(server, path)
             assert (status, body["code"]) == (404, "unknown_recording")
             assert "not for the server" not in json.dumps(body)
+
+
+def test_past_its_limits_the_oldest_finished_recordings_make_room(tmp_path):
+    # 150 recordings started and stopped kept 153 files: nothing bounded them
+    server = start_server("--no-demo", "--state-dir", str(tmp_path), "--limit", "recordings=3")
+    try:
+        with connect(f"{server.ws}/ws?scene={SCENE}") as ws:
+            ws.recv(timeout=WAIT_SECONDS)
+            made = []
+            for _ in range(5):
+                _, started = server.post(f"/api/scenes/{SCENE}/recordings")
+                made.append(started["id"])
+                wait_ticks(ws)
+                server.post(f"/api/recordings/{started['id']}/stop")
+            kept = [r["id"] for r in server.get("/api/recordings")]
+            assert sorted(kept) == sorted(made[-3:])  # the newest three
+            _, running = server.post(f"/api/scenes/{SCENE}/recordings")  # one more: room made
+            assert len(server.get("/api/recordings")) == 3
+            server.post(f"/api/recordings/{running['id']}/stop")
+    finally:
+        stop_server(server)
