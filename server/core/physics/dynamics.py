@@ -30,9 +30,12 @@ Defaults, and why (:class:`Physics`):
   ball neither spins nor rolls out. Every body has Bullet's friction anchors: without them
   a contact that sticks still creeps a little every step, and a squeezed ball crept out
   of a closed hand by millimetres a second.
-- Nothing sleeps (Bullet's deactivation of bodies still for 2 s): a sleeper left without
-  support wakes only if something awake touches it, and with sleeping the Box and Blocks
-  baseline moved fewer blocks with every hand. Every tree is a multibody: single bodies as
+- Nothing sleeps (Bullet's deactivation of bodies still for 2 s) in a world of up to
+  SLEEP_CROWD free bodies: with sleeping the Box and Blocks baseline (150 blocks) moved
+  fewer blocks with every hand. Past it, resting free bodies sleep: a pile of 500 balls
+  never came to rest without (its jitter kept every ball moving), and with it settled in
+  seconds and cost nearly nothing. A sleeper is woken when it is put somewhere, and every
+  one when a free body goes (it may have held some up). Every tree is a multibody: single bodies as
   Bullet rigid bodies solve faster but held the grasp task's objects less well.
 - ``density`` 1000 kg/m³ (water; plastics and flesh are near it): a part's mass is its
   volume times this, unless ``setMass`` gave it one.
@@ -77,6 +80,7 @@ BREAKING_THRESHOLD = 0.02  # Bullet's own: contacts persist while resting (kinem
 # the 1.0 motors are pictures, not actuators (a round finger's spread motor is drawn with
 # size 0), so a designer gives real actuators their torques.
 DEFAULT_MAX_TORQUE = 2e4
+SLEEP_CROWD = 256  # free bodies past which resting ones sleep
 
 
 _RANGES: dict[str, tuple[float, float, type]] = {
@@ -156,6 +160,9 @@ class Dynamics:
         self.iterations = physics.solverIterations  # what steps use now (STEP_BUDGET)
         self.held_back = 0  # steps the last advance left out (STEP_BUDGET)
         self.clock: Callable[[], float] = time.thread_time  # the CPU-seconds steps cost
+        self._free: set[int] = set()  # free bodies (SLEEP_CROWD)
+        self.sleeping = False  # resting free bodies sleep (more than SLEEP_CROWD of them)
+        self._wake_all = False  # before the next step (a free body went)
         pybullet.setGravity(0, -physics.gravity, 0, physicsClientId=client)
         pybullet.setPhysicsEngineParameter(fixedTimeStep=physics.step,
                                            numSolverIterations=physics.solverIterations,
@@ -211,6 +218,9 @@ class Dynamics:
             p.setJointMotorControlArray(body, list(joint_links), p.VELOCITY_CONTROL,
                                         forces=[0.0] * len(joint_links), physicsClientId=client)
         if not tree.mounted or tree.static:
+            if body in self._lightest:  # a free body
+                self._free.add(body)
+                self._doze(body)
             return None
         mount = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
                                    base_pose[0], childFrameOrientation=base_pose[1],
@@ -266,11 +276,31 @@ class Dynamics:
 
     def removed(self, body: int, mount: int | None) -> None:
         """A tree gone, with its mount (Bullet gives their ids to the next ones made)."""
+        if body in self._free:
+            self._free.discard(body)
+            self._wake_all = self.sleeping
+            self._doze()
         if mount is not None:
             self._mounts.pop(mount, None)
             self._glides.pop(mount, None)
         if self._lightest.pop(body, None) is not None:
             self._tolerate()
+
+    def _doze(self, new: int | None = None) -> None:
+        """Let resting free bodies sleep once there are more than SLEEP_CROWD (``new``: a
+        body just made), and none sleep again once there are fewer."""
+        p = self.p
+        wanted = len(self._free) > SLEEP_CROWD
+        if wanted != self.sleeping:
+            self.sleeping = wanted
+            for body in self._free:
+                self._activate(body, p.ACTIVATION_STATE_ENABLE_SLEEPING if wanted else
+                               p.ACTIVATION_STATE_DISABLE_SLEEPING | p.ACTIVATION_STATE_WAKE_UP)
+        elif wanted and new is not None:
+            self._activate(new, p.ACTIVATION_STATE_ENABLE_SLEEPING)
+
+    def _activate(self, body: int, state: int) -> None:
+        self.p.changeDynamics(body, -1, activationState=state, physicsClientId=self.client)
 
     def _put(self, constraint: int, pose: Pose) -> None:
         self.p.changeConstraint(constraint, pose[0], pose[1], maxForce=MOUNT_FORCE,
@@ -281,6 +311,8 @@ class Dynamics:
         """Put a free body at a pose, at rest (a script's setPosition of an object)."""
         self.p.resetBasePositionAndOrientation(body, pose[0], pose[1], physicsClientId=self.client)
         self.p.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=self.client)
+        if self.sleeping and body in self._free:
+            self._activate(body, self.p.ACTIVATION_STATE_WAKE_UP)
 
     def advance(self, seconds: float) -> int:
         """Step the world through ``seconds`` (what is left over waits for the next call;
@@ -296,6 +328,10 @@ class Dynamics:
         self._debt -= count * step  # steps the budget leaves out are not owed later
         glides = [(c, self._mounts[c], pose) for c, pose in self._glides.items()]
         self._glides.clear()
+        if self._wake_all:
+            for body in self._free:
+                self._activate(body, self.p.ACTIVATION_STATE_WAKE_UP)
+            self._wake_all = False
         spent, taken = 0.0, 0
         while taken < count and (not taken or spent * (taken + 1) / taken <= STEP_BUDGET):
             taken += 1

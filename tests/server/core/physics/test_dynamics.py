@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from server.core.model.parts import Box
+from server.core.model.parts import Ball, Box
 from server.core.physics import dynamics
 from server.core.physics.dynamics import DEFAULT_MAX_TORQUE, Physics
 from server.errors import BadArguments, OutOfRange, WrongType
@@ -62,3 +62,31 @@ def test_a_tick_takes_no_more_steps_than_its_budget_and_costly_steps_get_fewer_i
     for _ in range(4):
         scene.tick(1 / 60)
     assert world.iterations == 500 and world.held_back < 19
+
+
+def test_a_crowd_comes_to_rest_and_wakes_when_one_is_put_elsewhere_or_one_goes(scene):
+    # 500 balls heaped never came to rest (their jitter kept every one moving, and every
+    # tick paid for them all); past SLEEP_CROWD free bodies, resting ones sleep
+    scene.set_physics("dynamic")
+    count = dynamics.SLEEP_CROWD + 50
+    with scene.journal.transaction():
+        balls = [Ball(scene, f"b{i}", 0.2) for i in range(count)]
+        for ball in balls:
+            ball.set_position((0, 2, 0))
+    ticks = 0
+    scene.tick(1 / 60)
+    while scene.moving:
+        scene.tick(1 / 60)
+        ticks += 1
+        assert ticks < 3000, "the heap never came to rest"
+    lowest = min(balls, key=lambda b: b.position[1])
+    highest = max(balls, key=lambda b: b.position[1])
+    highest.set_position((30, 10, 0))  # put elsewhere: it falls, asleep or not
+    for _ in range(30):
+        scene.tick(1 / 60)
+    assert highest.position[1] < 9
+    before = {ball.id: ball.position for ball in balls if ball is not lowest and ball is not highest}
+    scene.delete(lowest)  # what it held up wakes
+    for _ in range(30):
+        scene.tick(1 / 60)
+    assert any(scene.nodes[i].position != p for i, p in before.items())
