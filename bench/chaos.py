@@ -4,7 +4,9 @@ acknowledged is looked for.
 
 Faults, in turn: ``kill -9`` of the whole server (then started again), a graceful restart,
 ``kill -9`` of the changed scene's process, ``SIGSTOP`` of it for a second, the scenes
-folder made unwritable for 1.5 s, a 5 MB import into a third scene and a 7 MB upload.
+folder made unwritable for 1.5 s, a 5 MB import into a third scene, a 7 MB upload, a
+stranger's pile (1 000 balls made in one spot of a dynamic scene of its own, kept a second),
+two clients exporting a RoundHand's URDF in a loop for 1.5 s, and a recording resimulated.
 A bystander viewer of another scene (a process of its own) notes when each frame arrives;
 the worst gap between two frames during each fault (the server's own restarts aside) is
 what the bystander saw of it. Loopback only; everything stops when the run ends.
@@ -20,6 +22,7 @@ import signal
 import tempfile
 import threading
 import time
+import urllib.error
 import urllib.request
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -36,10 +39,11 @@ from tests.conftest import RunningServer, crash_server, start_server, stop_serve
 
 from .stats import figure
 
-WORK, BYSTANDER, IMPORTS = "work", "bystander", "imports"
+WORK, BYSTANDER, IMPORTS, EXPORTS = "work", "bystander", "imports", "exports"
 KINDS = ("server_kill", "scene_kill", "scene_stop", "unwritable", "import", "upload",
-         "restart")
-GAP_KINDS = ("scene_kill", "scene_stop", "unwritable", "import", "upload")  # server runs on
+         "restart", "pile", "export", "resimulate")
+GAP_KINDS = ("scene_kill", "scene_stop", "unwritable", "import", "upload", "pile", "export",
+             "resimulate")  # the server runs on
 
 
 @dataclass
@@ -154,8 +158,23 @@ class Chaos:
         self.checks: list[dict[str, Any]] = []
         self.document = big_document(150 if quick else 1500)
         self.mesh = trimesh.creation.icosphere(3 if quick else 6, 1.0).export(file_type="glb")
+        self.quick = quick
         self.server = self._start()
         self.changer = Changer(lambda: self.server.ws, self.ledger, seed)
+        self.piles = 0
+        self.hand, self.recording = self._exported()
+
+    def _exported(self) -> tuple[str, str]:
+        """A RoundHand kept in scene EXPORTS, and a second's recording of that scene."""
+        with connect(f"{self.server.ws}/ws?scene={EXPORTS}&keep=true") as ws:
+            me = json.loads(ws.recv(timeout=30))["client"]
+            _ask(ws, {"op": "create", "object": f"{me}.h", "type": "RoundHand"})
+            _, started = self.server.post(f"/api/scenes/{EXPORTS}/recordings")
+            for angle in (0.2, 0.6, 1.0):
+                _ask(ws, {"op": "call", "object": f"{me}.h", "method": "flexFingers", "args": [angle]})
+                time.sleep(0.3)
+            self.server.post(f"/api/recordings/{started['id']}/stop")
+        return f"{me}.h", started["id"]
 
     def _start(self, port: int | None = None) -> RunningServer:
         return start_server("--no-demo", "--state-dir", str(self.state), port=port)
@@ -189,6 +208,40 @@ class Chaos:
 
     def upload(self) -> None:
         self._post("/api/assets", self.mesh)
+
+    def pile(self) -> None:
+        count = 100 if self.quick else 1000
+        self.piles += 1
+        url = f"{self.server.ws}/ws?scene=piles{self.piles}"
+        with connect(url, max_size=None, max_queue=None) as ws:
+            me = json.loads(ws.recv(timeout=30))["client"]
+            _ask(ws, {"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]})
+            _ask(ws, {"op": "batch", "ops": [
+                op for k in range(count) for op in (
+                    {"op": "create", "object": f"{me}.{k}", "type": "Ball", "args": [0.2]},
+                    {"op": "call", "object": f"{me}.{k}", "method": "setPosition", "args": [0, 2, 0]})]})
+            time.sleep(1.0)
+            _ask(ws, {"op": "batch", "ops": [{"op": "delete", "object": f"{me}.{k}"}
+                                            for k in range(count)]})
+
+    def export(self) -> None:
+        deadline = time.monotonic() + 1.5
+        url = f"{self.server.http}/api/scenes/{EXPORTS}/robots/{self.hand}/urdf"
+
+        def loop() -> None:
+            while time.monotonic() < deadline:
+                try:
+                    urllib.request.urlopen(url, timeout=60).read()
+                except urllib.error.HTTPError as error:  # 429: the files' process is busy
+                    assert error.code == 429, error
+        threads = [threading.Thread(target=loop) for _ in range(2)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+
+    def resimulate(self) -> None:
+        self.server.post(f"/api/recordings/{self.recording}/resimulate")
 
     def _post(self, path: str, body: bytes) -> None:
         request = urllib.request.Request(self.server.http + path, data=body, method="POST")
@@ -229,6 +282,16 @@ class Chaos:
                 if time.monotonic() > deadline:
                     raise
                 time.sleep(0.1)
+
+
+def _ask(ws: Any, request: dict[str, Any]) -> dict[str, Any]:
+    """Send a request and wait for its answer (frames skipped); it must be ok."""
+    ws.send(json.dumps({**request, "id": 1}))
+    while True:
+        answer = json.loads(ws.recv(timeout=60))
+        if answer.get("id") == 1 and answer["op"] in ("ok", "error"):
+            assert answer["op"] == "ok", answer
+            return answer
 
 
 def big_document(robots: int) -> bytes:
@@ -278,6 +341,8 @@ def summary(chaos: Chaos, frames: list[float], seconds: float) -> dict[str, Any]
     lost = sorted({object_id for check in chaos.checks for object_id in check["lost"]})
     return {"faults": len(chaos.checks), "rounds": len(chaos.checks) // len(KINDS),
             "by_kind": {kind: sum(c["kind"] == kind for c in chaos.checks) for kind in KINDS},
+            "lost_by_kind": {kind: len({i for c in chaos.checks if c["kind"] == kind for i in c["lost"]})
+                             for kind in KINDS},
             "acknowledged": chaos.ledger.acknowledged, "lost": len(lost), "lost_ids": lost[:20],
             "uncertain": len(chaos.ledger.uncertain), "seconds": round(seconds, 1),
             "gap_ms": {kind: figure(values) for kind, values in gaps.items() if values},

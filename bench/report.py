@@ -190,12 +190,13 @@ def chaos_table(run: dict[str, Any]) -> list[str]:
            f"{run['acknowledged']:,} changes acknowledged, **{run['lost']} lost** "
            f"({run['uncertain']} left unanswered by a fault, not counted). A viewer of "
            f"another scene noted each frame; its longest gap during each kind of fault:", "",
-           "| fault | injected | bystander's longest gap, median / worst |", "|---|---|---|"]
+           "| fault | injected | acknowledged changes lost after it | bystander's longest gap, "
+           "median / worst |", "|---|---|---|---|"]
     for kind, count in run["by_kind"].items():
         gap = run["gap_ms"].get(kind)
         shown = f"{_ms(gap.median)} / {_ms(run['gap_worst_ms'][kind])}" if gap else \
             "(the server itself restarts: not a bystander's gap)"
-        out.append(f"| {kind} | {count} | {shown} |")
+        out.append(f"| {kind} | {count} | {run['lost_by_kind'][kind]} | {shown} |")
     return out
 
 

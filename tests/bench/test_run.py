@@ -34,7 +34,8 @@ def test_bench_quick_writes_every_figure(tmp_path):
     busy = figures["busy_connect"]
     assert busy["scenes"] == 2 and busy["connect_fresh_s"]["count"] == 5
     chaos = figures["chaos"]
-    assert chaos["faults"] == 7 and set(chaos["by_kind"].values()) == {1}
+    assert chaos["faults"] == 10 and set(chaos["by_kind"].values()) == {1}
+    assert set(chaos["lost_by_kind"].values()) == {0} and "pile" in chaos["gap_ms"]
     assert chaos["acknowledged"] > 0 and chaos["lost"] == 0  # the journal's promise
     assert chaos["bystander_frames"] > 0
     cluster = figures["cluster"]
