@@ -50,10 +50,9 @@ class Clearance:
             self._grid.remove(body)
 
     def place(self, body: int, position: Vec3, orientation: Any) -> bool:
-        """Put the free ``body`` (its centre of mass) at a pose, or, if it would be deep
-        inside a free or static body there (not a robot: a hand closes on what it is
-        given), at the nearest clear spot; True if it was moved."""
-        self._put(body, position, orientation)
+        """Leave the free ``body``, just made or put at a pose (its centre of mass's), where
+        it is, or, if it is deep inside a free or static body there (not a robot: a hand
+        closes on what it is given), move it to the nearest clear spot; True if it moved."""
         grid = self._grid_without(body)
         box = self._box(body)
         depth = DEEP * min(high - low for low, high in zip(*box)) / 2
