@@ -33,6 +33,8 @@ Hierarchy::
     ├── LimitExceeded            limit_exceeded a documented limit was reached
     ├── StorageFailure           storage_failure a file the server must write cannot be
     │                                           (a full disk, a folder it may not write)
+    ├── BusUnavailable           bus_unavailable a cluster's gateway cannot reach its bus
+    │                                           (the scenes its workers run are out of reach)
     └── InternalError            internal       a server fault (a bug): reported, not hidden
 
 The wire form (``{"op": "error", "id", "code", "message", "details"}``) is defined in
@@ -229,6 +231,13 @@ class StorageFailure(VPError):
     code = "storage_failure"
 
 
+class BusUnavailable(VPError):
+    """A gateway's bus is unreachable: ``details.bus`` names it (its address without
+    credentials); the request may be tried again once it is back."""
+
+    code = "bus_unavailable"
+
+
 class InternalError(VPError):
     code = "internal"
 
@@ -238,5 +247,5 @@ ERROR_CODES: tuple[str, ...] = tuple(
                          UnknownObject, UnknownScene, UnknownAsset, UnknownRecording, BadArguments,
                          WrongType, OutOfRange, BadAsset, DuplicateId, ForeignId, Cycle, NotPaused,
                          RecordingBusy, RecordingDamaged, Forbidden, LimitExceeded, StorageFailure,
-                         InternalError)
+                         BusUnavailable, InternalError)
 )

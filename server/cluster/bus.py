@@ -28,8 +28,10 @@ from __future__ import annotations
 import asyncio
 import logging
 import pickle
+import time
 from dataclasses import dataclass
 from typing import Any, Awaitable, Callable
+from urllib.parse import urlsplit
 
 import nats
 from nats.aio.client import Client
@@ -38,11 +40,14 @@ from nats.errors import NoRespondersError, NoServersError, TimeoutError as Reque
 from nats.js.errors import BadRequestError
 from nats.js.kv import KeyValue
 
-from ..errors import TooLarge
+from ..errors import BusUnavailable, TooLarge
 
 log = logging.getLogger(__name__)
 PLACE = "vp.place"
 CONNECT_SECONDS = 60.0  # a process started with its bus waits this long for it
+# a bus cut off without its connection closing (a partition) is noticed within about
+# PING_SECONDS * (PINGS_OUT + 1), not nats-py's default of minutes
+PING_SECONDS, PINGS_OUT = 2.0, 2
 WORKERS, SCENES, CLUSTER = "vp_workers", "vp_scenes", "vp_cluster"
 Handler = Callable[[Any, "Reply | None"], Awaitable[None] | None]
 
@@ -119,8 +124,11 @@ class OrderedSender:
             subject, value = await self._queue.get()
             try:
                 await self._bus.publish(subject, value)
-            except Exception:  # too large, or the bus is gone for a moment: that one is lost
-                log.exception("publishing on %s", subject)
+            except Exception:  # too large, or the bus is away: that one is lost
+                if self._bus.link.down_since is None:
+                    log.exception("publishing on %s", subject)
+                # (away: the client keeps what it can, pending_size, then refuses; the link
+                # has said the bus is away, once: not a traceback a message)
 
     async def flush(self) -> None:
         """Publish what is still queued (its owner is stopping)."""
@@ -128,12 +136,67 @@ class OrderedSender:
             await self._bus.publish(*self._queue.get_nowait())
 
 
+class Link:
+    """Whether the bus is reachable now, as the client's own callbacks say: it notices a
+    bus that went away (its connection closed, or PINGS_OUT pings unanswered) and comes back
+    by itself."""
+
+    def __init__(self, url: str) -> None:
+        self.where = shown_address(url)
+        self.down_since: float | None = None  # (time.monotonic())
+        self.up_since = time.monotonic()
+        self.returned: list[Callable[[], None]] = []  # called whenever it is back
+
+    async def lost(self) -> None:
+        if self.down_since is None:
+            self.down_since = time.monotonic()
+            log.error("the bus at %s is unreachable", self.where)
+
+    async def back(self) -> None:
+        if self.down_since is not None:
+            log.warning("the bus at %s is back after %.1f s", self.where,
+                        time.monotonic() - self.down_since)
+        self.down_since, self.up_since = None, time.monotonic()
+        for call in self.returned:
+            call()
+
+    @property
+    def down_for(self) -> float:
+        """Seconds since the bus went away (0 while it is reachable)."""
+        return 0.0 if self.down_since is None else time.monotonic() - self.down_since
+
+    def refusal(self, what: str) -> BusUnavailable:
+        """The error of a request that needs the bus while it is away."""
+        return BusUnavailable(f"{what}: the cluster's bus at {self.where} has been unreachable "
+                              f"for {self.down_for:.0f} s; try again once it is back",
+                              bus=self.where)
+
+    def check(self, what: str) -> None:
+        """Raise :meth:`refusal` while the bus is away."""
+        if self.down_since is not None:
+            raise self.refusal(what)
+
+    def problems(self) -> list[str]:
+        """What ``/api/health`` says of the bus."""
+        if self.down_since is None:
+            return []
+        return [f"the cluster's bus at {self.where} has been unreachable for "
+                f"{self.down_for:.0f} s: scenes run by workers cannot be reached"]
+
+
+def shown_address(url: str) -> str:
+    """The bus's address without any user or password in it."""
+    parts = urlsplit(url)
+    return f"{parts.scheme}://{parts.hostname}" + (f":{parts.port}" if parts.port else "")
+
+
 class Bus:
     """A connection to the bus, with the cluster's buckets."""
 
     def __init__(self, client: Client, workers: KeyValue, scenes: KeyValue,
-                 shared: KeyValue, lease_seconds: float) -> None:
+                 shared: KeyValue, lease_seconds: float, link: Link) -> None:
         self.client = client
+        self.link = link
         self.workers = workers  # the living workers, expiring (server.cluster.leases)
         self.lease_seconds = lease_seconds  # how long a worker's key lives: the bucket's
         self.scenes = scenes  # scene -> the worker running it
@@ -143,11 +206,15 @@ class Bus:
     async def connect(cls, url: str, name: str, lease_seconds: float) -> Bus:
         """Connect (retrying while the bus starts), making the buckets if they are missing."""
         deadline = asyncio.get_running_loop().time() + CONNECT_SECONDS
+        link = Link(url)
         while True:
             try:
                 client = await nats.connect(url, name=name, connect_timeout=2,
                                             max_reconnect_attempts=-1, reconnect_time_wait=0.5,
-                                            error_cb=_bus_trouble)
+                                            ping_interval=PING_SECONDS,
+                                            max_outstanding_pings=PINGS_OUT,
+                                            error_cb=_bus_trouble, disconnected_cb=link.lost,
+                                            reconnected_cb=link.back)
                 break
             except (NoServersError, OSError) as error:
                 if asyncio.get_running_loop().time() > deadline:
@@ -162,7 +229,7 @@ class Bus:
         ttl = (await workers.status()).ttl or lease_seconds
         scenes = await stream.create_key_value(bucket=SCENES, history=1)
         shared = await stream.create_key_value(bucket=CLUSTER, history=1)
-        return cls(client, workers, scenes, shared, ttl)
+        return cls(client, workers, scenes, shared, ttl, link)
 
     def pack(self, value: Any) -> bytes:
         data = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)

@@ -32,6 +32,10 @@ HEARTBEAT_SECONDS = 1.0
 # bus is closed: it died); after this many unanswered, its leases decide (a swamped machine
 # must not make its scenes hop from worker to worker)
 MISSED_BEATS = {True: 2, False: 10}
+# a bus away this long ends this gateway's attachments: their clients are told (REST 503,
+# WS bus_unavailable) instead of waiting on answers the bus may never carry; a shorter
+# blip is buffered by the bus's client and goes unnoticed
+BUS_GRACE_SECONDS = 3.0
 
 
 class Gateway:
@@ -60,12 +64,13 @@ class Gateway:
         await self.bus.subscribe(gateway_subject(self.name), self._alive)
         self._tasks = [asyncio.create_task(self._outgoing.run()),
                        asyncio.create_task(self._beat()),
+                       asyncio.create_task(self._watch_link()),
                        asyncio.create_task(self.placement.keep_surveying())]
 
-    @staticmethod
-    async def _alive(value: Any, reply: Reply | None) -> None:
+    async def _alive(self, value: Any, reply: Reply | None) -> None:
+        """A worker asks which of this gateway's attachments (``value``) it still holds."""
         if reply is not None:
-            await reply.send(True)
+            await reply.send([a for a in value or () if a in self._attached])
 
     def send(self, subject: str, value: Any) -> None:
         """Publish in order: one sender for every command of this gateway."""
@@ -83,8 +88,23 @@ class Gateway:
             by_worker: dict[str, list[RemoteRunner]] = defaultdict(list)
             for runner in list(self._attached.values()):
                 by_worker[runner.worker].append(runner)  # type: ignore[index]
-            await asyncio.gather(*(self._check(worker, runners)
-                                   for worker, runners in by_worker.items()))
+            if self.bus.link.down_since is None:  # (a beat must not end the beating)
+                outcomes = await asyncio.gather(*(self._check(worker, runners) for worker,
+                                                  runners in by_worker.items()),
+                                                return_exceptions=True)
+                for outcome in outcomes:
+                    if isinstance(outcome, Exception):
+                        log.warning("heartbeat: %s", outcome or type(outcome).__name__)
+
+    async def _watch_link(self) -> None:
+        """End every attachment once the bus has been away BUS_GRACE_SECONDS."""
+        while True:
+            await asyncio.sleep(HEARTBEAT_SECONDS / 4)
+            if self.bus.link.down_for >= BUS_GRACE_SECONDS and self._attached:
+                refusal = self.bus.link.refusal("the scene cannot be reached")
+                for runner in list(self._attached.values()):
+                    runner.lost(refusal)
+                self._missed.clear()  # (no worker missed a beat: the bus did)
 
     async def _check(self, worker: str, runners: list[RemoteRunner]) -> None:
         try:

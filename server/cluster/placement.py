@@ -13,6 +13,7 @@ flag does.
 from __future__ import annotations
 
 import asyncio
+import logging
 import random
 import time
 from collections import Counter
@@ -22,6 +23,7 @@ from ..errors import LimitExceeded
 from .bus import PLACE, Bus, NoRoom, Unanswered, attach_subject
 from .leases import break_worker, lease_holder
 
+log = logging.getLogger(__name__)
 GATHER_SECONDS = 0.2  # how long workers have to say how busy they are
 SURVEY_SECONDS = 1.0  # how often they are asked
 # a worker not heard of this long is left out (a busy one may miss a survey or two; a
@@ -112,4 +114,8 @@ class Placement:
     async def keep_surveying(self) -> None:
         while True:
             await asyncio.sleep(SURVEY_SECONDS)
-            await self.survey()
+            if self.bus.link.down_since is None:
+                try:
+                    await self.survey()
+                except Exception as error:  # the bus went away meanwhile: the next one
+                    log.warning("surveying the workers: %s", error or type(error).__name__)

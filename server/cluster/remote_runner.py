@@ -86,7 +86,9 @@ class RemoteRunner:
         self._placing = asyncio.create_task(self._place())
 
     async def _place(self) -> None:
+        link = self.gateway.bus.link
         try:
+            link.check(f"scene {self.name} cannot start")
             self._events = await self.gateway.bus.subscribe(events_subject(self.name),
                                                             self._receive)
             deadline = time.monotonic() + PLACE_SECONDS
@@ -103,9 +105,13 @@ class RemoteRunner:
             log.warning("scene %s could not be placed: %s", self.name, error.message)
             self._end(True, error)
             return
-        except Exception:  # the bus failed us: the scene fails; a client's return retries
-            log.exception("scene %s could not be placed", self.name)
-            self._end(True)
+        except Exception as error:  # the bus failed us: the scene fails; a client's return retries
+            if link.down_since is None:
+                log.exception("scene %s could not be placed", self.name)
+                self._end(True)
+            else:
+                log.warning("scene %s could not be placed: %s", self.name, error)
+                self._end(True, link.refusal(f"scene {self.name} cannot start"))
             return
         self.worker, answer = placed
         self._pid, self._incarnation = answer["pid"], answer["incarnation"]
@@ -114,6 +120,8 @@ class RemoteRunner:
             self._deliver([("ready", answer["ready"])])
         if answer["saving"]:
             self._deliver([("saving", answer["saving"])])
+        if answer["asleep"]:  # it ticks no more until sent something: silent, not stuck
+            self._deliver([("idle",)])
         early, self._early = list(self._early), deque()
         for message in early:
             self._receive(message, None)
@@ -132,8 +140,10 @@ class RemoteRunner:
 
     def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
         """Send a command that is answered; its reply, awaitable."""
-        return self._replies.ask(self.post, verb, args, UnknownScene(
-            f"scene {self.name} has ended", scene=self.name) if self.ended else None)
+        link = self.gateway.bus.link
+        refusal = UnknownScene(f"scene {self.name} has ended", scene=self.name) if self.ended \
+            else link.refusal(f"scene {self.name}") if link.down_since is not None else None
+        return self._replies.ask(self.post, verb, args, refusal)
 
     def stop(self) -> None:
         """Detach: the worker stops the scene when no other gateway is attached to it."""
@@ -174,10 +184,12 @@ class RemoteRunner:
         if mine and not self.ended:
             self._deliver(mine)
 
-    def lost(self) -> None:
-        """Its worker stopped answering: the scene failed (it starts again elsewhere)."""
-        log.error("the worker %s of scene %s stopped answering", self.worker, self.name)
-        self._end(not self.stopping)
+    def lost(self, why: VPError | None = None) -> None:
+        """Its worker stopped answering, or (``why``) the bus is away: the scene failed
+        here (it starts again, elsewhere if its worker is gone)."""
+        if why is None:
+            log.error("the worker %s of scene %s stopped answering", self.worker, self.name)
+        self._end(not self.stopping, why)
 
     def _end(self, failed: bool, refusal: VPError | None = None) -> None:
         """The scene ends here (``refusal``: why it never started, for its waiting clients)."""
@@ -187,6 +199,6 @@ class RemoteRunner:
         self.gateway.detached(self)
         if self._events is not None:
             asyncio.create_task(self._events.unsubscribe())
-        self._replies.fail(self.name)
+        self._replies.fail(self.name, refusal)
         self._deliver([("ended", failed, refusal)])
         self._gone.set()

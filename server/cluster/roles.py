@@ -83,6 +83,8 @@ class ClusterMember:
         if hubs is not None and self.role in ("all", "gateway"):
             self.gateway = Gateway(self.bus, name if self.role == "gateway" else f"g-{name}")
             hubs.runners = self.gateway.runner
+            hubs.checks.append(self.bus.link.problems)
+            self.bus.link.returned.append(hubs.restart_failed)
             hubs.ids = await SharedClientIds.open(self.bus.shared)
             await self.gateway.start()
             log.info("gateway %s serves scenes through %s", self.gateway.name, self.url)

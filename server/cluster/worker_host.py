@@ -56,6 +56,7 @@ class HostedScene:
         self.connections: dict[str, set[int]] = {}  # attachment -> its connections' numbers
         self.alone_since: float | None = None
         self.owners: list[str] | None = None  # from "ready": the scene is made
+        self.asleep = False  # it last said "idle": a newcomer must not take silence for death
         self.saving: dict[str, Any] = {}
         self.subscription: Any = None
         self.runner = SceneRunner(name, host.limits, host.tick_rate, host.assets,
@@ -70,7 +71,7 @@ class HostedScene:
         self.connections.setdefault(attachment, set())
         self.alone_since = None
         return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
-                "saving": self.saving, "scenes": len(self.host.scenes),
+                "saving": self.saving, "asleep": self.asleep, "scenes": len(self.host.scenes),
                 "room": self.host.room()}
 
     def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
@@ -121,6 +122,8 @@ class HostedScene:
                 (attachment, number), rest = event[1], event[2:]
                 routed.append((attachment, (kind, number, *rest)))
                 continue
+            if kind != "reply":
+                self.asleep = kind == "idle"
             if kind == "ready":
                 self.owners = event[1]
             elif kind == "saving":
@@ -152,6 +155,7 @@ class WorkerHost:
     async def start(self) -> None:
         """Answer placements and heartbeats; renew leases; look after silent attachments."""
         await self.leases.start()
+        self.bus.link.returned.append(lambda: self._later(self._renew_once()))
         await self.bus.subscribe(PLACE, self._load)
         await self.bus.subscribe(attach_subject(self.name), self._attach)
         await self.bus.subscribe(alive_subject(self.name), self._alive)
@@ -232,44 +236,73 @@ class WorkerHost:
         while True:
             # (the bus's lease, which the first process to use the bus set, not this one's flag)
             await asyncio.sleep(self.bus.lease_seconds / 5)
-            try:
-                lost = await self.leases.renew()
-            except Exception as error:  # the bus is slow or away: the leases last a while
-                log.warning("leases not renewed: %s", error or type(error).__name__)
-                continue
-            for scene in lost:  # another worker runs it now: this copy must not save over it
-                hosted = self.scenes.pop(scene, None)
-                if hosted is not None:
-                    log.error("scene %s stops unsaved here: another worker runs it", scene)
-                    hosted.runner.kill()
+            if self.bus.link.down_since is None:
+                await self._renew_once()
+
+    async def _renew_once(self) -> None:
+        """Write this worker's key again (at once when the bus comes back: its key may have
+        lapsed meanwhile, and gateways place scenes as soon as they can)."""
+        try:
+            lost = await self.leases.renew()
+        except Exception as error:  # the bus is slow or away: the leases last a while
+            log.warning("leases not renewed: %s", error or type(error).__name__)
+            return
+        for scene in lost:  # another worker runs it now: this copy must not save over it
+            hosted = self.scenes.pop(scene, None)
+            if hosted is not None:
+                log.error("scene %s stops unsaved here: another worker runs it", scene)
+                hosted.runner.kill()
+
+    def _later(self, work: Any) -> None:
+        task = asyncio.create_task(work)
+        self._tasks.append(task)
+        task.add_done_callback(self._tasks.remove)
 
     async def _sweep(self) -> None:
         while True:
             await asyncio.sleep(1.0)
             self.cpu.measure([h.runner.pid for h in self.scenes.values() if h.runner.pid])
-            now = time.monotonic()
-            silent = {gateway_of(a) for hosted in self.scenes.values()
-                      for a, heard in hosted.heard.items() if now - heard > SILENT_SECONDS}
-            gone = {g for g, lives in zip(silent, await asyncio.gather(
-                *(self._lives(g) for g in silent))) if not lives}
-            for hosted in list(self.scenes.values()):
-                for attachment in [a for a in hosted.heard if gateway_of(a) in gone]:
-                    log.warning("gateway %s has left: scene %s loses its clients there",
-                                gateway_of(attachment), hosted.name)
-                    hosted.heard.pop(attachment)
-                    hosted.detach(attachment)
-                if hosted.alone_since is not None and not hosted.runner.stopping and \
-                        now - hosted.alone_since >= self.limits.scene_idle_seconds:
-                    await self._stop_if_idle(hosted)
+            try:
+                await self._sweep_once(time.monotonic())
+            except Exception as error:  # (the bus went away meanwhile: the next sweep)
+                log.warning("sweeping the scenes: %s", error or type(error).__name__)
 
-    async def _lives(self, gateway: str) -> bool:
-        """Whether a gateway that has been silent a while is still on the bus (one that is
-        only swamped is: its scenes stay; one that died is not)."""
+    async def _sweep_once(self, now: float) -> None:
+        """Detach what silent gateways no longer hold; stop scenes idle past the grace."""
+        link = self.bus.link
+        # (just back from an outage, every attachment is silent: gateways beat again first)
+        if link.down_since is None and now - link.up_since > SILENT_SECONDS:
+            await self._forget_silent(now)
+        for hosted in list(self.scenes.values()):
+            if hosted.alone_since is not None and not hosted.runner.stopping and \
+                    now - hosted.alone_since >= self.limits.scene_idle_seconds:
+                await self._stop_if_idle(hosted)
+
+    async def _forget_silent(self, now: float) -> None:
+        """Attachments not heard of for SILENT_SECONDS whose gateway has left the bus (died)
+        or no longer holds them (it ended them while the bus was away) are detached."""
+        silent: dict[str, set[str]] = {}
+        for hosted in self.scenes.values():
+            for attachment, heard in hosted.heard.items():
+                if now - heard > SILENT_SECONDS:
+                    silent.setdefault(gateway_of(attachment), set()).add(attachment)
+        held = await asyncio.gather(*(self._held(g, a) for g, a in silent.items()))
+        dropped = set().union(*(a - h for a, h in zip(silent.values(), held)))
+        for hosted in list(self.scenes.values()):
+            for attachment in [a for a in hosted.heard if a in dropped]:
+                log.warning("gateway %s no longer holds %s: scene %s loses its clients there",
+                            gateway_of(attachment), attachment, hosted.name)
+                hosted.heard.pop(attachment)
+                hosted.detach(attachment)
+
+    async def _held(self, gateway: str, attachments: set[str]) -> set[str]:
+        """Which of ``attachments`` a gateway silent a while still holds: none when it has
+        left the bus (died); all when it does not answer (it is only swamped)."""
         try:
-            await self.bus.request(gateway_subject(gateway), None, SILENT_SECONDS)
+            return set(await self.bus.request(gateway_subject(gateway), sorted(attachments),
+                                              SILENT_SECONDS))
         except Unanswered as unanswered:
-            return not unanswered.gone
-        return True
+            return set() if unanswered.gone else attachments
 
     async def _stop_if_idle(self, hosted: HostedScene) -> None:
         """Stop a scene no gateway has attached to for the grace period, unless it holds
@@ -283,7 +316,7 @@ class WorkerHost:
 
     async def stop(self) -> list[str]:
         """Stop every scene (each saved first); the scenes whose last changes could not be saved."""
-        for task in self._tasks:
+        for task in list(self._tasks):
             task.cancel()
         runners = [hosted.runner for hosted in self.scenes.values()]
         for runner in runners:

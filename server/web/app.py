@@ -17,8 +17,8 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.kit.limits import DEFAULT, Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import (Forbidden, InternalError, LimitExceeded, LookupFailure, RecordingBusy,
-                      RecordingDamaged, StorageFailure, TooLarge, VPError)
+from ..errors import (BusUnavailable, Forbidden, InternalError, LimitExceeded, LookupFailure,
+                      RecordingBusy, RecordingDamaged, StorageFailure, TooLarge, VPError)
 from . import assets, heap, recording_routes, rest, socket
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed
 from .cors import PageOrigins
@@ -30,7 +30,7 @@ from .state_dir import StateDir
 HTTP_CODES = {404: "not_found", 405: "method_not_allowed"}
 HTTP_STATUS: dict[type[VPError], int] = {LookupFailure: 404, Forbidden: 403, TooLarge: 413,
                                          LimitExceeded: 429, RecordingBusy: 409, StorageFailure: 507,
-                                         RecordingDamaged: 422}
+                                         RecordingDamaged: 422, BusUnavailable: 503}
 
 
 class ClusterPart(Protocol):

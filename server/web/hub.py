@@ -76,6 +76,7 @@ class Hubs:
         self._setups: dict[str, SceneSetup] = {}
         self._restarts: dict[str, float] = {}  # a failed setup scene's next pause
         self.runners = runners  # scene processes here, or on a cluster's workers (server.cluster)
+        self.checks: list[Callable[[], list[str]]] = []  # more problems: the cluster's bus
         self.ids = ids if ids is not None else ClientIds(state)
         self.recordings = Recordings(state.root / "recordings" if state is not None else None,
                                      limits)
@@ -126,6 +127,14 @@ class Hubs:
         self._restarts[hub.name] = min(high, pause * 2)
         log.error("scene %s failed; it starts again in %.0f s", hub.name, pause)
         asyncio.get_running_loop().call_later(pause, self._restart, hub)
+
+    def restart_failed(self) -> None:
+        """Start the server's own failed scenes now, not after their growing pause (what
+        failed them is back: a cluster's bus)."""
+        for name, hub in list(self.scenes.items()):
+            if hub.ended and hub.failed and (name in self._setups or name == DEFAULT_SCENE):
+                self._restarts.pop(name, None)
+                self._restart(hub)
 
     def _restart(self, hub: SceneHub) -> None:
         if self.scenes.get(hub.name) is hub:  # nobody opened it meanwhile
@@ -185,6 +194,8 @@ class Hubs:
                               "; clients' changes are kept in its journal"))
         if self.state is not None:
             found += self.state.problems.values()
+        for check in self.checks:
+            found += check()
         return found
 
     async def remove_idle(self, now: float) -> list[str]:

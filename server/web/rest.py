@@ -63,10 +63,12 @@ def hubs_of(request: Request) -> Hubs:
 
 
 def hub_of(request: Request, scene: str) -> SceneHub:
-    """A running scene's hub; a saved scene that is not running starts (from its file)."""
+    """A running scene's hub; a saved scene that is not running starts (from its file), as
+    does one whose process failed (a cluster's worker died) with nobody there to restart it."""
     hubs = hubs_of(request)
     hub = hubs.get(scene)
-    if hub is None and hubs.state is not None and scene in hubs.state.saved_scenes():
+    if (hub is None or hub.ended and hub.stored) and hubs.state is not None and \
+            scene in hubs.state.saved_scenes():
         hub = hubs.open(scene)
     if hub is None:
         raise UnknownScene(f"no scene named {scene[:80]!r}", scene=scene)

@@ -21,7 +21,7 @@ from typing import Any, Callable, Protocol
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import UnknownScene
+from ..errors import UnknownScene, VPError
 from . import worker
 from .state_dir import SceneStore
 
@@ -74,11 +74,12 @@ class Replies:
         else:
             future.set_exception(value)
 
-    def fail(self, scene: str) -> None:
-        """The scene has ended: every reply still awaited is ``unknown_scene``."""
+    def fail(self, scene: str, why: VPError | None = None) -> None:
+        """The scene has ended: every reply still awaited is ``why`` (by default
+        ``unknown_scene``)."""
         for future in self._waiting.values():
             if not future.done():
-                future.set_exception(UnknownScene(f"scene {scene} has ended", scene=scene))
+                future.set_exception(why or UnknownScene(f"scene {scene} has ended", scene=scene))
         self._waiting.clear()
 
 

@@ -244,9 +244,9 @@ class SceneHub:
         self._on_end(self, failed)
         for connection in self.members.values():
             if failed:
-                connection.farewell = Outgoing.of(UnknownScene(
+                connection.farewell = Outgoing.of((refusal or UnknownScene(
                     f"scene {self.name} failed and was closed; reconnect to start it "
-                    f"again", scene=self.name).to_wire())
+                    f"again", scene=self.name)).to_wire())
             connection.closed.set()
             connection.admitted.set()
         self.connections.clear()

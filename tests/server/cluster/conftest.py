@@ -24,22 +24,53 @@ from tests.conftest import ROOT, VP_SERVER, WAIT_SECONDS, RunningServer, free_po
 NATS_SERVER = "/usr/sbin/nats-server"
 
 
+class BusServer:
+    """A NATS server on a free port, its JetStream in a folder: it may be killed and
+    started again (the same port and store, as an operator's restart)."""
+
+    def __init__(self, folder: Path) -> None:
+        port = free_port()
+        self.url = f"nats://127.0.0.1:{port}"
+        self._config = folder / "nats.conf"
+        self._config.write_text(f'listen: 127.0.0.1:{port}\nmax_payload: 64MB\n'
+                                f'jetstream {{ store_dir: "{folder / "jetstream"}" }}\n')
+        self._process: subprocess.Popen[bytes] | None = None
+
+    def start(self) -> None:
+        self._process = subprocess.Popen([NATS_SERVER, "-c", str(self._config)],
+                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        asyncio.run(_wait_for_bus(self.url))
+
+    def kill(self) -> None:
+        """``kill -9``: every connection to it breaks at once."""
+        if self._process is not None:
+            self._process.kill()
+            self._process.wait(10)
+            self._process = None
+
+    def stop(self) -> None:
+        if self._process is not None:
+            self._process.terminate()
+            self._process.wait(10)
+            self._process = None
+
+
 @contextlib.contextmanager
 def running_bus(folder: Path) -> Iterator[str]:
     """A NATS server on a free port, its JetStream in ``folder``: its URL."""
-    port = free_port()
-    config = folder / "nats.conf"
-    config.write_text(f'listen: 127.0.0.1:{port}\nmax_payload: 64MB\n'
-                      f'jetstream {{ store_dir: "{folder / "jetstream"}" }}\n')
-    process = subprocess.Popen([NATS_SERVER, "-c", str(config)], stdout=subprocess.DEVNULL,
-                               stderr=subprocess.DEVNULL)
-    url = f"nats://127.0.0.1:{port}"
+    with bus_server(folder) as server:
+        yield server.url
+
+
+@contextlib.contextmanager
+def bus_server(folder: Path) -> Iterator[BusServer]:
+    """A :class:`BusServer`, running."""
+    server = BusServer(folder)
+    server.start()
     try:
-        asyncio.run(_wait_for_bus(url))
-        yield url
+        yield server
     finally:
-        process.terminate()
-        process.wait(10)
+        server.stop()
 
 
 @pytest.fixture

@@ -9,6 +9,7 @@ import json
 import os
 import signal
 import time
+import urllib.error
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any, Iterator
 
@@ -76,6 +77,33 @@ def test_a_killed_workers_scene_comes_back_on_the_other_with_its_objects(cluster
     finally:
         script.close()
         viewer.close()
+
+
+def test_a_killed_workers_scene_nobody_is_attached_to_comes_back_when_asked_for(cluster, scene_name):
+    """G16: a script made a kept ball and left; its worker is killed. REST reads of the
+    scene start it again from its saved document on a living worker (they answered 404
+    for 44 s, also while a new script had joined the scene)."""
+    cluster.add_worker(f"w{scene_name}")  # (the test before killed one)
+    gateway = cluster.gateways[0]
+    script = vp.connect(gateway.ws, scene=scene_name, keep=True)
+    ball = vp.Ball(0.5)
+    ball.set_position(1, 2, 3)
+    script.sync()
+    script.close()
+    first = holder(cluster.url, scene_name)
+    cluster.kill_worker(first)
+    refusals: list[int] = []
+
+    def read() -> bool:
+        try:
+            nodes = gateway.get(f"/api/scenes/{scene_name}/snapshot")["nodes"]
+        except urllib.error.HTTPError as error:
+            refusals.append(error.code)
+            return False
+        return [(n["id"], n["position"]) for n in nodes] == [(ball.id, [1, 2, 3])]
+    eventually(read)
+    assert holder(cluster.url, scene_name) not in (None, first)
+    assert set(refusals) <= {404}, refusals  # ("has ended", until the gateway noticed)
 
 
 def _move_until_seen(script: vp.Session, viewer: vp.Session,
