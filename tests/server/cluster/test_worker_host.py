@@ -18,8 +18,9 @@ from websockets.sync.client import connect as ws_connect
 
 import virtual_prosthetics as vp
 
-from tests.conftest import WAIT_SECONDS, eventually
+from tests.conftest import WAIT_SECONDS, alive, descendants, eventually
 from server.cluster.leases import worker_lives
+from tests.server.web.ws_requests import request_all, wait_ticks
 from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus, start_worker
 
 WORKER_CORES = 0.2  # of which 80 %: room for three scenes not measured yet (0.05 each)
@@ -104,6 +105,31 @@ def test_a_killed_workers_scene_nobody_is_attached_to_comes_back_when_asked_for(
     eventually(read)
     assert holder(cluster.url, scene_name) not in (None, first)
     assert set(refusals) <= {404}, refusals  # ("has ended", until the gateway noticed)
+
+
+def test_a_worker_killed_while_its_scene_records_leaves_the_recording_readable(cluster, scene_name):
+    """G13: kill -9 of a worker's own process (not its scenes'): its scenes end with it,
+    each closing its recording, which stays readable (it was left damaged)."""
+    cluster.add_worker(f"w{scene_name}")
+    gateway = cluster.gateways[0]
+    with ws_connect(f"{gateway.ws}/ws?scene={scene_name}") as socket:
+        me = json.loads(socket.recv(timeout=WAIT_SECONDS))["client"]
+        request_all(socket, [{"op": "create", "object": f"{me}.ball", "type": "Ball", "args": [0.3]}])
+        _, started = gateway.post(f"/api/scenes/{scene_name}/recordings")
+        wait_ticks(socket, 30)
+        worker = cluster.workers.pop(holder(cluster.url, scene_name))
+        scenes = descendants(worker.pid)
+        os.kill(worker.pid, signal.SIGKILL)
+        worker.wait(WAIT_SECONDS)
+        eventually(lambda: not any(alive(pid) for pid in scenes))
+    listed: dict[str, Any] = {}
+    eventually(lambda: listed.update(next(r for r in gateway.get("/api/recordings")
+                                          if r["id"] == started["id"])) or
+               listed["state"] != "recording")
+    assert listed["state"] == "stopped", listed
+    seen = gateway.get(f"/api/recordings/{started['id']}/at?time=0.3")
+    assert seen["duration"] >= 0.3, seen  # (30 ticks were sent out before the kill)
+    assert any(n["id"] == f"{me}.ball" for m in seen["messages"] for n in m.get("nodes", ())), seen
 
 
 def _move_until_seen(script: vp.Session, viewer: vp.Session,

@@ -16,7 +16,7 @@ from server.core.scene.scene import Scene
 from server.errors import UnknownObject
 from server.web.rest import _robot
 from server.web.worker import SceneWorker
-from tests.conftest import WAIT_SECONDS, eventually, start_server, stop_server
+from tests.conftest import WAIT_SECONDS, alive, descendants, eventually, start_server, stop_server
 
 from .ws_requests import request_all, wait_ticks
 
@@ -206,27 +206,6 @@ def test_the_first_controller_keeps_the_scene_until_it_has_gone_for_good(worker)
     while physics_answer(worker, 3, 14)["op"] != "ok":  # gone after its grace: c3 keeps it
         assert time.monotonic() < deadline
         time.sleep(0.1)
-
-
-def descendants(pid):
-    """Every process below ``pid`` (Linux's /proc children lists)."""
-    found, todo = [], [pid]
-    while todo:
-        for task in Path(f"/proc/{todo.pop()}/task").glob("*"):
-            try:
-                children = [int(c) for c in (task / "children").read_text().split()]
-            except OSError:
-                continue
-            found += children
-            todo += children
-    return found
-
-
-def alive(pid):
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().split(") ")[1][0] != "Z"
-    except OSError:
-        return False
 
 
 def test_a_busy_recording_scene_ends_with_the_server_and_its_recording_stays_readable(tmp_path):
