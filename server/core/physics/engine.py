@@ -16,6 +16,7 @@ kept out of Bullet's pairing in a crowd. :mod:`server.core.physics.contacts` dec
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
@@ -25,7 +26,9 @@ from .articulation import NO_POSE, Articulation, check_links, multibody_argument
 from .bullet import pybullet, shape_arguments
 from .clearance import Clearance
 from .dynamics import Dynamics, Physics, forces_by_part
+from .self_contacts import PAIRS, exclude, overlapping_pairs
 
+log = logging.getLogger(__name__)
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
@@ -120,6 +123,11 @@ class PhysicsWorld:
             pybullet.disconnect(physicsClientId=self._client)
             self._client = None
 
+    @property
+    def client(self) -> int:
+        """The PyBullet client of this world (for what no method here offers)."""
+        return self._client  # type: ignore[return-value]
+
     def __contains__(self, key: str) -> bool:
         return key in self._where and key != GROUND
 
@@ -132,6 +140,11 @@ class PhysicsWorld:
         """The tree built for ``root`` (None: none is)."""
         built = self._trees.get(root)
         return None if built is None else built.tree
+
+    def links_held(self, root: str) -> int:
+        """How many links the engine's multibody of ``root``'s tree has (its tree's, unless
+        the engine cut it short)."""
+        return pybullet.getNumJoints(self._trees[root].body, physicsClientId=self._client)
 
     def add_tree(self, tree: Articulation, base_pose: Pose, angles: Mapping[str, float]) -> None:
         """Build ``tree`` as one multibody, its base at ``base_pose``, its joints at ``angles``
@@ -148,9 +161,7 @@ class PhysicsWorld:
             arguments["linkInertialFramePositions"] = [
                 tuple(a + b for a, b in zip(link.shape[0], rotate(link.shape[1], centre)))
                 for link, centre in zip(tree.links, centres)]
-        body = pybullet.createMultiBody(
-            physicsClientId=client, flags=_SELF_COLLISION if dynamics is None else _SELF_COLLISION_DYNAMIC,
-            **arguments)
+        body = self._create(tree, arguments, angles)
         joints = {joint.motor: k for k, joint in tree.joints()}
         links = [k for k, link in enumerate(tree.links) if link.part is not None]
         built = _Built(tree, body, base_pose, [], joints, list(joints.values()), links)
@@ -172,6 +183,31 @@ class PhysicsWorld:
         if free:  # where it is, or the nearest clear spot (read after the next step)
             self._clearance.place(body, *pybullet.getBasePositionAndOrientation(  # type: ignore[union-attr]
                 body, physicsClientId=client))
+
+    def _create(self, tree: Articulation, arguments: dict[str, Any],
+                angles: Mapping[str, float]) -> int:
+        """The tree's multibody. In dynamic mode its links that overlap at ``angles`` never
+        meet each other (:mod:`.self_contacts`), and none of them meet if many overlap."""
+        client = self._client
+        if self.dynamics is None:
+            return pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION,
+                                            **arguments)
+        body = pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION_DYNAMIC,
+                                        **arguments)
+        joints = list(tree.joints())
+        if joints:
+            pybullet.resetJointStatesMultiDof(body, [k for k, _ in joints],
+                                              [[angles[joint.motor]] for _, joint in joints],
+                                              physicsClientId=client)
+        pairs = overlapping_pairs(pybullet, client, body, [link.parent for link in tree.links])
+        if len(pairs) <= PAIRS:
+            exclude(pybullet, client, body, pairs)
+            return body
+        log.info("%s: %d pairs of its links overlap; its links do not meet each other",
+                 tree.root, len(pairs))
+        pybullet.removeBody(body, physicsClientId=client)
+        self.removals += 1
+        return pybullet.createMultiBody(physicsClientId=client, **arguments)
 
     @property
     def cleared(self) -> int:
