@@ -332,17 +332,19 @@ def run(faults: int, seed: int = 1, quick: bool = False) -> dict[str, Any]:
         return summary(chaos, frames, time.monotonic() - started)
 
 
-def summary(chaos: Chaos, frames: list[float], seconds: float) -> dict[str, Any]:
-    """The run in figures: faults, acknowledged and lost changes, bystander gaps by kind."""
-    gaps: dict[str, list[float]] = {kind: [] for kind in GAP_KINDS}
+def summary(chaos: Any, frames: list[float], seconds: float, kinds: tuple[str, ...] = KINDS,
+            gap_kinds: tuple[str, ...] = GAP_KINDS) -> dict[str, Any]:
+    """The run in figures: faults, acknowledged and lost changes, bystander gaps by kind
+    (``chaos``: a :class:`Chaos`, or the like, with its windows, checks and ledger)."""
+    gaps: dict[str, list[float]] = {kind: [] for kind in gap_kinds}
     for kind, start, end in chaos.windows:
         if kind in gaps:
             gaps[kind].append(_worst_gap(frames, start, end))
     lost = sorted({object_id for check in chaos.checks for object_id in check["lost"]})
-    return {"faults": len(chaos.checks), "rounds": len(chaos.checks) // len(KINDS),
-            "by_kind": {kind: sum(c["kind"] == kind for c in chaos.checks) for kind in KINDS},
+    return {"faults": len(chaos.checks), "rounds": len(chaos.checks) // len(kinds),
+            "by_kind": {kind: sum(c["kind"] == kind for c in chaos.checks) for kind in kinds},
             "lost_by_kind": {kind: len({i for c in chaos.checks if c["kind"] == kind for i in c["lost"]})
-                             for kind in KINDS},
+                             for kind in kinds},
             "acknowledged": chaos.ledger.acknowledged, "lost": len(lost), "lost_ids": lost[:20],
             "uncertain": len(chaos.ledger.uncertain), "seconds": round(seconds, 1),
             "gap_ms": {kind: figure(values) for kind, values in gaps.items() if values},

@@ -39,6 +39,10 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
     "chaos_faults": ("≥ 200 faults injected", lambda v: v >= 200),
     "chaos_changes_lost": ("0 acknowledged changes lost", lambda v: v == 0),
     "chaos_bystander_gap_ms": ("< 100 ms between frames", lambda v: v < 100),
+    "cluster_chaos_changes_lost": ("0 acknowledged changes lost to bus and worker kills",
+                                   lambda v: v == 0),
+    "bus_away_read_answered_s": ("a read answered within 10 s with the bus away (503)",
+                                 lambda v: v <= 10),
     "recording_seek_ms_max": ("< 200 ms, any time of 10 minutes of 10 hands", lambda v: v < 200),
     "cluster_viewers2000_late_pct": ("≤ 1 % (2 000 viewers over two gateways)", lambda v: v <= 1),
     "cluster_gateway_scaling": ("≥ 1.8 (viewers held at ≤ 1 % late, two gateways over one)",
@@ -82,6 +86,7 @@ def lines(results: dict[str, Any], found: dict[str, Any]) -> list[str]:
            "this one machine; clients (drivers, viewers) in processes of their own at nice 10.",
            "", *headline_table(results), "", *figure_table(found), "",
            *viewer_table(found["viewers"]), "", *chaos_table(found["chaos"]), "",
+           *cluster_chaos_table(found["chaos_cluster"]), "",
            *cluster_table(found["cluster"]), ""]
     return out
 
@@ -198,6 +203,32 @@ def chaos_table(run: dict[str, Any]) -> list[str]:
             "(the server itself restarts: not a bystander's gap)"
         out.append(f"| {kind} | {count} | {run['lost_by_kind'][kind]} | {shown} |")
     return out
+
+
+def cluster_chaos_table(run: dict[str, Any]) -> list[str]:
+    """bench/chaos_cluster.py: bus kills and worker kills under a changing script."""
+    out = [f"Chaos on a cluster ({run['seconds']:.0f} s; bench/chaos_cluster.py: a bus, two "
+           f"workers and a gateway sharing a state folder): the same script changed a scene "
+           f"through the gateway while the bus was killed -9 (back after {run['bus_down_s']:g} s) "
+           f"or the worker running the scene was killed -9 with its scenes (a fresh one "
+           f"started). {run['acknowledged']:,} changes acknowledged, **{run['lost']} lost** "
+           f"({run['uncertain']} left unanswered by a fault). With the bus away a REST read of "
+           f"the scene was answered (503 `bus_unavailable`) in "
+           f"{_seconds(run['read_answered_s'], run['read_answered_worst_s'])} (median / worst). A viewer of another scene through the gateway "
+           f"noted each frame (with the bus away it gets none: frames cross the bus):", "",
+           "| fault | injected | acknowledged changes lost after it | the scene answered again "
+           "after, median / worst | bystander's longest gap, median / worst |",
+           "|---|---|---|---|---|"]
+    for kind, count in run["by_kind"].items():
+        gap, back = run["gap_ms"].get(kind), run["back_s"].get(kind)
+        out.append(f"| {kind} | {count} | {run['lost_by_kind'][kind]} | "
+                   f"{_seconds(back, run['back_worst_s'][kind]) if back else '-'} | "
+                   f"{_ms(gap.median) + ' / ' + _ms(run['gap_worst_ms'][kind]) if gap else '-'} |")
+    return out
+
+
+def _seconds(values: Any, worst: float) -> str:
+    return f"{values.median:.2f} s / {worst:.2f} s" if values.count else "-"
 
 
 def cluster_table(found: dict[str, Any]) -> list[str]:

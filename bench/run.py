@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import busy_connect, chaos, cluster, core, idle_scenes, live, recording, scenes
+from . import busy_connect, chaos, chaos_cluster, cluster, core, idle_scenes, live, recording, scenes
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -42,6 +42,7 @@ class Sizes:
     busy_hands: int
     document_rounds: int
     chaos_faults: int
+    cluster_chaos_faults: int  # bus kills and worker kills (bench/chaos_cluster.py)
     idle_scenes: int
     hands_most: int  # driven from outside by one client: the 100 hands
     dynamic: tuple[int, int, int, int]  # hands, free objects, ticks while they fall, ticks at rest
@@ -58,14 +59,16 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              requests=20_000, frames=300, hand_counts=(10, 20, 30, 40, 50, 60, 80, 100),
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
              viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
-             document_rounds=30, chaos_faults=30 * len(chaos.KINDS), idle_scenes=200, hands_most=100,
+             document_rounds=30, chaos_faults=30 * len(chaos.KINDS),
+             cluster_chaos_faults=5 * len(chaos_cluster.KINDS), idle_scenes=200, hands_most=100,
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
              cluster_viewers=(500, 750, 875, 1000, 1125, 1250, 2000), cluster_busy=200, cluster_objects=50,
              cluster_idle_wait=20.0, loaded_scenes=13)
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
-              document_rounds=2, chaos_faults=len(chaos.KINDS), idle_scenes=3, hands_most=4,
+              document_rounds=2, chaos_faults=len(chaos.KINDS),
+              cluster_chaos_faults=len(chaos_cluster.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
               cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0,
               loaded_scenes=2)
@@ -110,6 +113,8 @@ def measure(sizes: Sizes) -> dict[str, Any]:
             found[name] = _timed(name, step)
     found["chaos"] = _timed("chaos", lambda: chaos.run(sizes.chaos_faults,
                                                       quick=sizes is QUICK))
+    found["chaos_cluster"] = _timed("chaos on a cluster", lambda: chaos_cluster.run(
+        sizes.cluster_chaos_faults))
     found["idle_scenes"] = _timed("idle scenes", lambda: idle_scenes.measure(
         sizes.idle_scenes, sizes.outside_seconds))
     found["cluster"] = _timed("cluster", lambda: cluster.measure(
@@ -152,6 +157,8 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "chaos_faults": found["chaos"]["faults"],
         "chaos_changes_lost": found["chaos"]["lost"],
         "chaos_bystander_gap_ms": found["chaos"]["worst_gap_ms"],
+        "cluster_chaos_changes_lost": found["chaos_cluster"]["lost"],
+        "bus_away_read_answered_s": found["chaos_cluster"]["read_answered_worst_s"],
         **cluster.headline(found["cluster"]),
         "commit": commit,
     }

@@ -146,9 +146,10 @@ class Link:
         self.down_since: float | None = None  # (time.monotonic())
         self.up_since = time.monotonic()
         self.returned: list[Callable[[], None]] = []  # called whenever it is back
+        self.closing = False  # this process leaves the bus: its going is no outage
 
     async def lost(self) -> None:
-        if self.down_since is None:
+        if self.down_since is None and not self.closing:
             self.down_since = time.monotonic()
             log.error("the bus at %s is unreachable", self.where)
 
@@ -281,6 +282,7 @@ class Bus:
         return await self.client.subscribe(subject, cb=receive)
 
     async def close(self) -> None:
+        self.link.closing = True
         try:
             await self.client.drain()
         except Exception:  # already closed, or the bus is gone: nothing left to drain

@@ -24,6 +24,7 @@ from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allo
 from .cors import PageOrigins
 from .connection_limits import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
+from .offload import CallerGone
 from .pages import mount_pages
 from .state_dir import StateDir
 
@@ -113,6 +114,10 @@ def _answer_errors(app: FastAPI) -> None:
     async def vp_error(request: Request, error: VPError) -> JSONResponse:
         status = next((s for kind, s in HTTP_STATUS.items() if isinstance(error, kind)), 400)
         return rest.error_response(error, status)
+
+    @app.exception_handler(CallerGone)
+    async def caller_gone(request: Request, error: CallerGone) -> Response:
+        return Response(status_code=499)  # (nobody reads it: nginx's "client closed request")
 
     @app.exception_handler(Exception)
     async def internal_error(request: Request, error: Exception) -> JSONResponse:

@@ -68,8 +68,8 @@ class Hubs:
         self.removed = 0
         self.offload = Offload()  # reading saved files and checking uploads, off this process
         # beside the scenes, below their priority: a scene's ticks never wait for them
-        self.resimulations = Offload(("resimulations", limits.resimulations),
-                                     "resimulations", BESIDE_NICE)  # minutes, maybe
+        self.resimulations = Offload(("resimulations", limits.resimulations),  # minutes, maybe:
+                                     "resimulations", BESIDE_NICE, per_call=True)  # each ends with its caller
         self.replays = Offload(("replayReads", limits.replay_reads), "replay reads",
                                BESIDE_NICE)  # JSON parsing: not in this process
         self.files = Offload(("fileJobs", limits.file_jobs), "robot files", BESIDE_NICE)

@@ -16,6 +16,7 @@ from ..core.recording import replay
 from ..core.recording.resimulate import resimulate_file
 from ..errors import OutOfRange
 from .access import changing_allowed
+from .offload import hang_up_of
 from .rest import NOT_FOUND, ErrorBody, hub_of, hubs_of
 
 router = APIRouter(prefix="/api")
@@ -69,7 +70,8 @@ async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0
     path = hubs.recordings.readable(recording_id)
     if not 0 <= tolerance <= 1e6:
         raise OutOfRange(f"tolerance must be within [0, 1000000], got {tolerance}", argument="tolerance")
-    return await hubs.resimulations.run(resimulate_file, str(path), hubs.limits, hubs.assets, tolerance)
+    return await hubs.resimulations.run(resimulate_file, str(path), hubs.limits, hubs.assets,
+                                        tolerance, hung_up=hang_up_of(request))
 
 
 @router.get("/recordings/{recording_id}/at", responses=READ,
@@ -79,7 +81,8 @@ async def at(request: Request, recording_id: str, time: float = 0.0) -> dict[str
     ``messages`` that make the scene as it was then."""
     hubs = hubs_of(request)
     path = hubs.recordings.readable(recording_id)
-    return await hubs.replays.run(replay.seek, str(path), _seconds(time, "time"))
+    return await hubs.replays.run(replay.seek, str(path), _seconds(time, "time"),
+                                  hung_up=hang_up_of(request))
 
 
 @router.get("/recordings/{recording_id}/ticks", responses=READ,
@@ -91,7 +94,8 @@ async def ticks(request: Request, recording_id: str, after: float, until: float)
     if not 0 <= end - start <= WINDOW_SECONDS:
         raise OutOfRange(f"until - after must be within [0, {WINDOW_SECONDS}] s, got {end - start:g}",
                          argument="until")
-    return await hubs.replays.run(replay.window, str(path), start, end)
+    return await hubs.replays.run(replay.window, str(path), start, end,
+                                  hung_up=hang_up_of(request))
 
 
 def _seconds(value: float, name: str) -> float:

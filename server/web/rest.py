@@ -26,6 +26,7 @@ from ..core.scene.scene import Scene
 from ..errors import TooLarge, UnknownObject, UnknownScene, VPError
 from . import prometheus
 from .access import changing_allowed
+from .offload import hang_up_of
 from .hub import Hubs
 from .scene_hub import SceneHub
 
@@ -188,7 +189,8 @@ async def _file(request: Request, scene: str, job: Callable[..., bytes], robot_i
     robot."""
     hubs = hubs_of(request)
     packed = await hub_of(request, scene).runner.call("read", job, (robot_id,))
-    body = await hubs.files.run(robot_files.written, packed, hubs.assets)
+    body = await hubs.files.run(robot_files.written, packed, hubs.assets,
+                                hung_up=hang_up_of(request))
     return Response(body, media_type=media_type, headers={
         "Content-Disposition": f'attachment; filename="{file_stem(robot_id)}.{suffix}"'})
 

@@ -38,6 +38,9 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert set(chaos["lost_by_kind"].values()) == {0} and "pile" in chaos["gap_ms"]
     assert chaos["acknowledged"] > 0 and chaos["lost"] == 0  # the journal's promise
     assert chaos["bystander_frames"] > 0
+    on_cluster = figures["chaos_cluster"]
+    assert on_cluster["by_kind"] == {"bus_kill": 1, "worker_kill": 1} and on_cluster["lost"] == 0
+    assert on_cluster["acknowledged"] > 0 and on_cluster["read_answered_s"]["count"] > 0
     cluster = figures["cluster"]
     assert [(r["gateways"], r["viewers"]) for r in cluster["viewers"]["rows"]] == [(1, 2), (2, 2)]
     assert all(r["fps_median"] > 0 for r in cluster["viewers"]["rows"])  # frames crossed the bus

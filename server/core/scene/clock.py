@@ -10,7 +10,7 @@ between two ticks, never during one. It runs as fast as the server can compute.
 
 from __future__ import annotations
 
-from ...errors import NotPaused, OutOfRange
+from ...errors import Forbidden, NotPaused, OutOfRange
 from ..kit.journal import Journal
 
 MAX_STEP_TICKS = 60  # a message's steps at most (a second): the scene still answers its others
@@ -30,7 +30,13 @@ class Clock:
         return self.paused_by is not None
 
     def pause(self, client: str) -> None:
-        """Hold the clock (journaled: a failed batch that paused leaves it running)."""
+        """Hold the clock (journaled: a failed batch that paused leaves it running). One
+        client holds it at a time: two scripts stepping one scene would each take the
+        other's ticks (two task runs in one scene laid their trials over each other)."""
+        if self.paused_by not in (None, client):
+            raise Forbidden(f"the scene's clock is held by {self.paused_by}, which paused it "
+                            f"to step it; it runs again once {self.paused_by} resumes it or "
+                            f"leaves: step a scene of your own", owner=self.paused_by)
         self._put(client)
 
     def resume(self) -> None:

@@ -82,8 +82,13 @@ def _fix(error: Exception, url: str) -> str:
     if isinstance(error, Timeout):
         return (f"{error.what} within {error.seconds:g} s (--timeout S or {ENVIRONMENT}=S "
                 f"waits longer)")
+    if isinstance(error, ServerError) and error.code == "forbidden" and error.details.get("owner"):
+        return f"{error.message} (another run in this scene? give each its own: --scene NAME)"
     if isinstance(error, ServerError) and error.code == "forbidden":
         return f"{error.message}: give the server's token with --token T (or VP_TOKEN=T)"
+    if isinstance(error, ServerError) and error.code == "not_paused":
+        return (f"{error.message}: another client resumed the scene while this run stepped "
+                f"it (another run in this scene? give each its own: --scene NAME)")
     if isinstance(error, ServerError):
         return f"the server refused: {error}"
     if isinstance(error, ConnectionLost) and error.args[0].startswith("could not reach"):

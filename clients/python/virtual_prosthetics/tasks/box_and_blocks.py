@@ -168,8 +168,9 @@ def box_and_blocks(session: Session, hand: str, seed: int, *,
                    seconds: float = SECONDS, blocks: int = BLOCKS) -> dict[str, Any]:
     """The test once: the blocks moved in ``seconds`` (the test's 60) of scene time."""
     scale = Scale.of(hand)
-    session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+    # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
+        session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
         stage = build(session, hand, random.Random(seed), blocks)
         drive(session, 1.0, lambda t: None)  # the heap settles
         before = stage.moved()

@@ -119,8 +119,9 @@ def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: 
           controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
     """Every pattern's light and heavy object, ``trials`` times each; the results."""
     scale = Scale.of(hand)
-    session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+    # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
+        session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
         rng = random.Random(seed)
         results = []
         for pattern in (p for p in PATTERNS if p.name in patterns):

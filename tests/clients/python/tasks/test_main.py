@@ -9,6 +9,7 @@ from typing import Iterator
 
 import pytest
 
+import virtual_prosthetics as vp
 from virtual_prosthetics.errors import ConnectionLost
 from virtual_prosthetics.tasks.__main__ import _fix
 from tests.conftest import ROOT, RunningServer, free_port, start_server, stop_server
@@ -57,3 +58,17 @@ def test_a_controller_that_cannot_be_imported_is_an_argument_error():
 def test_a_connection_lost_mid_run_says_the_run_did_not_finish():
     said = _fix(ConnectionLost("connection closed: no close frame received or sent"), "ws://x")
     assert said.endswith("the run did not finish") and "no close frame" in said
+
+
+def test_a_scene_another_run_steps_is_reported_before_anything_changes(guarded, scene_name):
+    holder = vp.connect(guarded.ws, scene=scene_name, token="right")
+    try:
+        holder.pause()
+        run = _run("--url", guarded.ws, "--token", "right", "--scene", scene_name)
+        assert run.returncode == 1 and run.stdout == ""
+        assert run.stderr.count("\n") == 1 and "--scene NAME" in run.stderr, run.stderr
+        assert f"held by {holder.client_id}" in run.stderr, run.stderr
+        holder.sync()
+        assert holder.get_physics()["mode"] == "kinematic"  # the refused run changed nothing
+    finally:
+        holder.close()

@@ -3,7 +3,7 @@
 import pytest
 
 from server.core.scene.scene import Scene
-from server.errors import NotPaused, OutOfRange
+from server.errors import Forbidden, NotPaused, OutOfRange
 
 
 @pytest.fixture
@@ -48,3 +48,16 @@ def test_the_steps_of_one_message_are_bounded_however_they_are_batched(scene):
         scene.step(21)
     scene.step(20)
     assert scene.clock.take() == 60
+
+
+def test_one_client_holds_the_clock_at_a_time(scene):
+    """Two task runs in one scene each paused it and stepped the other's ticks, laying
+    their trials over each other; the second is now refused, naming the holder."""
+    scene.pause("c1")
+    with pytest.raises(Forbidden, match="held by c1") as refused:
+        scene.pause("c2")
+    assert refused.value.details["owner"] == "c1" and scene.clock.paused_by == "c1"
+    scene.pause("c1")  # (pausing again is no change)
+    scene.resume()
+    scene.pause("c2")
+    assert scene.clock.paused_by == "c2"
