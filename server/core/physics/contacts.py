@@ -21,7 +21,7 @@ change exactly once, in order.
 from __future__ import annotations
 
 from collections import Counter
-from itertools import chain
+from itertools import chain, islice
 from typing import Iterable, Protocol, Sequence
 
 import numpy as np
@@ -74,6 +74,7 @@ class ContactTracker:
     def __init__(self, bodies: Bodies, tests_per_update: int, max_pairs: int) -> None:
         self._bodies = bodies
         self._budget = tests_per_update
+        self._per_key = 8  # candidates of a body, as last found (how many bodies to look at)
         self._max_pairs = max_pairs
         self._rows: dict[str, int] = {}
         self._keys: list[str] = []
@@ -175,8 +176,14 @@ class ContactTracker:
             return
         self._read_boxes()
         while self._dirty and (self.tests == 0 or self.tests < self._budget):
-            keys = list(self._dirty)[:_BLOCK]
-            for key, candidates in zip(keys, self._candidates(keys)):
+            # as many bodies as the budget left may measure, by the last count of their
+            # candidates (1 800 balls in one spot: 1 024 bodies' candidates a tick, 1.8 M
+            # pairs, for the one or two the budget measured, 0.4 s a tick)
+            block = (self._budget - self.tests) // max(1, self._per_key) + 1
+            keys = list(islice(self._dirty, min(_BLOCK, block)))
+            found = self._candidates(keys)
+            self._per_key = max(1, round(sum(map(len, found)) / len(found)))
+            for key, candidates in zip(keys, found):
                 waiting = [c for c in candidates if c in self._dirty and c != key]
                 tests = len(candidates) - len(waiting)
                 if self.tests and self.tests + tests > self._budget:
