@@ -16,7 +16,6 @@ kept out of Bullet's pairing in a crowd. :mod:`server.core.physics.contacts` dec
 
 from __future__ import annotations
 
-import logging
 import math
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
@@ -26,9 +25,8 @@ from .articulation import NO_POSE, Articulation, check_links, multibody_argument
 from .bullet import pybullet, shape_arguments
 from .clearance import Clearance
 from .dynamics import Dynamics, Physics, forces_by_part
-from .self_contacts import PAIRS, exclude, overlapping_pairs
+from .self_contacts import dynamic_body
 
-log = logging.getLogger(__name__)
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
@@ -39,12 +37,9 @@ TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geo
 # are measured one by one, a budget a tick (contacts.py).
 _BODY_GROUP, _BODY_MASK = 2, 1 | 2
 _CROWD_GROUP, _CROWD_MASK = 4, 0
-# Parts of one tree meet each other too, neighbours included (spec: self-collision). In
-# dynamic mode a link does not meet the links it hangs from: they touch where they are
-# joined, and the solver would push the joint apart.
+# Parts of one tree meet each other too, neighbours included (spec: self-collision); in
+# dynamic mode, see self_contacts.py.
 _SELF_COLLISION = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_INCLUDE_PARENT
-_SELF_COLLISION_DYNAMIC = pybullet.URDF_USE_SELF_COLLISION | \
-    pybullet.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS
 # Manifold points that drift this far from where they were found are dropped (a part
 # placed elsewhere keeps no stale point beyond it); Bullet's default is 0.02.
 BREAKING_THRESHOLD = 0.0005
@@ -186,28 +181,13 @@ class PhysicsWorld:
 
     def _create(self, tree: Articulation, arguments: dict[str, Any],
                 angles: Mapping[str, float]) -> int:
-        """The tree's multibody. In dynamic mode its links that overlap at ``angles`` never
-        meet each other (:mod:`.self_contacts`), and none of them meet if many overlap."""
-        client = self._client
+        """The tree's multibody (dynamic mode: :func:`.self_contacts.dynamic_body`)."""
         if self.dynamics is None:
-            return pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION,
+            return pybullet.createMultiBody(physicsClientId=self._client, flags=_SELF_COLLISION,
                                             **arguments)
-        body = pybullet.createMultiBody(physicsClientId=client, flags=_SELF_COLLISION_DYNAMIC,
-                                        **arguments)
-        joints = list(tree.joints())
-        if joints:
-            pybullet.resetJointStatesMultiDof(body, [k for k, _ in joints],
-                                              [[angles[joint.motor]] for _, joint in joints],
-                                              physicsClientId=client)
-        pairs = overlapping_pairs(pybullet, client, body, [link.parent for link in tree.links])
-        if len(pairs) <= PAIRS:
-            exclude(pybullet, client, body, pairs)
-            return body
-        log.info("%s: %d pairs of its links overlap; its links do not meet each other",
-                 tree.root, len(pairs))
-        pybullet.removeBody(body, physicsClientId=client)
-        self.removals += 1
-        return pybullet.createMultiBody(physicsClientId=client, **arguments)
+        body, removed = dynamic_body(pybullet, self._client, tree, arguments, angles)
+        self.removals += removed
+        return body
 
     @property
     def cleared(self) -> int:

@@ -16,15 +16,42 @@ such pairs is built without collisions between its own links at all.
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+import logging
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from .articulation import Articulation
+
+log = logging.getLogger(__name__)
 DEPTH = 1e-4  # deeper than this (touching is no overlap: resting faces stay solid)
 # Bullet takes 2.6 ms to switch one pair off, whatever the world: past this many pairs the
 # robot is built again without collisions between its own links (a pile of parts, not a
 # hand: a hand's overlapping pairs are a few fingers' roots)
 PAIRS = 24
+
+
+def dynamic_body(pybullet: Any, client: int, tree: Articulation, arguments: dict[str, Any],
+                 angles: Mapping[str, float]) -> tuple[int, int]:
+    """The multibody of ``tree`` (``createMultiBody``'s ``arguments``) for dynamic mode: a
+    link never meets the links it hangs from (they touch where they are joined, and the
+    solver would push the joint apart), nor the links it overlaps at ``angles``; and how
+    many were made and removed on the way (0, or 1 for a heap of parts)."""
+    flags = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_EXCLUDE_ALL_PARENTS
+    body = pybullet.createMultiBody(physicsClientId=client, flags=flags, **arguments)
+    joints = list(tree.joints())
+    if joints:
+        pybullet.resetJointStatesMultiDof(body, [k for k, _ in joints],
+                                          [[angles[joint.motor]] for _, joint in joints],
+                                          physicsClientId=client)
+    pairs = overlapping_pairs(pybullet, client, body, [link.parent for link in tree.links])
+    if len(pairs) <= PAIRS:
+        exclude(pybullet, client, body, pairs)
+        return body, 0
+    log.info("%s: %d pairs of its links overlap; its links do not meet each other",
+             tree.root, len(pairs))
+    pybullet.removeBody(body, physicsClientId=client)
+    return pybullet.createMultiBody(physicsClientId=client, **arguments), 1
 
 
 def overlapping_pairs(pybullet: Any, client: int, body: int,
