@@ -114,7 +114,7 @@ def measure(sizes: Sizes) -> dict[str, Any]:
     found["chaos"] = _timed("chaos", lambda: chaos.run(sizes.chaos_faults,
                                                       quick=sizes is QUICK))
     found["chaos_cluster"] = _timed("chaos on a cluster", lambda: chaos_cluster.run(
-        sizes.cluster_chaos_faults))
+        sizes.cluster_chaos_faults, quick=sizes is QUICK))
     found["idle_scenes"] = _timed("idle scenes", lambda: idle_scenes.measure(
         sizes.idle_scenes, sizes.outside_seconds))
     found["cluster"] = _timed("cluster", lambda: cluster.measure(

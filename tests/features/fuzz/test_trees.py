@@ -8,7 +8,7 @@ from tests.conftest import run_program
 
 from . import CASES
 
-TREE_CASES = max(20, CASES // 50)  # (a case is a few hundred requests and PyBullet trees)
+TREE_CASES = max(40, CASES // 25)  # (a case is a few hundred requests and PyBullet trees)
 
 
 @pytest.mark.fuzz
