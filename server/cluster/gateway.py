@@ -18,6 +18,7 @@ from typing import Any
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
+from ..errors import BusUnavailable
 from ..web.runner import Deliver
 from ..web.scene_store import SceneStore
 from ..web.worker import SceneSetup
@@ -61,6 +62,7 @@ class Gateway:
 
     async def start(self) -> None:
         """Answer workers that ask whether it lives; send; beat; survey the workers."""
+        self.bus.link.returned.append(self._after_outage)
         await self.bus.subscribe(gateway_subject(self.name), self._alive)
         self._tasks = [asyncio.create_task(self._outgoing.run()),
                        asyncio.create_task(self._beat()),
@@ -105,6 +107,17 @@ class Gateway:
                 for runner in list(self._attached.values()):
                     runner.lost(refusal)
                 self._missed.clear()  # (no worker missed a beat: the bus did)
+
+    def _after_outage(self) -> None:
+        """The bus is back after an outage shorter than the grace: what crossed it meanwhile
+        may be lost (a request sent as it went got no answer, ever), so the attachments
+        end now too and their clients reconnect."""
+        refusal = BusUnavailable(f"the cluster's bus at {self.bus.link.where} was away for a "
+                                 f"moment: requests sent meanwhile may be lost; reconnect",
+                                 bus=self.bus.link.where)
+        for runner in list(self._attached.values()):
+            runner.lost(refusal)
+        self._missed.clear()
 
     async def _check(self, worker: str, runners: list[RemoteRunner]) -> None:
         try:

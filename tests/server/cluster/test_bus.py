@@ -88,3 +88,24 @@ def test_with_the_bus_away_every_request_is_answered_and_all_works_once_it_is_ba
         assert again.read(lambda m: list(m.nodes)) == [ball.id]
     finally:
         again.close()
+
+
+def test_a_request_sent_as_the_bus_blinks_is_answered_or_refused_never_left_waiting(outage, scene_name):
+    """Away for less than the gateway's grace, the bus lost a request crossing it as it
+    went: no answer and no error, ever (a chaos run's script waited forever)."""
+    bus, cluster = outage
+    script = vp.connect(cluster.gateways[0].ws, scene=scene_name, keep=True)
+    try:
+        ball = vp.Ball(0.5)
+        script.sync()
+        bus.kill()
+        ball.set_position(1, 2, 3)
+        bus.start()  # (within a second)
+        try:
+            script.sync()
+        except vp.Timeout:
+            raise AssertionError("the request was left waiting") from None
+        except (vp.ConnectionLost, vp.ServerError):
+            pass  # refused, or the connection closed: the client knows
+    finally:
+        script.close()
