@@ -34,8 +34,8 @@ HEARTBEAT_SECONDS = 1.0
 # must not make its scenes hop from worker to worker)
 MISSED_BEATS = {True: 2, False: 10}
 # a bus away this long ends this gateway's attachments: their clients are told (REST 503,
-# WS bus_unavailable) instead of waiting on answers the bus may never carry; a shorter
-# blip is buffered by the bus's client and goes unnoticed
+# WS bus_unavailable) instead of waiting on answers the bus may never carry; after a
+# shorter outage they end at its return (what crossed the bus as it went may be lost)
 BUS_GRACE_SECONDS = 3.0
 
 
@@ -103,21 +103,20 @@ class Gateway:
         while True:
             await asyncio.sleep(HEARTBEAT_SECONDS / 4)
             if self.bus.link.down_for >= BUS_GRACE_SECONDS and self._attached:
-                refusal = self.bus.link.refusal("the scene cannot be reached")
-                for runner in list(self._attached.values()):
-                    runner.lost(refusal)
-                self._missed.clear()  # (no worker missed a beat: the bus did)
+                self._end_all(self.bus.link.refusal("the scene cannot be reached"))
 
     def _after_outage(self) -> None:
         """The bus is back after an outage shorter than the grace: what crossed it meanwhile
         may be lost (a request sent as it went got no answer, ever), so the attachments
         end now too and their clients reconnect."""
-        refusal = BusUnavailable(f"the cluster's bus at {self.bus.link.where} was away for a "
-                                 f"moment: requests sent meanwhile may be lost; reconnect",
-                                 bus=self.bus.link.where)
+        self._end_all(BusUnavailable(f"the cluster's bus at {self.bus.link.where} was away "
+                                     f"for a moment: requests sent meanwhile may be lost; "
+                                     f"reconnect", bus=self.bus.link.where))
+
+    def _end_all(self, refusal: BusUnavailable) -> None:
         for runner in list(self._attached.values()):
             runner.lost(refusal)
-        self._missed.clear()
+        self._missed.clear()  # (no worker missed a beat: the bus did)
 
     async def _check(self, worker: str, runners: list[RemoteRunner]) -> None:
         try:
