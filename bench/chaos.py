@@ -24,9 +24,10 @@ import threading
 import time
 import urllib.error
 import urllib.request
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Iterator
 
 import trimesh
 from websockets.exceptions import ConnectionClosed, InvalidHandshake
@@ -308,25 +309,36 @@ def big_document(robots: int) -> bytes:
         scene.close()
 
 
+@contextmanager
+def bystanding(ws: str) -> Iterator[list[float]]:
+    """A bystander (a process of its own) watching BYSTANDER on the server at ``ws`` while
+    the block runs; the list given gets the times of the frames it saw when the block ends."""
+    context = multiprocessing.get_context("spawn")
+    mine, theirs = context.Pipe()
+    stop = context.Event()
+    bystander = context.Process(target=watch, args=(ws, BYSTANDER, theirs, stop))
+    bystander.start()
+    frames: list[float] = []
+    try:
+        yield frames
+    finally:
+        stop.set()
+        frames.extend(mine.recv() if mine.poll(30) else [])
+        bystander.join(10)
+
+
 def run(faults: int, seed: int = 1, quick: bool = False) -> dict[str, Any]:
     """``faults`` faults, the kinds in turn; what was acknowledged, lost and seen (``quick``:
     a small import and upload)."""
     with tempfile.TemporaryDirectory(prefix="vp-chaos-") as folder:
         chaos = Chaos(Path(folder) / "state", seed, quick)
-        context = multiprocessing.get_context("spawn")
-        mine, theirs = context.Pipe()
-        stop = context.Event()
-        bystander = context.Process(target=watch, args=(chaos.server.ws, BYSTANDER, theirs, stop))
-        bystander.start()
-        chaos.changer.start()
         started = time.monotonic()
         try:
-            for k in range(faults):
-                chaos.fault(KINDS[k % len(KINDS)])
+            with bystanding(chaos.server.ws) as frames:
+                chaos.changer.start()
+                for k in range(faults):
+                    chaos.fault(KINDS[k % len(KINDS)])
         finally:
-            stop.set()
-            frames = mine.recv() if mine.poll(30) else []
-            bystander.join(10)
             chaos.changer.stopped = True
             stop_server(chaos.server)
         return summary(chaos, frames, time.monotonic() - started)

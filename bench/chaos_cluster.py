@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import itertools
 import json
-import multiprocessing
 import tempfile
 import time
 import urllib.error
@@ -25,7 +24,7 @@ from typing import Any
 
 from tests.server.cluster.conftest import BusServer, Cluster, holder
 
-from .chaos import BYSTANDER, WORK, Changer, Ledger, summary, watch
+from .chaos import BYSTANDER, WORK, Changer, Ledger, bystanding, summary
 from .stats import figure
 
 KINDS = ("bus_kill", "worker_kill")
@@ -120,23 +119,16 @@ def run(faults: int, seed: int = 1, quick: bool = False) -> dict[str, Any]:
     """``faults`` faults, the kinds in turn: what was acknowledged, lost and seen."""
     with tempfile.TemporaryDirectory(prefix="vp-chaos-cluster-") as folder:
         chaos = ClusterChaos(Path(folder), seed, 1.5 if quick else BUS_DOWN_SECONDS)
-        context = multiprocessing.get_context("spawn")
-        mine, theirs = context.Pipe()
-        stop = context.Event()
-        bystander = context.Process(target=watch, args=(chaos.gateway.ws, BYSTANDER, theirs, stop))
-        bystander.start()
-        chaos.changer.start()
         started = time.monotonic()
         try:
-            chaos.changer.running.set()
-            chaos._nodes()  # (WORK placed and changed before the first fault)
-            chaos.watched()
-            for k in range(faults):
-                chaos.fault(KINDS[k % len(KINDS)])
+            with bystanding(chaos.gateway.ws) as frames:
+                chaos.changer.start()
+                chaos.changer.running.set()
+                chaos._nodes()  # (WORK placed and changed before the first fault)
+                chaos.watched()
+                for k in range(faults):
+                    chaos.fault(KINDS[k % len(KINDS)])
         finally:
-            stop.set()
-            frames = mine.recv() if mine.poll(30) else []
-            bystander.join(10)
             chaos.close()
         found = summary(chaos, frames, time.monotonic() - started, KINDS, KINDS)
         found["bus_down_s"] = chaos.bus_down
