@@ -36,6 +36,11 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
                               lambda v: v <= 10),
     "idle_scenes_server_cpu_pct": ("idle scenes cost memory only (≤ 1 % of a core)", lambda v: v <= 1),
     "idle_scene_mb": ("≤ 70 MB (scene_capacity.SCENE_BYTES)", lambda v: v <= 70),
+    "pile2000_tick_ms_max": ("no tick > 250 ms (2 000 balls made in one spot)", lambda v: v <= 250),
+    "pile2000_ticks_per_s_after_5s": ("≥ 10 ticks/s from 5 s after the burst", lambda v: v >= 10),
+    "pile2000_ticks_per_s_settled": ("back to 60 once settled", lambda v: v >= AT_60_HZ),
+    "pile2000_viewer_fps_min": ("viewers get ≥ 4 frames every second", lambda v: v >= 4),
+    "tower300_tick_ms_max": ("no tick > 250 ms (a tower of 300 boxes)", lambda v: v <= 250),
     "chaos_faults": ("≥ 200 faults injected", lambda v: v >= 200),
     "chaos_changes_lost": ("0 acknowledged changes lost", lambda v: v == 0),
     "chaos_bystander_gap_ms": ("< 100 ms between frames", lambda v: v < 100),
@@ -85,7 +90,8 @@ def lines(results: dict[str, Any], found: dict[str, Any]) -> list[str]:
            f"Commit `{results['commit']}`, {run}, {results['seconds']} s. Everything ran on "
            "this one machine; clients (drivers, viewers) in processes of their own at nice 10.",
            "", *headline_table(results), "", *figure_table(found), "",
-           *viewer_table(found["viewers"]), "", *chaos_table(found["chaos"]), "",
+           *viewer_table(found["viewers"]), "", *piles_table(found["piles"]), "",
+           *chaos_table(found["chaos"]), "",
            *cluster_chaos_table(found["chaos_cluster"]), "",
            *cluster_table(found["cluster"]), ""]
     return out
@@ -184,6 +190,24 @@ def viewer_table(rows: list[dict[str, Any]]) -> list[str]:
         out.append(f"| {row['viewers']} | {'yes' if row['stalled'] else 'no'} | "
                    f"{row['fps_min']:.1f} / {row['fps_median']:.1f} | {row['late_pct']:.2f} % | "
                    f"{row['skipped_pct']:.2f} % | {row['server_cores']:.2f} |")
+    return out
+
+
+def piles_table(found: dict[str, Any]) -> list[str]:
+    """bench/piles.py: a dynamic scene given a pile in one batch, from the burst on."""
+    out = ["Piles (bench/piles.py): a dynamic scene given, in one batch, balls of radius 0.2 "
+           "made at one point, or boxes of 0.5 m stacked into a tower; the scene's figures "
+           "(/api/metrics) every 0.5 s from the batch on, and a viewer's frames:", "",
+           "| pile | batch answered | longest tick | ticks/s at 5-6 s / worst second after 5 s "
+           "/ last 2 s | last frame that moved something | viewer's longest gap / fewest frames "
+           "in a second | process memory, most |", "|---|---|---|---|---|---|---|"]
+    for row in found.values():
+        out.append(f"| {row['count']} {row['kind']} | {row['batch_answered_s']:.2f} s | "
+                   f"{_ms(row['tick_ms_max'])} | {row['ticks_per_s_at_5s']:g} / "
+                   f"{row['ticks_per_s_min_after_5s']:g} / {row['ticks_per_s_end']:g} | "
+                   f"{row['settled_s']:g} s after the batch (watched {row['seconds']:g} s) | "
+                   f"{_ms(row['viewer_gap_ms_max'])} / {row['viewer_fps_min']} | "
+                   f"{row['rss_mb_max']} MB |")
     return out
 
 

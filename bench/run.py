@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import busy_connect, chaos, chaos_cluster, cluster, core, idle_scenes, live, recording, scenes
+from . import busy_connect, chaos, chaos_cluster, cluster, core, idle_scenes, live, piles, recording, scenes
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -53,6 +53,7 @@ class Sizes:
     cluster_objects: int  # kept objects of the scene whose worker is killed
     cluster_idle_wait: float  # seconds for the busy scenes to go before that
     loaded_scenes: int  # animated while a script connects (busy_connect)
+    piles: tuple[int, int, float]  # balls made in one spot, boxes in a tower, seconds watched
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -63,7 +64,7 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              cluster_chaos_faults=5 * len(chaos_cluster.KINDS), idle_scenes=200, hands_most=100,
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
              cluster_viewers=(500, 750, 875, 1000, 1125, 1250, 2000), cluster_busy=200, cluster_objects=50,
-             cluster_idle_wait=20.0, loaded_scenes=13)
+             cluster_idle_wait=20.0, loaded_scenes=13, piles=(2000, 300, 180.0))
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=0.5, busy_hands=2,
@@ -71,7 +72,7 @@ QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, reque
               cluster_chaos_faults=len(chaos_cluster.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
               cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0,
-              loaded_scenes=2)
+              loaded_scenes=2, piles=(60, 10, 3.0))
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -111,6 +112,7 @@ def measure(sizes: Sizes) -> dict[str, Any]:
         }
         for name, step in outside.items():
             found[name] = _timed(name, step)
+    found["piles"] = _timed("piles", lambda: piles.measure(*sizes.piles))
     found["chaos"] = _timed("chaos", lambda: chaos.run(sizes.chaos_faults,
                                                       quick=sizes is QUICK))
     found["chaos_cluster"] = _timed("chaos on a cluster", lambda: chaos_cluster.run(
@@ -154,6 +156,11 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "busy_server_connect_s": found["busy_connect"]["connect_fresh_s"].p95,
         "idle_scenes_server_cpu_pct": found["idle_scenes"]["server_cpu_pct"],
         "idle_scene_mb": found["idle_scenes"]["scene_pss_mb"].median,
+        "pile2000_tick_ms_max": found["piles"]["balls"]["tick_ms_max"],
+        "pile2000_ticks_per_s_after_5s": found["piles"]["balls"]["ticks_per_s_min_after_5s"],
+        "pile2000_ticks_per_s_settled": found["piles"]["balls"]["ticks_per_s_end"],
+        "pile2000_viewer_fps_min": found["piles"]["balls"]["viewer_fps_min"],
+        "tower300_tick_ms_max": found["piles"]["tower"]["tick_ms_max"],
         "chaos_faults": found["chaos"]["faults"],
         "chaos_changes_lost": found["chaos"]["lost"],
         "chaos_bystander_gap_ms": found["chaos"]["worst_gap_ms"],

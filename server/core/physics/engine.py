@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Mapping, Sequence
+from typing import Any, Iterator, Mapping, Sequence
 
 from ..kit.math3d import Pose, Vec3, rotate
 from .articulation import NO_POSE, Articulation, check_links, multibody_arguments
@@ -63,6 +63,7 @@ class _Built:
     # dynamic mode: centres of mass in their parts' frames (Bullet poses bodies by them)
     base_centre: Vec3 = (0.0, 0.0, 0.0)
     part_centres: list[Vec3] | None = None  # of the parts on links, in part_links order
+    bullet_pose: Any = None  # dynamic mode: the base's pose as Bullet gave it when last read
 
 
 class PhysicsWorld:
@@ -95,8 +96,9 @@ class PhysicsWorld:
                                            physicsClientId=self._client)
         self.dynamics = Dynamics(pybullet, self._client, self.physics) \
             if self.physics.dynamic else None
-        self._clearance = Clearance(pybullet, self._client, self._bodies,
-                                    lambda: self.dynamics.steps) if self.dynamics else None  # type: ignore[union-attr]
+        self._clearance = Clearance(pybullet, self._client, self._robot_bodies,
+                                    lambda: self.dynamics.steps, self._ground) \
+            if self.dynamics else None  # type: ignore[union-attr]
         self._where[GROUND] = (self._ground, -1)
         # body -> the part of each link, the base's last (so that link -1 finds it)
         self._keys_of: dict[int, list[str | None]] = {self._ground: [GROUND]}
@@ -194,10 +196,9 @@ class PhysicsWorld:
         """Dynamic mode: free bodies moved out of others so far (:mod:`.clearance`)."""
         return 0 if self._clearance is None else self._clearance.moved
 
-    def _bodies(self) -> tuple[list[int], set[int]]:
-        """Every body but the ground, and the robots among them."""
-        return ([built.body for built in self._trees.values()],
-                {built.body for built in self._trees.values() if built.mount is not None})
+    def _robot_bodies(self) -> set[int]:
+        """The bodies of robots (dynamic mode: those with a mount)."""
+        return {built.body for built in self._trees.values() if built.mount is not None}
 
     def remove_tree(self, root: str) -> None:
         """Take the tree of ``root`` out of the world."""
@@ -303,6 +304,22 @@ class PhysicsWorld:
             built.base_pose = pose
         built.angles = angles
         return pose, angles
+
+    def motions(self) -> Iterator[tuple[str, Pose | None, list[float]]]:
+        """Dynamic mode: :meth:`motion` of each tree Bullet may have moved since the last
+        call: every tree with joints, and the free bodies whose base is not bit for bit
+        where it was. A sleeping body is not integrated, so a settled heap of 2 000 balls
+        costs a call and a comparison each, not a pose's conversion and comparison."""
+        read, client = pybullet.getBasePositionAndOrientation, self._client
+        for root, built in self._trees.items():
+            if not built.joints:
+                if built.tree.static:
+                    continue
+                now = read(built.body, physicsClientId=client)
+                if now == built.bullet_pose:
+                    continue
+                built.bullet_pose = now
+            yield (root, *self.motion(root))
 
     def roots(self) -> list[str]:
         """The roots of every tree built."""

@@ -254,8 +254,13 @@ class Scene:
         The messages are ``added`` (new nodes), ``frame`` (always: time, sequence number
         and what changed) and ``removed``, in that order. If reading the changes fails,
         the tick raises with nothing lost: the next tick sends them. If contacts or
-        sensing fail, the frame goes out without them (and the failure is logged).
+        sensing fail, the frame goes out without them (and the failure is logged). A big
+        batch of new parts gets its bodies over several ticks (:mod:`.build_stages`).
         """
+        with self.bodies.stages.tick():
+            return self._tick(dt)
+
+    def _tick(self, dt: float) -> list[dict[str, Any]]:
         if self.physics.dynamic:  # the clock is the world's: a late tick slows it, never jumps
             dt = self._step(dt)
         pending = self.feed.pending

@@ -134,6 +134,7 @@ class TreeCase:
             self.scene.tick(1 / 60)
         wrong = []
         bodies = self.scene.bodies
+        bodies.sync()  # (as a request reading the physics does: what a big batch left waiting)
         if bodies.failures:
             wrong.append(f"{bodies.failures} trees could not be built")
         world = bodies.physics
