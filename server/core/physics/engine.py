@@ -292,13 +292,16 @@ class PhysicsWorld:
         if built.joints and self.dynamics is not None:
             self.dynamics.drive(built.body, built.joint_links, targets, torques)
 
-    def motion(self, root: str) -> tuple[Pose | None, list[float]]:
+    def motion(self, root: str, bullet_pose: Any = None) -> tuple[Pose | None, list[float]]:
         """Dynamic mode: where the base of the tree of ``root`` is (None: static) and its
-        joints' real angles, in the order of its joints."""
+        joints' real angles, in the order of its joints (``bullet_pose``: its base's pose
+        as Bullet just gave it, if read)."""
         built, dynamics = self._trees[root], self.dynamics
         assert dynamics is not None
+        if bullet_pose is not None:
+            bullet_pose = (tuple(bullet_pose[0]), tuple(bullet_pose[1]))
         pose = None if built.tree.static else \
-            _shifted(dynamics.base_pose(built.body), built.base_centre, -1)
+            _shifted(bullet_pose or dynamics.base_pose(built.body), built.base_centre, -1)
         angles = dynamics.angles(built.body, built.joint_links) if built.joints else []
         if pose is not None:
             built.base_pose = pose
@@ -319,7 +322,9 @@ class PhysicsWorld:
                 if now == built.bullet_pose:
                     continue
                 built.bullet_pose = now
-            yield (root, *self.motion(root))
+                yield (root, *self.motion(root, now))
+            else:
+                yield (root, *self.motion(root))
 
     def roots(self) -> list[str]:
         """The roots of every tree built."""
