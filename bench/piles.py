@@ -81,7 +81,7 @@ def pile(running: Any, kind: str, count: int, seconds: float) -> dict[str, Any]:
         answered = time.monotonic() - burst
         samples = []
         while time.monotonic() < burst + seconds and (
-                time.monotonic() < burst + 2 * STILL_SECONDS
+                time.monotonic() < burst + min(seconds, 2 * STILL_SECONDS)
                 or time.monotonic() - max(viewer.last_moving, burst) < STILL_SECONDS):
             time.sleep(SAMPLE_SECONDS)
             samples.append(_sample(running, scene, burst))
