@@ -38,6 +38,8 @@ from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene
 from tests.conftest import RunningServer, crash_server, start_server, stop_server, unwritable
 
+from .live import ask
+from .piles import pile_batch
 from .stats import figure
 
 WORK, BYSTANDER, IMPORTS, EXPORTS = "work", "bystander", "imports", "exports"
@@ -169,10 +171,10 @@ class Chaos:
         """A RoundHand kept in scene EXPORTS, and a second's recording of that scene."""
         with connect(f"{self.server.ws}/ws?scene={EXPORTS}&keep=true") as ws:
             me = json.loads(ws.recv(timeout=30))["client"]
-            _ask(ws, {"op": "create", "object": f"{me}.h", "type": "RoundHand"})
+            ask(ws, {"op": "create", "object": f"{me}.h", "type": "RoundHand"})
             _, started = self.server.post(f"/api/scenes/{EXPORTS}/recordings")
             for angle in (0.2, 0.6, 1.0):
-                _ask(ws, {"op": "call", "object": f"{me}.h", "method": "flexFingers", "args": [angle]})
+                ask(ws, {"op": "call", "object": f"{me}.h", "method": "flexFingers", "args": [angle]})
                 time.sleep(0.3)
             self.server.post(f"/api/recordings/{started['id']}/stop")
         return f"{me}.h", started["id"]
@@ -216,13 +218,10 @@ class Chaos:
         url = f"{self.server.ws}/ws?scene=piles{self.piles}"
         with connect(url, max_size=None, max_queue=None) as ws:
             me = json.loads(ws.recv(timeout=30))["client"]
-            _ask(ws, {"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]})
-            _ask(ws, {"op": "batch", "ops": [
-                op for k in range(count) for op in (
-                    {"op": "create", "object": f"{me}.{k}", "type": "Ball", "args": [0.2]},
-                    {"op": "call", "object": f"{me}.{k}", "method": "setPosition", "args": [0, 2, 0]})]})
+            ask(ws, {"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]})
+            ask(ws, {"op": "batch", "ops": pile_batch(me, "balls", count)})
             time.sleep(1.0)
-            _ask(ws, {"op": "batch", "ops": [{"op": "delete", "object": f"{me}.{k}"}
+            ask(ws, {"op": "batch", "ops": [{"op": "delete", "object": f"{me}.{k}"}
                                             for k in range(count)]})
 
     def export(self) -> None:
@@ -283,16 +282,6 @@ class Chaos:
                 if time.monotonic() > deadline:
                     raise
                 time.sleep(0.1)
-
-
-def _ask(ws: Any, request: dict[str, Any]) -> dict[str, Any]:
-    """Send a request and wait for its answer (frames skipped); it must be ok."""
-    ws.send(json.dumps({**request, "id": 1}))
-    while True:
-        answer = json.loads(ws.recv(timeout=60))
-        if answer.get("id") == 1 and answer["op"] in ("ok", "error"):
-            assert answer["op"] == "ok", answer
-            return answer
 
 
 def big_document(robots: int) -> bytes:

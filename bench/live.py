@@ -59,6 +59,16 @@ def driving(running: RunningServer, scene: str, kind: str, count: int, seconds: 
         process.wait(timeout=30)
 
 
+def ask(ws: Any, request: dict[str, Any], timeout: float = 60) -> dict[str, Any]:
+    """Send a request and wait for its answer (frames skipped); it must be ok."""
+    ws.send(json.dumps({**request, "id": 1}))
+    while True:
+        answer = json.loads(ws.recv(timeout=timeout))
+        if answer.get("id") == 1 and answer["op"] in ("ok", "error"):
+            assert answer["op"] == "ok", answer
+            return answer
+
+
 def scene_metrics(running: RunningServer, scene: str) -> dict[str, Any]:
     """The scene's figures from /api/metrics (its last 10 seconds)."""
     return running.get("/api/metrics")["scenes"][scene]

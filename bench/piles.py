@@ -9,13 +9,12 @@ import json
 import sys
 import threading
 import time
-import urllib.request
 from pathlib import Path
 from typing import Any
 
 from websockets.sync.client import connect
 
-from .live import server
+from .live import ask, scene_metrics, server
 
 SAMPLE_SECONDS = 0.5
 STILL_SECONDS = 5.0  # with no frame moving anything: settled
@@ -29,7 +28,8 @@ def measure(balls: int, boxes: int, seconds: float) -> dict[str, Any]:
                 "tower": pile(running, "tower", boxes, seconds)}
 
 
-def _ops(me: str, kind: str, count: int) -> list[dict[str, Any]]:
+def pile_batch(me: str, kind: str, count: int) -> list[dict[str, Any]]:
+    """The ops of one batch making a pile (``kind``: balls or tower) of client ``me``'s."""
     if kind == "balls":  # made at one point: a radius of 0.2, at 2 m
         return [op for k in range(count) for op in (
             {"op": "create", "object": f"{me}.{k}", "type": "Ball", "args": [0.2]},
@@ -37,15 +37,6 @@ def _ops(me: str, kind: str, count: int) -> list[dict[str, Any]]:
     return [op for k in range(count) for op in (  # stacked, each on the one below
         {"op": "create", "object": f"{me}.{k}", "type": "Box", "args": [0.5, 0.5, 0.5]},
         {"op": "call", "object": f"{me}.{k}", "method": "setPosition", "args": [0, 0.26 + 0.5 * k, 0]})]
-
-
-def _ask(ws: Any, message: dict[str, Any]) -> dict[str, Any]:
-    ws.send(json.dumps({**message, "id": 1}))
-    while True:
-        answer = json.loads(ws.recv(timeout=300))
-        if answer.get("op") in ("ok", "error") and answer.get("id") == 1:
-            assert answer["op"] == "ok", answer
-            return answer
 
 
 class _Viewer(threading.Thread):
@@ -72,12 +63,12 @@ def pile(running: Any, kind: str, count: int, seconds: float) -> dict[str, Any]:
     url = f"{running.ws}/ws?scene={scene}"
     with connect(url, max_size=None, max_queue=None) as ws:
         me = json.loads(ws.recv(timeout=30))["client"]
-        _ask(ws, {"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]})
+        ask(ws, {"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]})
         viewer = _Viewer(url)
         viewer.start()
         time.sleep(1.0)
         burst = time.monotonic()
-        _ask(ws, {"op": "batch", "ops": _ops(me, kind, count)})
+        ask(ws, {"op": "batch", "ops": pile_batch(me, kind, count)}, timeout=300)
         answered = time.monotonic() - burst
         samples = []
         while time.monotonic() < burst + seconds and (
@@ -90,8 +81,7 @@ def pile(running: Any, kind: str, count: int, seconds: float) -> dict[str, Any]:
 
 
 def _sample(running: Any, scene: str, burst: float) -> dict[str, Any]:
-    with urllib.request.urlopen(f"{running.http}/api/metrics", timeout=60) as answer:
-        figures = json.loads(answer.read())["scenes"][scene]
+    figures = scene_metrics(running, scene)
     return {"t": time.monotonic() - burst, "ticks": figures["ticks"],
             "tick_ms_max": figures["tickMsMax"], "rss_mb": _rss_mb(figures["pid"])}
 
