@@ -165,8 +165,9 @@ class SceneBodies:
                               [m.get_max_torque() for m in motors])  # type: ignore[attr-defined]
             self._targets_due, self._stirred = False, True
         dynamics = physics.dynamics
-        steps = dynamics.advance(dt, still=self._still and not self._stirred)  # type: ignore[union-attr]
-        if not steps or (self._still and not self._stirred):
+        at_rest = self._still and not self._stirred
+        steps = dynamics.advance(dt, still=at_rest)  # type: ignore[union-attr]
+        if not steps or at_rest:
             return steps * dynamics.physics.step, {}, {}  # type: ignore[union-attr]
         angles: dict[str, float] = {}
         poses: dict[str, Pose] = {}
@@ -260,7 +261,7 @@ class SceneBodies:
         world = len(self.physics)
         for index, root_id in enumerate(new_roots):
             node = self._nodes.get(root_id)
-            parts = 0 if node is None else sum(1 for _ in node.walk())
+            parts = 0 if node is None else sum(1 for _ in node.walk())  # (motors count too)
             if not self.stages.admits(parts, world):
                 return set(new_roots[index:])
             world += parts
