@@ -188,6 +188,13 @@ export class Motor extends Part {
 	getMaxTorque() {
 		return this.node?.maxTorque;
 	}
+
+	// Not in the manual: turn with the motor `leader` at ratio·leader +
+	// offset, as a linkage or tendon couples joints; follow() frees it.
+	follow(leader = null, ratio = 1, offset = 0) {
+		this.call('follow', leader, ratio, offset);
+		return this;
+	}
 }
 
 // MotorX(min, max, def, width, height) and its Y and Z kin.

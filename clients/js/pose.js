@@ -5,10 +5,13 @@ import * as THREE from 'three';
 
 export const AXES = Object.freeze({ x: new THREE.Vector3(1, 0, 0), y: new THREE.Vector3(0, 1, 0), z: new THREE.Vector3(0, 0, 1) });
 const turn = new THREE.Quaternion();
+const vector = new THREE.Vector3();
 
-// The turn of a motor about `axis` by `angle` (a flipped motor turns the other way).
+// The turn of a motor about `axis` ('x', 'y', 'z' or a unit [x, y, z]) by `angle` (a
+// flipped motor turns the other way).
 export function motorTurn(axis, angle, flipped) {
-	return turn.setFromAxisAngle(AXES[axis], flipped ? -angle : angle);
+	const unit = typeof axis === 'string' ? AXES[axis] : vector.set(...axis).normalize();
+	return turn.setFromAxisAngle(unit, flipped ? -angle : angle);
 }
 
 // `out` set to what a node shows: `base` turned by its motor (a node without an axis: base).

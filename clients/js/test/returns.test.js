@@ -17,7 +17,7 @@ const ARGUMENTS = {
 	point: () => [0.1, 0.2, 0.3], number: () => 0.1, integer: () => 0, angle: () => 0.1,
 	order: () => 'XYZ', quaternion: () => [0, 0, 0, 1], scale: () => [1, 1, 1], bool: () => true,
 	string: () => 'named', slot: () => 0, color: () => 0x336699, rgb: () => [1, 0, 0],
-	node: () => new Prosthetic.MotorZ(), part: () => new Prosthetic.Box(), axis: () => 'z',
+	node: () => new Prosthetic.MotorZ(), part: () => new Prosthetic.Box(), motor: () => new Prosthetic.MotorZ(), axis: () => 'z',
 	asset: () => MESH, geometry: () => ({ kind: 'box', size: [1, 1, 1] }),
 	mass: () => 2, friction: () => 0.5, torque: () => 100,
 };

@@ -180,6 +180,15 @@ class Motor(Part):
         """Its torque bound in dynamic mode (N·m)."""
         return float(self._state()["maxTorque"])
 
+    def follow(self, leader: Motor | None = None, ratio: float = 1.0,
+               offset: float = 0.0) -> Motor:
+        """Turn with the motor ``leader``: whenever it is set to ``a``,
+        this motor goes to ``ratio·a + offset`` in the same tick, as a linkage or tendon
+        couples joints; its own ``set_angle`` is then ignored. ``follow()`` frees it.
+        Returns the motor."""
+        self._call("follow", leader, ratio, offset)
+        return self
+
     def flip(self, flipped: bool = True) -> Motor:
         """Manual ``flip(bool)``: turn the other way; returns the motor."""
         self._call("flip", flipped)

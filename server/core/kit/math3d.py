@@ -21,9 +21,18 @@ EULER_ORDERS: tuple[str, ...] = ("XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX")
 AXES: dict[str, Vec3] = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
 
 
-def axis_angle(axis: str, angle: float) -> Quat:
-    """Rotation by ``angle`` radians about the named principal axis 'x', 'y' or 'z'."""
-    ax, ay, az = AXES[axis.lower()]
+Axis = str | Vec3  # a principal axis by name ('x', 'y', 'z') or a unit vector
+
+
+def unit_axis(axis: Axis) -> Vec3:
+    """The unit vector of an axis given by name or as a unit vector."""
+    return AXES[axis.lower()] if isinstance(axis, str) else axis
+
+
+def axis_angle(axis: Axis, angle: float) -> Quat:
+    """Rotation by ``angle`` radians about the named principal axis 'x', 'y' or 'z', or
+    about a unit vector."""
+    ax, ay, az = unit_axis(axis)
     s = math.sin(angle / 2)
     return (ax * s, ay * s, az * s, math.cos(angle / 2))
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ...errors import OutOfRange
+from ...errors import Cycle, OutOfRange, WrongType
 from ..kit import math3d
 from ..kit.math3d import Pose
 from ..physics.dynamics import DEFAULT_MAX_TORQUE
@@ -22,6 +22,8 @@ def clamp(value: float, low: float, high: float) -> float:
 class Motor(Part):
     """A part with one rotational degree of freedom; the base motor has no image.
 
+    Its ``axis`` is 'x', 'y' or 'z' (the 1.0 types) or a unit vector (an imported joint's).
+
     Limits are swapped when given in reverse, the default angle is clamped into them,
     and ``flip`` turns the motor the other way while ``get_angle`` keeps reporting the
     commanded angle.
@@ -30,7 +32,7 @@ class Motor(Part):
     type_name = "Motor"
     is_motor = True
 
-    def __init__(self, scene: World, node_id: str, axis: str, min: float = -math.inf,
+    def __init__(self, scene: World, node_id: str, axis: math3d.Axis, min: float = -math.inf,
                  max: float = math.inf, default: float = 0.0) -> None:
         super().__init__(scene, node_id)
         self.axis = axis
@@ -44,6 +46,7 @@ class Motor(Part):
         self.max_torque: float | None = None  # N·m in dynamic mode (None: DEFAULT_MAX_TORQUE)
         self.flipped = False
         self.name: str | None = None
+        self.following: tuple[str, float, float] | None = None  # (leader id, ratio, offset)
 
     def local_pose(self) -> Pose:
         turn = math3d.axis_angle(self.axis, -self.angle if self.flipped else self.angle)
@@ -94,13 +97,48 @@ class Motor(Part):
         self._assign("flipped", flipped)
         return self
 
+    def follow(self, leader: Motor | None = None, ratio: float = 1.0, offset: float = 0.0) -> Motor:
+        """Turn with ``leader`` from now on: whenever the leader is set to ``a``, this motor
+        is set to ``ratio·a + offset`` (within its own limits) in the same tick, as one
+        joint of a linkage or tendon (URDF ``<mimic>``, MJCF ``<equality><joint>``). A
+        follower's own ``setAngle`` is ignored while it follows; ``follow()`` frees it.
+        Returns the motor."""
+        if leader is None:
+            self._assign("following", None)
+            return self
+        if not isinstance(leader, Motor):
+            raise WrongType(f"{self.id} can only follow a motor; {leader.id} is a "
+                            f"{leader.type_name}", object=self.id)
+        step: Motor | None = leader
+        while step is not None:
+            if step is self:
+                raise Cycle(f"{self.id} cannot follow {leader.id}: {leader.id} turns with "
+                            f"{self.id} already", object=self.id, leader=leader.id)
+            step = step.leader()
+        self._assign("following", (leader.id, float(ratio), float(offset)))
+        self.set_angle_following(leader)
+        return self
+
+    def leader(self) -> Motor | None:
+        """The motor this one follows, if it is still in the scene."""
+        if self.following is None:
+            return None
+        node = self.scene.nodes.get(self.following[0])
+        return node if isinstance(node, Motor) else None
+
+    def set_angle_following(self, leader: Motor) -> None:
+        """Where a new follower goes at once: its share of the leader's angle."""
+        _, ratio, offset = self.following  # type: ignore[misc]
+        self.scene.turn([(self, ratio * leader.target + offset)], coupled=False)
+
     def constructor_args(self) -> list[Any]:
         return [self.axis, self.min, self.max, self.default]
 
     def properties(self) -> dict[str, Any]:
         return {**super().properties(), "axis": self.axis, "min": self.min, "max": self.max,
                 "angle": self.angle, "flipped": self.flipped, "name": self.name,
-                "maxTorque": self.get_max_torque()}
+                "maxTorque": self.get_max_torque(),
+                "follows": None if self.following is None else list(self.following)}
 
 
 class AxisMotor(Motor):

@@ -107,8 +107,8 @@ def _stops(motor: Node) -> list[Node]:
     return stops
 
 
-def _axis(name: str, flipped: bool) -> Vec3:
-    unit = math3d.AXES[name.lower()]
+def _axis(axis: math3d.Axis, flipped: bool) -> Vec3:
+    unit = math3d.unit_axis(axis)
     return tuple(-v for v in unit) if flipped else unit
 
 

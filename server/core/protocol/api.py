@@ -166,7 +166,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
               Method("flip", (Param("bool", "bool", True),), returns="self"),
               # not in the manual: what the motor drives with in dynamic mode
               Method("setMaxTorque", (Param("torque", "torque"),), returns="self"),
-              Method("getMaxTorque", returns="number", mutates=False))),
+              Method("getMaxTorque", returns="number", mutates=False),
+              # not in the manual: coupled joints (a linkage, a tendon; URDF <mimic>)
+              Method("follow", (Param("leader", "motor", None), Param("ratio", "number", 1.0),
+                                Param("offset", "number", 0.0)), returns="self"))),
     TypeSpec("MotorX", "Motor", _motor_params("MotorX"), slots=1),
     TypeSpec("MotorY", "Motor", _motor_params("MotorY"), slots=1),
     TypeSpec("MotorZ", "Motor", _motor_params("MotorZ"), slots=1),

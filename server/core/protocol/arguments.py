@@ -15,6 +15,7 @@ from ...errors import BadArguments, OutOfRange, WrongType, show
 from ..kit.limits import MAX_COORDINATE, MAX_SIZE, MIN_SIZE
 from ..kit.math3d import EULER_ORDERS, Quat, Vec3
 from ..kit.numbers import NON_FINITE
+from ..model.motor import Motor
 from ..model.node import Node, Slot
 from ..model.parts import Part
 from ..model.robot import Robot
@@ -114,6 +115,21 @@ def _quaternion(value: Any, resolve: Resolver, label: str) -> Quat:
     if abs(norm - 1.0) < 1e-12:
         return tuple(q)  # type: ignore[return-value]  # a unit one stays bit for bit (restored ones)
     return tuple(c / norm for c in q)  # type: ignore[return-value]
+
+
+def _axis(value: Any, resolve: Resolver, label: str) -> str | Vec3:
+    """'x', 'y', 'z', or [x, y, z] of any length but zero: made a unit vector."""
+    if isinstance(value, list):
+        if len(value) != 3:
+            raise WrongType(f"{label}: expected an axis 'x', 'y', 'z' or [x, y, z], got {show(value)}")
+        v = [_number(item, label) for item in value]
+        norm = math.sqrt(sum(c * c for c in v))
+        if norm < 1e-9 or norm > 1e9:
+            raise OutOfRange(f"{label}: an axis needs a length between 1e-9 and 1e9, got {norm:g}")
+        return tuple(v) if abs(norm - 1.0) < 1e-12 else tuple(c / norm for c in v)  # type: ignore[return-value]
+    if value not in ("x", "y", "z"):
+        raise OutOfRange(f"{label}: expected an axis 'x', 'y', 'z' or [x, y, z], got {show(value)}")
+    return value
 
 
 def _scale(value: Any, resolve: Resolver, label: str) -> Vec3:
@@ -275,7 +291,7 @@ def _options(value: Any, resolve: Resolver, label: str) -> dict[str, Any]:
 
 
 # the kinds whose values name objects of the scene (ownership checks look only at these)
-NODE_KINDS = frozenset({"node", "part", "slot", "contact", "transforms"})
+NODE_KINDS = frozenset({"node", "part", "motor", "slot", "contact", "transforms"})
 
 _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "number": lambda v, r, label: _number(v, label),
@@ -288,10 +304,11 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "asset": _string,  # a mesh filename: the part resolves it (server.core.physics.assets)
     "color": _color,
     "rgb": _rgb,
-    "axis": _choice(("x", "y", "z")),
+    "axis": _axis,
     "order": _choice(EULER_ORDERS),
     "node": _reference(Robot, Part),
     "part": _reference(Part),
+    "motor": _reference(Motor),
     "slot": _slot,
     "laser": _laser,
     "contact": _contact,

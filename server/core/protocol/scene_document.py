@@ -50,6 +50,7 @@ class Saved:
     restore: Callable[..., Any]
     key: str = ""
     repeated: bool = False  # the attribute holds the arguments of several calls
+    spread: bool = False    # the attribute holds the arguments of one call
 
     @property
     def name(self) -> str:
@@ -59,6 +60,11 @@ class Saved:
 def _target(motor: Motor, target: float) -> None:
     """Where a motor drives in dynamic mode, when it is not where it is."""
     motor.target = target
+
+
+def _follow(motor: Motor, leader: str, ratio: float, offset: float) -> None:
+    """A follower's leader, once every node is in its place."""
+    motor.follow(motor.scene.get(leader), ratio, offset)  # type: ignore[arg-type]
 
 
 def _slot_count(part: Part, count: int) -> None:
@@ -81,7 +87,9 @@ STATE: dict[type[Node], tuple[Saved, ...]] = {
             Saved("flipped", (Param("flipped", "bool"),), Motor.flip),
             Saved("angle", (Param("angle", "number"),), Motor.set_angle),
             Saved("max_torque", (Param("torque", "torque"),), Motor.set_max_torque, key="maxTorque"),
-            Saved("saved_target", (Param("target", "number"),), _target, key="target")),
+            Saved("saved_target", (Param("target", "number"),), _target, key="target"),
+            Saved("following", (Param("leader", "string"), Param("ratio", "number"),
+                                Param("offset", "number")), _follow, key="follows", spread=True)),
     Robot: (Saved("gui", (Param("title", "string"),), Robot.add_gui),
             Saved("shared", (Param("on", "bool"),), Robot.share)),
     GLTFPart: (Saved("recolors", (Param("fromColor", "rgb"), Param("toColor", "rgb"),
@@ -310,7 +318,7 @@ def _restore_state(scene: Scene, entry: dict[str, Any], later: bool = False) -> 
         if value is None or (saved.name in _LATER) != later:
             continue
         where = f"state {saved.name} of {node.id}"
-        calls = value if saved.repeated else [[value]]
+        calls = value if saved.repeated else [value] if saved.spread else [[value]]
         if not isinstance(calls, list) or not all(isinstance(c, list) for c in calls):
             raise WrongType(f"{where}: expected a list of argument lists", object=node.id)
         if saved.repeated:

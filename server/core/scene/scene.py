@@ -28,6 +28,7 @@ from .bodies import SceneBodies
 from .camera import Camera
 from .changes import ChangeSet
 from .clock import Clock
+from .couplings import Couplings
 from .feed import ChangeFeed
 from .observations import observe, watched_readings
 from .registry import Registry
@@ -76,6 +77,7 @@ class Scene:
         # whose scene it is (server.core.protocol.ownership): none until a controller joins
         self.keeper: str | None = None
         self.moving = False  # dynamic mode: something moved in the last tick
+        self.couplings = Couplings(self.nodes)
 
     @property
     def ids(self) -> IdBook:
@@ -153,11 +155,16 @@ class Scene:
             self.bodies.restructure((node.root().id,))
         elif field == "max_torque":
             self.bodies.retargeted()
+        elif field == "following":
+            self.couplings.changed()
 
-    def turn(self, turns: list[tuple[Motor, float | None]]) -> None:
+    def turn(self, turns: list[tuple[Motor, float | None]], coupled: bool = True) -> None:
         """Motors to angles, as ``setAngle`` takes them (None and NaN ignored, the rest
         clamped: :meth:`Motor.within_limits`), journaled, reported and moving what hangs on
-        them, in one pass: a robot's ``setAngles`` turns all its motors at once."""
+        them, in one pass: a robot's ``setAngles`` turns all its motors at once. Followers
+        turn with their leaders (:mod:`.couplings`) unless ``coupled`` is false."""
+        if coupled:
+            turns = self.couplings.expand(turns, self.tree_version)
         if self.physics.dynamic:
             self._retarget(turns)
             return
@@ -166,7 +173,7 @@ class Scene:
         if not turns:
             return
         before = [(motor, motor.angle) for motor, _ in turns]
-        self.journal.record(lambda: self.turn(before))
+        self.journal.record(lambda: self.turn(before, coupled=False))
         ids = []
         for motor, angle in turns:
             motor.angle = motor.target = angle

@@ -59,7 +59,7 @@ ARGUMENTS = {
     "angle": lambda: 0.1, "order": lambda: "XYZ", "quaternion": lambda: [0, 0, 0, 1],
     "scale": lambda: [1, 1, 1], "bool": lambda: True, "string": lambda: "named",
     "slot": lambda: 0, "color": lambda: 0x336699, "rgb": lambda: [1, 0, 0],
-    "node": lambda: vp.MotorZ(), "part": lambda: vp.Box(), "axis": lambda: "z",
+    "node": lambda: vp.MotorZ(), "part": lambda: vp.Box(), "motor": lambda: vp.MotorZ(), "axis": lambda: "z",
     "asset": lambda: "round-tip.glb", "geometry": lambda: {"kind": "box", "size": [1, 1, 1]},
     "mass": lambda: 2.0, "friction": lambda: 0.5, "torque": lambda: 100.0,
 }

@@ -78,9 +78,9 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
         "asset": st.one_of(st.sampled_from(["round-palm.glb", "../assets/gltf/round-tip.glb",
                                             "/assets/gltf/anthro-thumb.glb"]),
                            st.text(max_size=12)),
-        "axis": st.sampled_from("xyz"), "order": st.sampled_from(["XYZ", "ZYX", "YXZ"]),
+        "axis": st.one_of(st.sampled_from("xyz"), st.lists(numbers(-1, 1), min_size=3, max_size=3)), "order": st.sampled_from(["XYZ", "ZYX", "YXZ"]),
         "point": st.lists(numbers(-5, 5), min_size=3, max_size=3),
-        "node": ref, "part": ref, "slot": st.one_of(st.integers(0, 6), ref),
+        "node": ref, "part": ref, "motor": ref, "slot": st.one_of(st.integers(0, 6), ref),
         "laser": st.sampled_from([None, True, False, "blue"]),
         "contact": st.one_of(ref, st.just("ground")),
         "quaternion": st.lists(numbers(-1, 1), min_size=4, max_size=4)

@@ -73,3 +73,60 @@ def test_motors_are_not_physical(scene):
     MotorZ(scene, "m")
     scene.tick(0.01)
     assert len(scene.bodies.physics) == 0
+
+
+def coupled_finger(scene):
+    """A robot with one finger of three motors."""
+    from server.core.model.parts import EdgedFinger
+    from server.core.model.robot import Robot
+    robot = Robot(scene, "r")
+    motors = [MotorZ(scene, f"m{k}", -1.5, 0) for k in range(3)]
+    robot.attach_chain(motors[0], EdgedFinger(scene, "f0"), motors[1], EdgedFinger(scene, "f1"),
+                       motors[2], EdgedFinger(scene, "f2"))
+    return robot, motors
+
+
+def test_a_follower_turns_with_its_leader_at_its_ratio_and_offset_within_its_limits(scene):
+    robot, (a, b, c) = coupled_finger(scene)
+    assert b.follow(a, 0.5, -0.1) is b
+    c.follow(b, 2.0)
+    assert (b.angle, c.angle) == (-0.1, -0.2)  # placed at once from the leader
+    a.set_angle(-1.0)
+    assert (a.angle, b.angle, c.angle) == (-1.0, -0.6, -1.2)
+    a.set_angle(-1.5)
+    assert (b.angle, c.angle) == (-0.85, -1.5)  # 2 × -0.85 clamped to c's limit
+    b.set_angle(0.0)  # a follower moves only with its leader
+    robot.set_angles(-0.2, -0.9, -0.9)
+    assert robot.get_angles() == [-0.2, -0.2, -0.4]
+    b.follow()  # freed, it turns by itself; c still follows it
+    b.set_angle(-0.3)
+    assert (a.angle, b.angle, c.angle) == (-0.2, -0.3, -0.6)
+
+
+def test_a_motor_follows_only_a_motor_and_never_itself(scene):
+    from server.errors import Cycle, WrongType
+    robot, (a, b, c) = coupled_finger(scene)
+    b.follow(a)
+    with pytest.raises(Cycle, match="m0 cannot follow m1: m1 turns with m0 already"):
+        a.follow(b)
+    with pytest.raises(Cycle):
+        a.follow(a)
+    with pytest.raises(WrongType, match="can only follow a motor; f0 is a EdgedFinger"):
+        a.follow(scene.nodes["f0"])
+    assert a.following is None  # refused calls changed nothing
+    other = MotorZ(scene, "elsewhere")  # another robot's: a motor may drive any joint
+    b.follow(other, -1.0)
+    other.set_angle(0.5)
+    assert b.angle == -0.5
+
+
+def test_a_coupling_is_undone_with_the_request_that_made_it(scene):
+    robot, (a, b, c) = coupled_finger(scene)
+    with pytest.raises(RuntimeError):
+        with scene.journal.transaction():
+            b.follow(a, 3.0)
+            a.set_angle(-0.4)
+            raise RuntimeError("the request fails later")
+    assert (a.following, b.following, a.angle, b.angle) == (None, None, 0.0, 0.0)
+    a.set_angle(-0.4)
+    assert b.angle == 0.0

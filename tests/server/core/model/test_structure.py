@@ -6,7 +6,7 @@ import math
 import pytest
 
 from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
-from server.core.model.motor import MotorX, MotorY, MotorZ
+from server.core.model.motor import Motor, MotorX, MotorY, MotorZ
 from server.core.model.parts import Box, EdgedFinger, EdgedTip
 from server.core.model.robot import Robot
 from server.core.model.sensor import Sensor
@@ -113,3 +113,17 @@ def test_what_hangs_below_a_part_riding_on_a_joint_follows_the_part_not_the_join
                    {m.id: m.angle for m in robot.get_motors()})
     for key, pose in zip(*world.part_poses("r")):
         assert same_pose(pose, scene.nodes[key].world_pose()), key
+
+
+def test_a_motor_about_any_unit_axis_is_a_joint_about_it_where_the_tree_puts_its_part(scene, world):
+    robot = Robot(scene, "r")
+    axis = (0.0, 0.6, 0.8)
+    motor = Motor(scene, "m", axis, -1, 1)
+    robot.attach_chain(motor, EdgedFinger(scene, "f"))
+    motor.set_angle(0.7)
+    [link] = structure_of(robot).links
+    assert link.joint.axis == axis
+    world.add_tree(structure_of(robot), base_pose(robot), {"m": 0.7})
+    assert same_pose(world.part_poses("r")[1][0], scene.nodes["f"].world_pose())
+    motor.flip(True)
+    assert structure_of(robot).links[0].joint.axis == (-0.0, -0.6, -0.8)

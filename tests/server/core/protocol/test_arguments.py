@@ -3,7 +3,7 @@
 import pytest
 
 from server.core.model.parts import Ball
-from server.core.protocol.api import methods_of
+from server.core.protocol.api import TYPES, methods_of
 from server.core.protocol.arguments import bind
 from server.errors import BadArguments, OutOfRange, UnknownObject, WrongType
 
@@ -37,3 +37,16 @@ def test_angles_pass_as_they_came_and_references_are_resolved(scene):
     assert parent is ball and slot == 0
     with pytest.raises(UnknownObject):
         bind(params("Part", "attachToSlot"), [{"ref": "c1.9"}], scene.get, "attachToSlot")
+
+
+
+def test_a_motor_axis_is_a_name_or_a_vector_made_unit():
+    constructor = TYPES["Motor"].params
+    assert bind(constructor, ["z"], None, "new Motor")[0] == "z"
+    assert bind(constructor, [[0, 3, 4]], None, "new Motor")[0] == (0.0, 0.6, 0.8)
+    with pytest.raises(OutOfRange, match=r"new Motor, argument 0 \(axis\): an axis needs a length"):
+        bind(constructor, [[0, 0, 0]], None, "new Motor")
+    with pytest.raises(WrongType, match=r"expected an axis 'x', 'y', 'z' or \[x, y, z\], got an array of 2 items"):
+        bind(constructor, [[1, 0]], None, "new Motor")
+    with pytest.raises(OutOfRange, match="expected an axis 'x', 'y', 'z' or"):
+        bind(constructor, ["w"], None, "new Motor")

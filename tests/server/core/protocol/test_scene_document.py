@@ -71,6 +71,7 @@ def busy(library):
     ops.call("c1.3", "setScale", [[2, 1, 1]])
     ops.call("c1.4", "attachChain", [ref("c1.5"), ref("c1.11"), ref("c1.6"), ref("c1.17")])
     ops.call("c1.5", "setName", ["shoulder"])
+    ops.call("c1.1/4", "follow", [ref("c1.1/2"), 0.5, -0.1])
     ops.call("c1.6", "flip", [])
     ops.call("c1.6", "setAngle", [2.5])
     ops.call("c1.11", "addSlot", [[0, 0.3, 0.1]])
@@ -115,6 +116,8 @@ def test_a_scene_made_again_from_its_document_is_the_same_scene(busy, library):
         assert copy_.get(node_id).world_pose() == node.world_pose()
     assert copy_.get("c1.1").get_angles() == busy.get("c1.1").get_angles()
     assert copy_.get("c1.4").get_motors()[1].angle == 2.5  # flipped, clamped into [-1, inf)
+    copy_.get("c1.1/2").set_angle(-1.0)  # still coupled
+    assert copy_.get("c1.1/4").angle == -0.6
     copy_.close()
 
 
