@@ -3,6 +3,8 @@
 
 import { fromWire } from './codec.js';
 import { SceneObject, forward, named } from './objects.js';
+import { serverCall } from './rest.js';
+import { currentSession } from './session.js';
 
 export class Robot extends SceneObject {
 	static vpType = 'Robot';
@@ -100,6 +102,47 @@ export class Robot extends SceneObject {
 	setAngles(...angles) {
 		this.call('setAngles', ...angles);
 	}
+
+	// Not in 1.0: the robot a description makes (a URDF, or a zip of one with its meshes),
+	// this client's own. `source`: a URL (fetched here; in Node also a file's path), a File
+	// or Blob (a dropped file) or bytes; `position` [x, y, z] and `rotation` (Euler [x, y,
+	// z]) place it, `file` names the description in a zip holding several. The server reads
+	// it (meshes resolve inside the upload only); a refusal throws its ServerError.
+	static async load(source, { position, rotation, file } = {}) {
+		const session = currentSession();
+		const query = file ? `?file=${encodeURIComponent(file)}` : '';
+		const answer = await serverCall(session.http, session.token, `/api/robots${query}`, 'Robot.load',
+			{ method: 'POST', body: await robotBytes(source), headers: { 'Content-Type': 'application/octet-stream' } });
+		const robot = new ImportedRobot((await answer.json()).file);
+		if (position) robot.setPosition(...position);
+		if (rotation) robot.setRotation(...rotation);
+		await session.sync();   // its links and motors are in the mirror
+		return robot;
+	}
+}
+
+// Not in 1.0: a robot from a robot file the server keeps (`file`: what POST /api/robots
+// answered; Robot.load uploads one and makes the robot).
+export class ImportedRobot extends Robot {
+	static vpType = 'ImportedRobot';
+
+	constructor(file, ...more) {
+		super(...forward(file, more[0], [file]));
+	}
+}
+
+// The bytes of a robot upload from what Robot.load was given.
+async function robotBytes(source) {
+	if (source instanceof Uint8Array || source instanceof ArrayBuffer) return source;
+	if (typeof Blob !== 'undefined' && source instanceof Blob) return new Uint8Array(await source.arrayBuffer());
+	const text = String(source);
+	if (globalThis.document || /^https?:/.test(text)) {
+		const answer = await fetch(new URL(text, globalThis.document?.baseURI));
+		if (!answer.ok) throw new Error(`Robot.load: ${text} answered ${answer.status}`);
+		return new Uint8Array(await answer.arrayBuffer());
+	}
+	const { readFile } = await import('node:fs/promises');
+	return readFile(text);
 }
 
 // The hands' finger control (thumb 0, index 1, middle 2, ring 3, little 4).

@@ -25,7 +25,7 @@ export const CLASSES = Object.freeze({
 	GLTFPart: objects.GLTFPart, RoundFinger: objects.RoundFinger, RoundPalm: objects.RoundPalm,
 	AnthroPalm: objects.AnthroPalm, AnthroThumb: objects.AnthroThumb, Sensor,
 	Robot: robots.Robot, EdgedHand: robots.EdgedHand, RoundHand: robots.RoundHand,
-	AnthroHand: robots.AnthroHand, SceneMesh: objects.SceneMesh,
+	AnthroHand: robots.AnthroHand, SceneMesh: objects.SceneMesh, ImportedRobot: robots.ImportedRobot,
 });
 addExactReads(...Object.values(CLASSES));
 

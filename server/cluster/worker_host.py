@@ -31,7 +31,7 @@ from .leases import Leases
 from .process_cpu import ProcessCpu
 
 log = logging.getLogger(__name__)
-CALLS = frozenset({"read", "import", "metrics", "record", "unrecord"})  # answered: ("reply", n, …)
+CALLS = frozenset({"read", "import", "place", "metrics", "record", "unrecord"})  # answered: ("reply", n, …)
 # Scenes run below the worker's own priority: when they want more than the cores give, the
 # worker still renews its lease and answers (else its scenes would hop to other workers)
 SCENE_NICE = 5

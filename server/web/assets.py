@@ -27,7 +27,7 @@ from .rest import NOT_FOUND, ErrorBody, read_body
 log = logging.getLogger(__name__)
 router = APIRouter(prefix="/api")
 KEEP_SECONDS = 3600  # an unused upload younger than this stays: its script may be about to use it
-MEDIA_TYPES = {"glb": "model/gltf-binary", "gltf": "model/gltf+json"}
+MEDIA_TYPES = {"glb": "model/gltf-binary", "gltf": "model/gltf+json", "robot": "application/json"}
 REFUSED: dict[int | str, dict[str, Any]] = {
     400: {"model": ErrorBody, "description": "Not a usable glTF mesh (bad_asset)"},
     403: {"model": ErrorBody, "description": "The server's token was not given (forbidden)"},

@@ -25,6 +25,9 @@ keep, trusted)``
                                           and a new snapshot) unless it would take what
                                           clients here own; owners not connected get a
                                           grace period, as if they had just left
+``("place", n, file, position,             ``("reply", n, ok, the robot's report or VPError)``:
+quaternion)``                             the robot of an uploaded robot file made, kept
+                                          and shared, as the server's (``api.<k>``)
 ``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
 ``("record", n, id, path)``               ``("reply", n, ok, {"id", …} or VPError)``: a
                                           recording into ``path`` (recording_file) starts
@@ -53,11 +56,13 @@ from typing import Any, Callable
 
 from ..core.kit.ids import owner_of
 from ..core.kit.limits import Limits
+from ..core.kit.math3d import Quat, Vec3
 from ..core.kit.numbers import encode_numbers
 from ..core.kit.wire_messages import WarningMessage
 from ..core.physics.assets import AssetLibrary
 from ..core.protocol.command_log import replay
 from ..core.protocol.messages import encode
+from ..core.protocol.robot_files import place_robot
 from ..core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
 from ..core.protocol.ownership import SERVER_KEEPER
 from ..core.protocol.session import Session
@@ -311,6 +316,15 @@ class SceneWorker:
             self.saver.save(replaced=True)
             return {**summary, "owners": scene_owners(scene)}  # the ids it used too
         self._read(number, replace_scene, ())
+
+    def _place(self, number: int, file: str, position: Vec3, quaternion: Quat) -> None:
+        """A robot from an uploaded robot file (``read``'s reply conventions), saved at once."""
+        def place(scene: Scene) -> dict[str, Any]:
+            with scene.journal.transaction():
+                report = place_robot(scene, file, position, quaternion)
+            self.saver.save(replaced=True)
+            return report
+        self._read(number, place, ())
 
     def _present(self) -> set[str]:
         """Clients connected to the scene, or that were and are within their grace period."""

@@ -5,6 +5,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import test from 'node:test';
 import * as Prosthetic from '../virtual-prosthetics.js';
+import { uploadedRobot } from './robot_files.js';
 
 const URL_ = process.env.VP_URL;
 const api = JSON.parse(readFileSync(new URL('../../../protocol/api.json', import.meta.url)));
@@ -19,8 +20,9 @@ const ARGUMENTS = {
 	string: () => 'named', slot: () => 0, color: () => 0x336699, rgb: () => [1, 0, 0],
 	node: () => new Prosthetic.MotorZ(), part: () => new Prosthetic.Box(), motor: () => new Prosthetic.MotorZ(), axis: () => 'z',
 	asset: () => MESH, geometry: () => ({ kind: 'box', size: [1, 1, 1] }),
-	mass: () => 2, friction: () => 0.5, torque: () => 100,
+	mass: () => 2, friction: () => 0.5, torque: () => 100, robotFile: () => robotFile,
 };
+let robotFile;   // an uploaded robot's file (robot_files.js), once connected
 
 function lineage(name) {
 	const names = [];
@@ -48,6 +50,7 @@ const CHECK = {
 test('every changing method returns what the table says, on every type', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	await Prosthetic.connect({ url: URL_, scene: `js-returns-${process.pid}` });
 	try {
+		robotFile = await uploadedRobot(URL_.replace(/^ws/, 'http'));
 		const checked = [];
 		for (const [name, type] of Object.entries(api.types)) {
 			if (!type.creatable) continue;

@@ -15,12 +15,12 @@ from .errors import (ConnectionLost, ProtocolError, ServerError, ServerWarning, 
 from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip,
                       GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
                       RoundPalm, SceneMesh, Slot)
-from .robots import AnthroHand, EdgedHand, RoundHand, Robot
+from .robots import AnthroHand, EdgedHand, ImportedRobot, RoundHand, Robot
 from .recordings import Recording, start_recording, stop_recording
 from .runtime import connect, get_time, run, set_animation
 from .sensor import Sensor
 from .session import Session, current_session
-from .uploads import upload_asset
+from .uploads import load_robot, upload_asset
 
 # The names of 0.x, when a session was called a scene: scripts that use them keep working.
 Scene = Session
@@ -73,6 +73,6 @@ __all__ = [
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
-    "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset",
+    "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset", "ImportedRobot", "load_robot",
     "set_physics", "get_physics", "pause", "resume", "step", "Recording", "start_recording", "stop_recording",
 ]

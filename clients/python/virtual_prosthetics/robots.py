@@ -116,6 +116,17 @@ class Robot(Shown):
         self._call("setAngles", *angles)
 
 
+class ImportedRobot(Robot):
+    """A robot from a robot file the server keeps (not in the manual): ``file`` is the name
+    ``POST /api/robots`` answered; :func:`~virtual_prosthetics.load_robot` uploads a file
+    and makes one. Its motors are named as the file's joints (``motor.get_name()``)."""
+
+    _type = "ImportedRobot"
+
+    def __init__(self, file: str, *, scene: Session | None = None) -> None:
+        self._create(scene, file)
+
+
 class Hand(Robot):
     """The hands' finger control (thumb 0, index 1, middle 2, ring 3, little 4)."""
 

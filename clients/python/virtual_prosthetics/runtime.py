@@ -11,7 +11,7 @@ from . import objects
 from . import session as sessions
 from .errors import ConnectionLost, ServerError
 from .objects import Node
-from .robots import AnthroHand, EdgedHand, Robot, RoundHand
+from .robots import AnthroHand, EdgedHand, ImportedRobot, Robot, RoundHand
 from .session import Session, current_session, set_current_session
 from .sensor import Sensor
 
@@ -20,8 +20,9 @@ CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
     objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
     objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
     objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
-    objects.AnthroThumb, objects.SceneMesh, Sensor, Robot, EdgedHand, RoundHand, AnthroHand)}
-sessions.CLASSES.update(CLASSES, Node=Node)
+    objects.AnthroThumb, objects.SceneMesh, Sensor, Robot, EdgedHand, RoundHand, AnthroHand,
+    ImportedRobot)}
+sessions.CLASSES.update(CLASSES, Node=Node, RobotLink=objects.Part)  # links: made by their robot
 
 
 def connect(url: str = "ws://127.0.0.1:8000", scene: str = "default",

@@ -55,6 +55,10 @@ class Limits:
     asset_bytes: int = 8 << 20            # one file
     asset_triangles: int = 200_000        # triangles of one file's mesh
     assets: int = 1_000                   # files kept
+    # an uploaded robot (POST /api/scenes/{scene}/robots): a zip or a bare URDF/MJCF
+    robot_bytes: int = 64 << 20           # the upload, and its zip's files inflated
+    robot_files: int = 2_000              # files in its zip
+    robot_triangles: int = 1_000_000      # triangles of all its meshes
     # a scene document (POST /api/scenes/{scene}/import), its files' bytes included
     document_bytes: int = 64 << 20
     # a recording (POST /api/scenes/{scene}/recordings): it stops itself at either

@@ -84,8 +84,7 @@ def _add(links: list[Link], place: _Place, frame: Pose, part: Node | None,
          geometry: dict[str, Any] | None, scale: Vec3 = UNIT_SCALE) -> int:
     """A new link at ``frame`` relative to the place (through its pending joint if any),
     carrying ``part`` (with its mass and friction, when it was given any)."""
-    carried = {} if part is None else {"mass": getattr(part, "mass", None),
-                                       "friction": getattr(part, "friction", None)}
+    carried = {} if part is None else {name: getattr(part, name, None) for name in _CARRIED}
     part_id = None if part is None else part.id
     if place.pending is not None:
         joint, origin = place.pending
@@ -93,6 +92,9 @@ def _add(links: list[Link], place: _Place, frame: Pose, part: Node | None,
     else:
         links.append(Link(place.link, frame, None, part_id, NO_POSE, geometry, scale, **carried))
     return len(links) - 1
+
+
+_CARRIED = ("mass", "friction", "centre", "inertia")  # a part's figures its link keeps
 
 
 def _stops(motor: Node) -> list[Node]:

@@ -64,6 +64,8 @@ class Link:
     scale: Vec3 = UNSCALED  # the part's world scale (its geometry is already stretched by it)
     mass: float | None = None      # kg, given by setMass (None: from volume and density)
     friction: float | None = None  # given by setFriction (None: the scene's)
+    centre: Vec3 | None = None     # centre of mass in the part's frame, from a robot file
+    inertia: Vec3 | None = None    # principal moments (kg·m²) about it, from a robot file
 
 
 @dataclass(frozen=True)

@@ -29,12 +29,13 @@ from ...errors import (BadAsset, Forbidden, InternalError, LimitExceeded, TooLar
                       UnknownAsset)
 from ..kit.limits import DEFAULT, MAX_SIZE, Limits
 from . import gltf_file
+from .robot_description import RobotDescription
 
 BUNDLED_DIR = Path(__file__).resolve().parents[3] / "assets" / "gltf"
 BUNDLED_URL = "/assets/gltf/"
 UPLOADED_URL = "/api/assets/"
 PREFIXES = ("../assets/gltf/", "./assets/gltf/", "assets/gltf/", BUNDLED_URL, UPLOADED_URL)
-_NAME = re.compile(r"[A-Za-z0-9_-]+(?:\.[A-Za-z0-9_-]+)*\.(?:glb|gltf)")
+_NAME = re.compile(r"[A-Za-z0-9_-]+(?:\.[A-Za-z0-9_-]+)*\.(?:glb|gltf|robot)")
 
 
 @dataclass(frozen=True, eq=False)  # compared and hashed by identity: one per file read
@@ -75,6 +76,17 @@ class AssetLibrary:
             raise TooLarge(f"the file has {len(data)} bytes; at most {limits.asset_bytes} "
                            f"are taken", limit="assetBytes", value=limits.asset_bytes)
         kind, triangles = _check_mesh(data, limits)
+        return {**self._keep(data, kind, limits), "triangles": triangles}
+
+    def store_robot(self, description: RobotDescription, limits: Limits) -> dict[str, Any]:
+        """Keep a robot read from a file (its links' meshes kept already); its name, URL
+        and size."""
+        return self._keep(description.to_json(), "robot", limits)
+
+    def _keep(self, data: bytes, kind: str, limits: Limits) -> dict[str, Any]:
+        """Keep checked bytes under their hash, once."""
+        if self.uploads is None:
+            raise Forbidden("this server takes no uploads")
         name = f"{hashlib.sha256(data).hexdigest()[:32]}.{kind}"
         path = self.uploads / name
         if path.is_file():
@@ -91,8 +103,7 @@ class AssetLibrary:
                 partial.unlink(missing_ok=True)
                 raise InternalError(f"the upload folder cannot be written ({error.strerror}); "
                                     f"nothing was kept") from None
-        return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data),
-                "triangles": triangles}
+        return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data)}
 
     def collect(self, in_use: Collection[str], before: float) -> list[str]:
         """Remove the uploaded files not ``in_use`` last uploaded before ``before`` (a
@@ -124,8 +135,19 @@ class AssetLibrary:
 
     def mesh(self, filename: str) -> MeshFile:
         """The mesh of a file (read once per process)."""
-        path, url = self.locate(filename)
+        path, url = self._located(filename, ("glb", "gltf"), "mesh")
         return _read_mesh(str(path), url, path.stat().st_mtime_ns, self.limits)
+
+    def robot(self, filename: str) -> RobotDescription:
+        """The robot an uploaded ``.robot`` file describes (read and checked once per process)."""
+        path, _ = self._located(filename, ("robot",), "robot")
+        return _read_robot(str(path), path.stat().st_mtime_ns)
+
+    def _located(self, filename: str, kinds: tuple[str, ...], what: str) -> tuple[Path, str]:
+        path, url = self.locate(filename)
+        if path.suffix.lstrip(".") not in kinds:
+            raise BadAsset(f"{filename!r} is not a {what} file ({', '.join('.' + k for k in kinds)})")
+        return path, url
 
 
 def placed(geometry: dict[str, Any], vertices: np.ndarray,
@@ -179,6 +201,11 @@ def _load(source: Any, kind: str | None = None) -> tuple[np.ndarray, np.ndarray]
         return np.asarray(mesh.faces, dtype=np.int64), np.asarray(mesh.vertices, dtype=float)
     except Exception as error:  # trimesh raises many kinds for broken files
         raise BadAsset(f"the file does not read as a glTF mesh: {str(error)[:200]}") from None
+
+
+@lru_cache(maxsize=16)
+def _read_robot(path: str, version: int) -> RobotDescription:
+    return RobotDescription.from_json(Path(path).read_bytes())
 
 
 @lru_cache(maxsize=64)

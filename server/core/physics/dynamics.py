@@ -192,7 +192,8 @@ class Dynamics:
         finger's lies halfway up it, not at its joint: gravity turns it)."""
         def of(geometry: dict[str, Any] | None) -> Vec3:
             return ORIGIN if geometry is None else self._solid(geometry)[1]
-        return of(tree.base_geometry), [of(link.geometry) for link in tree.links]
+        return of(tree.base_geometry), [link.centre if link.centre is not None else
+                                        of(link.geometry) for link in tree.links]
 
     def made(self, body: int, tree: Articulation, base_pose: Pose,
              joint_links: Sequence[int]) -> int | None:
@@ -209,6 +210,11 @@ class Dynamics:
         for link in shapeless:
             p.changeDynamics(body, link, localInertiaDiagonal=(SHAPELESS_INERTIA,) * 3,
                              physicsClientId=client)
+        for k, link in enumerate(tree.links):  # a robot file's own inertia (else the shape's)
+            if link.inertia is not None:
+                p.changeDynamics(body, k, localInertiaDiagonal=[max(i, 1e-12)
+                                                                for i in link.inertia],
+                                 physicsClientId=client)
         for k in joint_links:
             joint = tree.links[k].joint
             if math.isfinite(joint.lower) and math.isfinite(joint.upper):  # type: ignore[union-attr]

@@ -86,6 +86,18 @@ def envelope(mesh: MeshFile, offset: Vec3, mirror: bool, cuts: Sequence[Plane] =
                        f"{str(error).splitlines()[0][:160]}") from None
 
 
+def hull_envelope(points: np.ndarray, count: int = ENVELOPE_POINTS) -> tuple[Vec3, ...]:
+    """About ``count`` points of the convex hull of ``points`` (an imported link's
+    collision elements), chosen as a mesh part's envelope is."""
+    try:
+        outline = convex_hull(points)
+    except Exception as error:  # qhull's own errors
+        raise BadAsset(f"no collision envelope can be made of these points: "
+                       f"{str(error).splitlines()[0][:160]}") from None
+    corners = outline.points[outline.vertices]
+    return tuple(tuple(float(c) for c in p) for p in _thinned(corners, count))
+
+
 def _mirrored(v: Vec3) -> Vec3:
     return (-v[0], v[1], v[2])
 

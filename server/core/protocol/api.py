@@ -232,6 +232,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
              (Method("setColor", (Param("color", "color"),)),)),
     TypeSpec("RoundHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
     TypeSpec("AnthroHand", "Robot", (Param("isLeft", "bool", True),), HAND_METHODS),
+    # not in the manual: a robot from an uploaded URDF or MJCF (POST /api/scenes/{scene}/robots
+    # uploads one; its answer's ``file`` is this argument), and the parts of its links
+    TypeSpec("ImportedRobot", "Robot", (Param("file", "robotFile"),)),
+    TypeSpec("RobotLink", "Part", creatable=False),
 )}
 
 

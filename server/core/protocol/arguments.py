@@ -302,6 +302,7 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "bool": _bool,
     "string": _string,
     "asset": _string,  # a mesh filename: the part resolves it (server.core.physics.assets)
+    "robotFile": _string,  # an uploaded robot file's name: ImportedRobot resolves it
     "color": _color,
     "rgb": _rgb,
     "axis": _axis,

@@ -7,6 +7,7 @@ from typing import Any, Callable
 from ...errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
 from ..kit.numbers import encode_numbers
 from ..model.hands import AnthroHand, EdgedHand, RoundHand
+from ..model.imported import ImportedRobot
 from ..model.gltf_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from ..model.motor import Motor, MotorX, MotorY, MotorZ
 from ..model.node import Node, Slot
@@ -22,7 +23,7 @@ from .ownership import Ownership
 NODE_CLASSES: dict[str, type[Node]] = {cls.type_name: cls for cls in (
     Slot, Part, Motor, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,
     Sensor, Robot, EdgedHand, GLTFPart, RoundFinger, RoundPalm, AnthroPalm, AnthroThumb,
-    RoundHand, AnthroHand, SceneMesh)}
+    RoundHand, AnthroHand, SceneMesh, ImportedRobot)}
 SCENE_ID = "scene"
 
 

@@ -30,7 +30,8 @@ def scene_summary(scene: Scene) -> dict[str, Any]:
 
 def robot_summary(robot: Robot) -> dict[str, Any]:
     """A robot in a list: id, type, position, motor count."""
-    return {"id": robot.id, "type": robot.type_name, "owner": owner_of(robot.id),
+    return {"id": robot.id, "type": robot.type_name, "name": getattr(robot, "name", None),
+            "owner": owner_of(robot.id),
             "shared": robot.shared, "position": list(robot.position),
             "visible": robot.visible, "motors": len(robot.get_motors()),
             "parts": len(robot.get_parts())}
@@ -40,7 +41,8 @@ def motor_report(motor: Motor, index: int) -> dict[str, Any]:
     """One motor of a robot, in motor order."""
     return encode_numbers({"id": motor.id, "index": index, "type": motor.type_name,
                            "axis": motor.axis, "min": motor.min, "max": motor.max,
-                           "angle": motor.angle, "name": motor.name, "flipped": motor.flipped})
+                           "angle": motor.angle, "name": motor.name, "flipped": motor.flipped,
+                           "follows": None if motor.following is None else list(motor.following)})
 
 
 def robot_report(robot: Robot) -> dict[str, Any]:
@@ -48,7 +50,7 @@ def robot_report(robot: Robot) -> dict[str, Any]:
     rotation = math3d.matrix_to_euler_xyz(math3d.to_matrix(robot.quaternion))
     return {**robot_summary(robot), "quaternion": list(robot.quaternion),
             "rotation": list(rotation), "gui": robot.gui,
-            "parts": [{"id": p.id, "type": p.type_name,
+            "parts": [{"id": p.id, "type": p.type_name, "name": getattr(p, "name", None),
                        "parent": p.parent.id if p.parent else None,
                        "world": {"position": list(p.world_pose()[0]),
                                  "quaternion": list(p.world_pose()[1])}}

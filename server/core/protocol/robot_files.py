@@ -14,7 +14,12 @@ from __future__ import annotations
 import pickle
 from dataclasses import dataclass
 
+from typing import Any
+
 from ...errors import UnknownObject
+from ..kit.ids import owner_of
+from ..kit.math3d import Quat, Vec3
+from ..model.imported import ImportedRobot
 from ..model.robot import Robot
 from ..model.structure import structure_of
 from ..physics.articulation import Articulation
@@ -22,6 +27,7 @@ from ..physics.assets import AssetLibrary
 from ..physics.glb_file import DrawnPart, glb_bytes
 from ..physics.urdf_file import urdf_zip
 from ..scene.scene import Scene
+from .reports import robot_report
 
 
 @dataclass(frozen=True)
@@ -45,6 +51,22 @@ class GlbJob:
 
     def write(self, assets: AssetLibrary) -> bytes:
         return glb_bytes(list(self.parts), assets)
+
+
+PLACED_OWNER = "api"  # owns robots placed through REST (never a client's id: those are c<n>)
+
+
+def place_robot(scene: Scene, file: str, position: Vec3, quaternion: Quat) -> dict[str, Any]:
+    """``POST /api/scenes/{scene}/robots``: the robot of an uploaded robot file, placed,
+    shared (anyone may steer it) and kept (it stays when nobody is connected); its report."""
+    taken = {node_id for node_id in scene.nodes if owner_of(node_id) == PLACED_OWNER}
+    number = next(n for n in range(1, len(taken) + 2) if f"{PLACED_OWNER}.{n}" not in taken)
+    robot = ImportedRobot(scene, f"{PLACED_OWNER}.{number}", file)
+    robot.set_position(position)
+    robot.set_quaternion(quaternion)
+    robot.share()
+    robot.keep()
+    return robot_report(robot)
 
 
 def urdf_job(scene: Scene, robot_id: str) -> UrdfJob:

@@ -22,6 +22,7 @@ from ...errors import BadJSON, BadMessage, Forbidden, UnknownAsset, WrongType
 from ..kit.ids import owner_of
 from ..kit.numbers import encode_numbers
 from ..model.gltf_parts import GLTFPart
+from ..model.imported import ImportedRobot
 from ..model.motor import Motor
 from ..model.node import Node, Slot
 from ..model.page_meshes import SceneMesh
@@ -29,6 +30,7 @@ from ..model.parts import Part
 from ..model.robot import Robot
 from ..physics.assets import UPLOADED_URL, AssetLibrary
 from ..physics.dynamics import KINEMATIC, Physics
+from ..physics.robot_description import RobotDescription
 from ..scene.scene import Scene
 from . import api
 from .api import Param
@@ -195,9 +197,14 @@ def check_import(scene: Scene, document: Any, present: set[str], replace: bool) 
 
 
 def uploaded_assets(scene: Scene) -> list[str]:
-    """Names of the uploaded files the scene's parts are made of, sorted."""
-    return sorted({node.mesh.url[len(UPLOADED_URL):] for node in scene.nodes.values()
-                   if isinstance(node, GLTFPart) and node.mesh.url.startswith(UPLOADED_URL)})
+    """Names of the uploaded files the scene's parts and robots are made of, sorted."""
+    names = set()
+    for node in scene.nodes.values():
+        if isinstance(node, ImportedRobot):
+            names.update(node.uploaded_files())
+        elif isinstance(node, GLTFPart) and node.mesh.url.startswith(UPLOADED_URL):
+            names.add(node.mesh.url[len(UPLOADED_URL):])
+    return sorted(names)
 
 
 def _asset_entry(library: AssetLibrary, name: str, embed: bool) -> dict[str, Any]:
@@ -260,7 +267,7 @@ def _store_assets(scene: Scene, assets: list[dict[str, Any]]) -> None:
                 decoded = base64.b64decode(data, validate=True)
             except ValueError:
                 raise BadMessage(f"asset {name}: its data is not base64") from None
-            stored = scene.assets.store(decoded, scene.limits)
+            stored = _store(scene, name, decoded)
             if stored["name"] != name:
                 raise BadMessage(f"asset {name}: its data has another content hash "
                                  f"({stored['name']})")
@@ -269,6 +276,13 @@ def _store_assets(scene: Scene, assets: list[dict[str, Any]]) -> None:
             if hashlib.sha256(path.read_bytes()).hexdigest() != asset["sha256"]:
                 raise UnknownAsset(f"asset {name} here is not the document's file "
                                    f"(another content hash)", filename=name)
+
+
+def _store(scene: Scene, name: str, data: bytes) -> dict[str, Any]:
+    """Keep a document's file: a mesh as an upload is kept, a robot file once it reads."""
+    if name.endswith(".robot"):
+        return scene.assets.store_robot(RobotDescription.from_json(data), scene.limits)
+    return scene.assets.store(data, scene.limits)
 
 
 def _make(scene: Scene, entry: dict[str, Any]) -> None:

@@ -5,8 +5,11 @@ import json
 from pathlib import Path
 
 import virtual_prosthetics as vp
+from virtual_prosthetics.http_api import request
 from virtual_prosthetics.objects import Node
 from virtual_prosthetics.runtime import CLASSES
+
+from tests.hand_files import hand_zip
 
 API = json.loads((Path(__file__).resolve().parents[3] / "protocol" / "api.json").read_text())
 CLIENT_ONLY = {"delete"}
@@ -62,7 +65,13 @@ ARGUMENTS = {
     "node": lambda: vp.MotorZ(), "part": lambda: vp.Box(), "motor": lambda: vp.MotorZ(), "axis": lambda: "z",
     "asset": lambda: "round-tip.glb", "geometry": lambda: {"kind": "box", "size": [1, 1, 1]},
     "mass": lambda: 2.0, "friction": lambda: 0.5, "torque": lambda: 100.0,
+    "robotFile": lambda: uploaded_hand(),
 }
+
+
+def uploaded_hand() -> str:
+    """The test hand's robot file on the current session's server."""
+    return json.loads(request(vp.current_session(), "/api/robots", "upload", hand_zip()))["file"]
 RETURNS = {
     "none": lambda result, obj: result is None,
     "self": lambda result, obj: result is obj,

@@ -33,3 +33,28 @@ def test_uploads_that_are_not_meshes_are_refused_with_the_reason(scene):
     with pytest.raises(vp.ServerError) as caught:
         vp.upload_asset(b"just some bytes")
     assert caught.value.code == "bad_asset" and "neither GLB nor glTF" in caught.value.message
+
+
+def test_load_robot_takes_a_folder_a_zip_or_a_file_and_the_robot_is_this_clients(server, scene, scene_name, tmp_path):
+    import io
+    import zipfile
+    from tests import hand_files
+    folder = tmp_path / "handpkg"
+    with zipfile.ZipFile(io.BytesIO(hand_files.hand_zip())) as archive:
+        archive.extractall(tmp_path)
+    hand = vp.load_robot(folder, position=[0.5, 0.2, 0], rotation=[0, math.pi / 2, 0])
+    assert isinstance(hand, vp.ImportedRobot) and hand.id.startswith(scene.client_id)
+    assert hand.get_position() == [0.5, 0.2, 0.0]
+    assert len(hand.get_motors()) == len(hand_files.motor_names())
+    hand.get_motors()[3].set_angle(1.2)  # index proximal: its middle and distal follow
+    ratio, offset = hand_files.MIMIC
+    follower = min(hand_files.LIMITS[1], ratio * 1.2 + offset)
+    assert hand.get_angles()[3:6] == pytest.approx([1.2, follower, follower])
+    report = server.get(f"/api/scenes/{scene_name}/robots/{hand.id}")
+    assert [m["name"] for m in report["motors"]] == hand_files.motor_names()
+    zipped = tmp_path / "hand.zip"
+    zipped.write_bytes(hand_files.hand_zip())
+    assert len(vp.load_robot(zipped).get_parts()) == len(hand.get_parts())
+    with pytest.raises(vp.ServerError, match="is not in the upload") as refused:
+        vp.load_robot(folder / "urdf" / "hand.urdf")  # its mesh is not beside it
+    assert refused.value.code == "bad_asset"

@@ -78,6 +78,7 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
         "asset": st.one_of(st.sampled_from(["round-palm.glb", "../assets/gltf/round-tip.glb",
                                             "/assets/gltf/anthro-thumb.glb"]),
                            st.text(max_size=12)),
+        "robotFile": st.one_of(st.just("0123456789abcdef0123456789abcdef.robot"), st.text(max_size=12)),
         "axis": st.one_of(st.sampled_from("xyz"), st.lists(numbers(-1, 1), min_size=3, max_size=3)), "order": st.sampled_from(["XYZ", "ZYX", "YXZ"]),
         "point": st.lists(numbers(-5, 5), min_size=3, max_size=3),
         "node": ref, "part": ref, "motor": ref, "slot": st.one_of(st.integers(0, 6), ref),

@@ -34,13 +34,14 @@ def test_robot_report_lists_motors_in_order(server, scene_name):
             {"op": "call", "object": f"{client}.1", "method": "flexFinger", "args": [2, 0.4]},
         ])
         robots = server.get(f"/api/scenes/{scene_name}/robots")
-        assert robots == [{"id": f"{client}.1", "type": "EdgedHand", "owner": client,
+        assert robots == [{"id": f"{client}.1", "type": "EdgedHand", "name": None, "owner": client,
                            "shared": False, "position": [1, 2, 3],
                            "visible": True, "motors": 20, "parts": 36}]
         report = server.get(f"/api/scenes/{scene_name}/robots/{client}.1")
         motors = report["motors"]
         assert [m["index"] for m in motors] == list(range(20))
-        assert {"id", "index", "type", "axis", "min", "max", "angle", "name", "flipped"} <= set(motors[0])
+        assert {"id", "index", "type", "axis", "min", "max", "angle", "name", "flipped",
+                "follows"} <= set(motors[0])
         assert [m["angle"] for m in motors[9:12]] == [-0.4] * 3
         assert motors[0]["type"] == "MotorX" and motors[0]["flipped"] is False
         palm = report["parts"][0]

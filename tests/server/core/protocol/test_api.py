@@ -2,12 +2,14 @@
 
 import inspect
 
+from server.core.physics.assets import AssetLibrary
 from server.core.protocol import api
 from server.core.protocol.arguments import KINDS
 from server.core.protocol.messages import schema
 from server.core.protocol.operations import NODE_CLASSES, Operations
 from server.core.scene.scene import Scene
 from server.errors import ERROR_CODES
+from tests.hand_files import stored_hand
 
 
 def test_every_creatable_type_has_a_class_and_every_class_a_type():
@@ -49,10 +51,13 @@ REQUIRED_ARGS = {"GLTFPart": ["round-finger-8.glb"], "RoundFinger": ["round-fing
              "SceneMesh": [{"kind": "box", "size": [1, 1, 1]}]}
 
 
-def test_each_type_starts_with_the_slots_the_table_says(scene):
+def test_each_type_starts_with_the_slots_the_table_says(tmp_path):
     # clients name the slot addSlot makes next from these counts, without a round trip
+    library = AssetLibrary(uploads=tmp_path)
+    scene = Scene("slots", assets=library)
     operations = Operations(scene, "c1")
+    required = {**REQUIRED_ARGS, "ImportedRobot": [stored_hand(library)]}
     for number, (name, count) in enumerate(api.slot_counts().items()):
-        operations.create(f"c1.{number}", name, REQUIRED_ARGS.get(name, []))
+        operations.create(f"c1.{number}", name, required.get(name, []))
         slots = scene.nodes[f"c1.{number}"].slots
         assert [slot.id for slot in slots] == [f"c1.{number}/s{k}" for k in range(count)], name

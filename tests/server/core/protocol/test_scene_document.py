@@ -19,6 +19,7 @@ from server.core.protocol.operations import Operations
 from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene, import_scene
 from server.errors import BadMessage, DuplicateId, UnknownAsset, VPError
+from tests.hand_files import stored_hand
 
 
 def ref(node_id):
@@ -58,7 +59,7 @@ def busy(library):
             ("c1.20", "AnthroPalm", [False, "anthro-palm.glb"]),
             ("c1.21", "AnthroThumb", [True, "anthro-thumb.glb"]),
             ("c1.arm", "SceneMesh", [{"kind": "sphere", "radius": 0.2}, "blue"]),
-            ("c1.22", "MotorY", [-1, 1])]:
+            ("c1.22", "MotorY", [-1, 1]), ("c1.23", "ImportedRobot", [stored_hand(library)])]:
         ops.create(object_id, type_name, args)
     ops.call("c1.1", "setAngles", [0.1, 0.4, 0.5])
     ops.call("c1.1", "setPosition", [1, 0, 2])
@@ -72,6 +73,8 @@ def busy(library):
     ops.call("c1.4", "attachChain", [ref("c1.5"), ref("c1.11"), ref("c1.6"), ref("c1.17")])
     ops.call("c1.5", "setName", ["shoulder"])
     ops.call("c1.1/4", "follow", [ref("c1.1/2"), 0.5, -0.1])
+    ops.call("c1.23", "setAngles", [0.3, 0, 0, 1.1])
+    ops.call("c1.23/3", "setMass", [0.05])
     ops.call("c1.6", "flip", [])
     ops.call("c1.6", "setAngle", [2.5])
     ops.call("c1.11", "addSlot", [[0, 0.3, 0.1]])
@@ -132,10 +135,11 @@ def test_exporting_an_unchanged_scene_gives_the_same_bytes(busy):
 def test_the_document_has_the_schema_form_and_carries_uploads_by_hash(busy, library):
     document = export_scene(busy)
     assert document["format"] == "virtual-prosthetics-scene" and document["version"] == 1
-    [asset] = document["assets"]
-    data = base64.b64decode(asset["data"])
-    assert data == cube_glb() and asset["bytes"] == len(data)
+    [asset] = [a for a in document["assets"] if base64.b64decode(a["data"]) == cube_glb()]
+    assert asset["bytes"] == len(cube_glb())
     assert "data" not in export_scene(busy, embed_assets=False)["assets"][0]
+    robot = busy.get("c1.23")  # an imported robot: its file and every link's mesh
+    assert {a["name"] for a in document["assets"]} == {asset["name"], *robot.uploaded_files()}
     hand = next(e for e in document["nodes"] if e["id"] == "c1.1")
     assert hand["owner"] == "c1" and hand["args"] == [False] and hand["state"]["shared"] is True
     motor = next(e for e in document["nodes"] if e["id"] == "c1.5")
@@ -165,7 +169,7 @@ def test_slot_numbers_and_ids_go_on_where_they_were(busy, library):
     assert "c1.3/5" not in copy_.nodes and "c1.3/9" in copy_.nodes
     with pytest.raises(DuplicateId):
         ops.create("c1.8", "Ball", [])  # deleted before the export: never used again
-    ops.create("c1.23", "Ball", [])
+    ops.create("c1.24", "Ball", [])
     copy_.close()
 
 
@@ -188,6 +192,10 @@ def entry(document, node_id):
     return next(e for e in document["nodes"] if e["id"] == node_id)
 
 
+def upload(document, suffix):
+    return next(a for a in document["assets"] if a["name"].endswith(suffix))
+
+
 def cycle(document):
     entry(document, "c1.11").setdefault("children", []).append("c1.4")  # a robot below its part
 
@@ -208,7 +216,9 @@ def cycle(document):
      entry(d, "c1.1/0").setdefault("slots", []).append("c1.1/77"), "not a slot below"),
     (lambda d: entry(d, "c1.1/0/s0").update(type="Ball"), "is a Slot when made again, not a Ball"),
     (lambda d: d["assets"][0].update(data="not base64!"), "not base64"),
-    (lambda d: d["assets"][0].update(data=base64.b64encode(b"glTF" * 9).decode()), "glTF|GLB"),
+    (lambda d: upload(d, ".glb").update(data=base64.b64encode(b"glTF" * 9).decode()), "glTF|GLB"),
+    (lambda d: upload(d, ".robot").update(data=base64.b64encode(b'{"links": 3}').decode()),
+     "does not read as a robot description"),
     (lambda d: d["ids"].update(c1={"numbers": [], "names": [str(k) + "x" for k in range(1001)]}),
      "at most 1000"),
 ])

@@ -1,0 +1,93 @@
+"""Imported robots are ordinary robots: links are parts where the file's kinematics put
+them (checked against yourdfpy's forward kinematics), joints are motors named and limited
+as the file says, mimic joints follow, and the physics builds and drives them."""
+
+import io
+
+import numpy as np
+import pytest
+import yourdfpy
+
+from server.core.kit.limits import DEFAULT
+from server.core.kit.math3d import to_matrix
+from server.core.model.imported import ImportedRobot, RobotLink
+from server.core.physics.assets import AssetLibrary
+from server.core.physics.robot_archive import open_archive
+from server.core.physics.urdf_reading import read_urdf
+from server.core.scene.scene import Scene
+from server.errors import BadAsset, UnknownAsset
+from tests import hand_files
+from tests.hand_files import hand_zip
+
+
+@pytest.fixture
+def library(tmp_path):
+    return AssetLibrary(uploads=tmp_path)
+
+
+@pytest.fixture
+def hand_file(library):
+    robot = read_urdf(open_archive(hand_zip(), None, DEFAULT), DEFAULT,
+                      lambda glb: library.store(glb, DEFAULT)["name"])
+    return library.store_robot(robot, DEFAULT)["name"]
+
+
+@pytest.fixture
+def lab(library):
+    scene = Scene("lab", assets=library)
+    yield scene
+    scene.close()
+
+
+def file_poses(angles):
+    """Each link's pose in the robot's frame as yourdfpy computes it from the URDF."""
+    urdf = yourdfpy.URDF.load(io.StringIO(hand_files.hand_urdf()), build_scene_graph=True,
+                              load_meshes=False)
+    urdf.update_cfg(angles)
+    return {link: urdf.get_transform(link, urdf.base_link) for link in urdf.link_map}
+
+
+def test_links_sit_where_the_files_kinematics_put_them_with_mimic_joints_following(lab, hand_file):
+    robot = ImportedRobot(lab, "c1.1", hand_file)
+    motors = robot.get_motors()
+    assert [m.name for m in motors] == hand_files.motor_names()
+    assert all((m.min, m.max) == hand_files.LIMITS for m in motors)
+    robot.set_angles(0.9, 0.1, 0.1, 0.4, None, None, 1.3)  # followers' own angles are ignored
+    leaders = {"thumb_proximal_joint": 0.9, "index_proximal_joint": 0.4, "middle_proximal_joint": 1.3}
+    ratio, offset = hand_files.MIMIC
+    assert robot.get_angles() == pytest.approx(
+        [a if k == 0 else min(ratio * a + offset, 1.6) for a in leaders.values() for k in range(3)])
+    expected = file_poses(leaders)
+    links = [p for p in robot.get_parts() if isinstance(p, RobotLink)]
+    assert sorted(p.name for p in links) == sorted(expected)
+    for part in links:
+        position, quaternion = part.world_pose()
+        matrix = expected[part.name]
+        assert np.allclose(position, matrix[:3, 3], atol=1e-9), part.name
+        assert np.allclose(np.asarray(to_matrix(quaternion)), matrix[:3, :3], atol=1e-9), part.name
+
+
+def test_an_imported_robot_is_drawn_enveloped_weighed_and_driven_in_dynamic_mode(lab, hand_file):
+    robot = ImportedRobot(lab, "c1.1", hand_file)
+    robot.set_position((0.0, 0.3, 0.0))
+    palm, mount = robot.get_parts()[0], robot.get_parts()[1]
+    assert palm.geometry()["kind"] == "mesh" and len(palm.geometry()["points"]) == 8
+    assert (mount.physical, "points" in mount.geometry()) == (False, False)  # drawn, not solid
+    assert (palm.get_mass(), palm.friction) == (hand_files.PALM_MASS, 0.9)
+    lab.set_physics("dynamic")
+    robot.set_angles(1.0, None, None, 0.5)
+    for _ in range(120):
+        lab.tick(1 / 60)
+    angles = robot.get_angles()
+    assert angles[0] == pytest.approx(1.0, abs=0.02) and angles[3] == pytest.approx(0.5, abs=0.02)
+    assert angles[1] == pytest.approx(0.85, abs=0.03)  # a follower driven with its leader
+    assert palm.world_pose()[0] == pytest.approx((0.0, 0.3, 0.0), abs=1e-3)  # held at its mount
+    assert [m.get_max_torque() for m in robot.get_motors()] == [0.5] * 9  # the file's effort
+
+
+def test_a_robot_file_that_is_missing_or_not_a_robot_makes_nothing(lab, library, hand_file):
+    with pytest.raises(UnknownAsset):
+        ImportedRobot(lab, "c1.1", "0123456789abcdef0123456789abcdef.robot")
+    with pytest.raises(BadAsset, match="is not a robot file"):
+        ImportedRobot(lab, "c1.1", "round-palm.glb")
+    assert "c1.1" not in lab.nodes
