@@ -1,0 +1,54 @@
+"""An imported robot in the viewer: every link drawn from its file's meshes in the file's
+colours, where the robot's kinematics put it, and moving with its motors."""
+
+from __future__ import annotations
+
+import os
+
+import virtual_prosthetics as vp
+from tests import hand_files
+
+from .conftest import open_viewer, wait_until
+from .picture import Picture, project
+
+CAMERA = ((0.0, 0.12, 0.45), (0.0, 0.08, 0.0))
+DRAWN = """(ids) => ids.every((id) => { let n = 0; VP.objects.get(id)?.traverse((c) => {
+             if (c.isMesh && c.geometry.getAttribute('color')) n++; }); return n > 0; }) && VP.drawn()"""
+
+
+def reddish(colour):
+    r, g, b = colour
+    return r > 120 and r > 2 * g and r > 2 * b
+
+
+def test_an_imported_hand_is_drawn_in_its_files_colours_and_curls(browser, pages, server, scene,
+                                                                  scene_name, tmp_path):
+    archive = tmp_path / "hand.zip"
+    archive.write_bytes(hand_files.hand_zip())
+    hand = vp.load_robot(archive, rotation=[0, 0, 0])
+    vp.set_camera_position(*CAMERA[0])
+    vp.set_camera_target(*CAMERA[1])
+    scene.sync()
+    links = [p.id for p in hand.get_parts() if not isinstance(p, vp.Motor)]
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(viewer, DRAWN, links)
+    picture = Picture(viewer.screenshot())
+    if os.environ.get("VP_PICTURES"):
+        (tmp_path / "straight.png").write_bytes(viewer.screenshot())
+    # the middle finger's tip (red in the file) sits at its base + three segments along +y
+    x, y, _ = hand_files.DIGITS["middle"]
+    tip = (x, y + 2.5 * hand_files.SEGMENT, 0.0)
+    assert reddish(picture.at(project(tip, *CAMERA, picture.size))), picture.at(project(tip, *CAMERA, picture.size))
+    palm = picture.at(project((0.0, 0.0, 0.0), *CAMERA, picture.size))
+    assert palm[0] > palm[2] and not reddish(palm)  # the palm's skin colour, not the tips' red
+    hand.set_angles(*[None] * 6, 1.5)  # the middle finger curls: its tip leaves that spot
+    scene.sync()
+    wait_until(viewer, "() => VP.drawn()")
+    wait_until(viewer, """([id, y]) => { const o = VP.objects.get(id); o.updateWorldMatrix(true, false);
+                           return o.matrixWorld.elements[13] < y; }""",
+               [links[-1], y + 2 * hand_files.SEGMENT])
+    curled = Picture(viewer.screenshot())
+    if os.environ.get("VP_PICTURES"):
+        (tmp_path / "curled.png").write_bytes(viewer.screenshot())
+        print("pictures in", tmp_path)
+    assert not reddish(curled.at(project(tip, *CAMERA, picture.size)))
