@@ -103,3 +103,54 @@ def stored_hand(library) -> str:
     robot = read_urdf(open_archive(hand_zip(), None, DEFAULT), DEFAULT,
                       lambda glb: library.store(glb, DEFAULT)["name"])
     return library.store_robot(robot, DEFAULT)["name"]
+
+
+# --- an MJCF hand: includes, default classes, degrees, meshdir, a tendon and an equality ---
+
+MJCF_LIMITS_DEG = (0.0, 95.0)
+MJCF_EQUALITY = (0.7, 0.02)   # the index's distal joint follows its middle: ratio, offset
+MJCF_MASS = 0.35
+
+
+def mjcf_files() -> dict[str, bytes | str]:
+    """A three-digit MJCF hand as a zip's files: ``hand/scene.xml`` includes the defaults
+    and the hand (``hand/parts/*.xml``); the tips are STL meshes from ``meshdir``; the
+    thumb's two outer joints are one fixed tendon pulled by an actuator, the index's
+    distal joint follows its middle one by an equality; the middle finger's knuckle turns
+    about an anchor away from its body's origin, and its base has two hinges (spread,
+    flex)."""
+    defaults = """<mujoco><default>
+  <default class="digit"><joint type="hinge" axis="1 0 0" range="0 95" damping="0.05"/>
+    <geom type="capsule" size="0.009 0.015" pos="0 0 0.02" rgba="0.8 0.7 0.6 1" mass="0.015"/>
+    <default class="tip"><geom type="mesh" mesh="tip" pos="0 0 0" rgba="0.9 0.2 0.2 1"/></default>
+  </default></default></mujoco>"""
+    digits = []
+    for name, x, spread in (("thumb", -0.05, 35), ("index", -0.025, 0), ("middle", 0.02, 0)):
+        base = (f'<joint name="{name}_spread" axis="0 1 0" range="-20 20"/>' if name == "middle" else "")
+        anchor = ' pos="0 0 -0.005"' if name == "middle" else ""
+        digits.append(f"""<body name="{name}_proximal" childclass="digit" pos="{x} 0.05 0" euler="-90 0 {spread}">
+      {base}<joint name="{name}_knuckle"{anchor}/><geom/>
+      <body name="{name}_middle" pos="0 0 0.04"><joint name="{name}_middle_joint"/><geom/>
+        <body name="{name}_distal" pos="0 0 0.04"><joint name="{name}_distal_joint"/><geom class="tip"/></body>
+      </body></body>""")
+    hand = f"""<mujoco><worldbody>
+  <body name="palm" pos="0 0.2 0"><geom type="box" size="0.045 0.05 0.0125" rgba="0.8 0.7 0.6 1" mass="{MJCF_MASS}"/>
+    <geom type="box" size="0.045 0.05 0.0125" contype="0" conaffinity="0" group="2" rgba="0 0 1 1"/>
+    {''.join(digits)}
+  </body></worldbody></mujoco>"""
+    scene = f"""<mujoco model="mjcf_hand">
+  <compiler angle="degree" meshdir="meshes"/>
+  <include file="parts/defaults.xml"/>
+  <asset><mesh name="tip" file="tip.stl"/></asset>
+  <include file="parts/hand.xml"/>
+  <worldbody><geom name="floor" type="plane" size="1 1 0.1"/></worldbody>
+  <tendon><fixed name="thumb_curl"><joint joint="thumb_middle_joint" coef="1"/><joint joint="thumb_distal_joint" coef="1"/></fixed></tendon>
+  <equality><joint joint1="index_distal_joint" joint2="index_middle_joint" polycoef="{MJCF_EQUALITY[1]} {MJCF_EQUALITY[0]} 0 0 0"/></equality>
+  <actuator><position name="thumb_pull" tendon="thumb_curl" kp="2"/><position name="index" joint="index_knuckle" kp="2"/></actuator>
+</mujoco>"""
+    return {"hand/scene.xml": scene, "hand/parts/defaults.xml": defaults, "hand/parts/hand.xml": hand,
+            "hand/meshes/tip.stl": tip_stl()}
+
+
+def mjcf_zip() -> bytes:
+    return zipped(mjcf_files())

@@ -21,6 +21,9 @@ from .parts import Part
 from .robot import Robot
 
 LINK_COLOR = "lightgray"  # a link with an envelope and nothing drawn (shown as its hull)
+# N·m of a joint whose file gives no effort: a small servo's at human size (the 1.0 default,
+# 2·10⁴ N·m, is for 1.0's scaled world; on a finger link of grams it only shakes the joint)
+IMPORTED_TORQUE = 1.0
 
 
 class RobotLink(Part):
@@ -90,8 +93,7 @@ class ImportedRobot(Robot):
                 motor = Motor(self.scene, self._next_id(), joint.axis, joint.lower, joint.upper,
                               clamp(0.0, joint.lower, joint.upper))
                 motor.name = joint.name
-                if joint.effort:
-                    motor.max_torque = joint.effort
+                motor.max_torque = joint.effort or IMPORTED_TORQUE
                 motor.position, motor.quaternion = joint.origin
                 motor._link(holder)
                 motors[joint.name] = motor

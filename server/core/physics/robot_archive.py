@@ -50,7 +50,7 @@ class RobotArchive:
         if re.match(r"[a-z][a-z0-9+.-]*://", reference) or reference.startswith("/"):
             raise Forbidden(f"mesh {reference!r}: only paths inside the upload are read "
                             f"(relative to the description, or package://NAME/…)", filename=reference)
-        path = _inside(posixpath.join(self.folder, reference), reference)
+        path = inside_upload(posixpath.join(self.folder, reference), reference)
         if path not in self.files:
             raise BadAsset(f"mesh {reference!r} is not in the upload (looked for {path!r})")
         return path, self.files[path]
@@ -59,7 +59,7 @@ class RobotArchive:
         """``package://NAME/PATH``: a folder NAME anywhere in the upload holding PATH, else
         PATH from the upload's root or from the description's folder and those above it."""
         name, _, inner = rest.partition("/")
-        inner = _inside(inner, reference)
+        inner = inside_upload(inner, reference)
         suffix = f"{name}/{inner}"
         found = sorted(p for p in self.files if p == suffix or p.endswith("/" + suffix))
         if found:
@@ -104,7 +104,7 @@ def _members(data: bytes, limits: Limits) -> dict[str, bytes]:
                        f"taken", limit="robotBytes", value=limits.robot_bytes)
     files = {}
     for entry in entries:
-        path = _inside(entry.filename, entry.filename)
+        path = inside_upload(entry.filename, entry.filename)
         try:
             content = archive.read(entry)
         except Exception as error:  # zipfile raises many kinds for damaged members
@@ -115,7 +115,7 @@ def _members(data: bytes, limits: Limits) -> dict[str, bytes]:
     return files
 
 
-def _inside(path: str, reference: str) -> str:
+def inside_upload(path: str, reference: str) -> str:
     """``path`` normalised, or :class:`Forbidden` if it leaves the upload."""
     if "\\" in path or path.startswith("/") or "\0" in path:
         raise Forbidden(f"path {reference!r} is not allowed: only plain relative paths inside "
@@ -140,7 +140,7 @@ def _format(data: bytes) -> str | None:
 
 def _description(files: dict[str, bytes], file: str | None) -> str:
     if file is not None:
-        path = _inside(file, file)
+        path = inside_upload(file, file)
         if path not in files:
             raise BadAsset(f"?file={file}: the zip has no such file")
         return path

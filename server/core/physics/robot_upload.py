@@ -1,4 +1,4 @@
-"""An uploaded robot read and kept: its links' meshes and its description as uploads.
+"""An uploaded robot (URDF or MJCF) read and kept: its links' meshes and its description as uploads.
 
 Run where uploads are checked (the server's checking process): a description and its
 meshes are parsed there, never in a scene's process or the event loop. The description
@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...errors import BadAsset
 from ..kit.limits import Limits
 from ..kit.numbers import encode_numbers
 from .assets import AssetLibrary
+from .mjcf_reading import read_mjcf
 from .robot_archive import open_archive
 from .urdf_reading import read_urdf
 
@@ -22,9 +22,8 @@ def store_robot_upload(library: AssetLibrary, data: bytes, file: str | None,
                        limits: Limits) -> dict[str, Any]:
     """Read an upload (a zip, or a bare URDF or MJCF file) and keep what it makes."""
     archive = open_archive(data, file, limits)
-    if archive.format != "urdf":
-        raise BadAsset(f"{archive.description}: MJCF robots are not read yet; upload a URDF")
-    robot = read_urdf(archive, limits, lambda glb: library.store(glb, limits)["name"])
+    reader = read_urdf if archive.format == "urdf" else read_mjcf
+    robot = reader(archive, limits, lambda glb: library.store(glb, limits)["name"])
     kept = library.store_robot(robot, limits)
     followers = {c.follower: c for c in robot.couplings}
     return encode_numbers({

@@ -66,3 +66,30 @@ def test_bad_robot_uploads_are_refused_naming_what_is_wrong_and_make_nothing(ser
     answer, _, _ = request(server, "POST", "/api/scenes/no-such-scene/robots", hand_zip())
     assert answer == 404
     assert robot_ids(server, scene_name) == []
+
+
+def test_an_mjcf_zip_is_placed_as_mujoco_compiles_it_and_runs_in_dynamic_mode(server, scene_name):
+    session = vp.connect(server.ws, scene_name)
+    try:
+        vp.set_physics("dynamic")
+        status, _, body = request(server, "POST", f"/api/scenes/{scene_name}/robots?position=0,0.4,0",
+                                  hand_files.mjcf_zip())
+        robot = json.loads(body)
+        assert status == 201, body
+        assert robot["name"] == "mjcf_hand" and len(robot["motors"]) == 10
+        named = {m["name"]: m for m in robot["motors"]}
+        assert named["index_distal_joint"]["follows"][0] == named["index_middle_joint"]["id"]
+        eventually(lambda: session.read(lambda mirror: robot["id"] in mirror.nodes))
+        hand = session.proxy(robot["id"])
+        curling = [m["follows"] is None and not m["name"].startswith(("thumb", "middle_spread"))
+                   for m in robot["motors"]]  # the thumb would cross the index: it stays open
+        hand.set_angles(*[0.8 if curls else None for curls in curling])
+
+        def curled():
+            angles = [m["angle"] for m in server.get(f"/api/scenes/{scene_name}/robots/{robot['id']}")["motors"]]
+            return all(abs(a - 0.8) < 0.05 for a, curls in zip(angles, curling) if curls)
+        eventually(curled)  # driven by its motors under gravity, its palm held where it was put
+        palm = server.get(f"/api/scenes/{scene_name}/robots/{robot['id']}")["parts"][0]
+        assert palm["world"]["position"] == pytest.approx([0.0, 0.4, 0.0], abs=1e-3)
+    finally:
+        session.close()

@@ -91,3 +91,42 @@ def test_a_robot_file_that_is_missing_or_not_a_robot_makes_nothing(lab, library,
     with pytest.raises(BadAsset, match="is not a robot file"):
         ImportedRobot(lab, "c1.1", "round-palm.glb")
     assert "c1.1" not in lab.nodes
+
+
+def test_an_mjcf_hands_bodies_sit_where_mujoco_puts_them(lab, library):
+    import mujoco
+
+    from server.core.kit.math3d import compose, rotate
+
+    def inverse(pose):
+        (px, py, pz), (x, y, z, w) = pose
+        turn = (-x, -y, -z, w)
+        return tuple(-c for c in rotate(turn, (px, py, pz))), turn
+    from server.core.physics.mjcf_reading import read_mjcf
+    from tests.server.core.physics.test_mjcf_reading import compiled
+    robot_file = library.store_robot(read_mjcf(open_archive(hand_files.mjcf_zip(), None, DEFAULT), DEFAULT,
+                                               lambda glb: library.store(glb, DEFAULT)["name"]), DEFAULT)["name"]
+    robot = ImportedRobot(lab, "c1.1", robot_file)
+    by_name = {m.name: m for m in robot.get_motors()}
+    for name, angle in {"thumb_knuckle": 0.4, "thumb_middle_joint": 0.6, "index_middle_joint": 0.9,
+                        "middle_spread": -0.2, "middle_knuckle": 1.1, "middle_middle_joint": 0.3}.items():
+        by_name[name].set_angle(angle)
+    assert by_name["thumb_distal_joint"].angle == 0.6  # the tendon's second joint follows
+    assert by_name["index_distal_joint"].angle == pytest.approx(0.7 * 0.9 + 0.02)
+    model = compiled()
+    data = mujoco.MjData(model)
+    for motor in robot.get_motors():
+        data.qpos[model.joint(motor.name).qposadr[0]] = motor.angle
+    mujoco.mj_kinematics(model, data)
+
+    def pose(body):  # a body's pose relative to the palm's, as MuJoCo has it
+        w, x, y, z = data.xquat[model.body(body).id]
+        return tuple(data.xpos[model.body(body).id]), (x, y, z, w)
+    palm = pose("palm")
+    links = {p.name: p for p in robot.get_parts() if isinstance(p, RobotLink)}
+    for body in ("thumb_distal", "index_distal", "middle_proximal", "middle_distal"):
+        position, quaternion = compose(inverse(palm), pose(body))
+        anchor = -0.005 if body == "middle_proximal" else 0.0  # its link sits at its joint
+        ours = compose(links[body].world_pose(), ((0.0, 0.0, -anchor), (0.0, 0.0, 0.0, 1.0)))
+        assert np.allclose(ours[0], position, atol=1e-9), body
+        assert np.allclose(np.asarray(to_matrix(ours[1])), np.asarray(to_matrix(quaternion)), atol=1e-9), body
