@@ -64,6 +64,7 @@ class SceneBodies:
         self._turned: set[str] = set()        # motors whose angles changed
         self._motor_root: dict[str, str] = {}  # motor id -> root of the tree it is a joint of
         self._joint_motors: dict[str, list[Node]] = {}  # root -> its joints' motors, in order
+        self._followers: dict[str, list[Node]] = {}  # root -> its motors that follow another
         self._ray_geometry: dict[str, dict[str, Any]] = {}
         self._parts = PartPoses()  # where Bullet put the parts; what they carry
         self._unposed: set[str] = set()  # roots moved since their parts' poses were read
@@ -120,6 +121,21 @@ class SceneBodies:
         """Dynamic mode: motors got new targets (or torques), driven from the next step."""
         self._targets_due = True
 
+    def _follow(self) -> None:
+        """Dynamic mode: each follower aims at its share of where its leader really is (a
+        finger whose first joint an object stops stops curling, as a linkage does; Bullet's
+        own gear constraint was tried and measured wrong on a robot's floating base)."""
+        for followers in self._followers.values():
+            for follower in followers:
+                leader = follower.leader()  # type: ignore[attr-defined]
+                if leader is None:
+                    continue
+                _, ratio, offset = follower.following  # type: ignore[attr-defined]
+                aim = follower.within_limits(ratio * leader.angle + offset)  # type: ignore[attr-defined]
+                if aim is not None and aim != follower.target:  # type: ignore[attr-defined]
+                    follower.target = aim  # type: ignore[attr-defined]
+                    self._targets_due = True
+
     def turned(self, motor_ids: Iterable[str]) -> None:
         """Motors turned: their joints are set at the next sync."""
         self._turned.update(motor_ids)
@@ -159,6 +175,8 @@ class SceneBodies:
         the free roots' new poses (what moved more than a hair)."""
         self.sync()
         physics = self.physics
+        if self._followers:
+            self._follow()
         if self._targets_due:
             for root_id, motors in self._joint_motors.items():
                 physics.drive(root_id, [m.target for m in motors],  # type: ignore[attr-defined]
@@ -282,6 +300,7 @@ class SceneBodies:
         for _, joint in tree.joints():
             self._motor_root.pop(joint.motor, None)
         self._joint_motors.pop(root_id, None)
+        self._followers.pop(root_id, None)
 
     def _build(self, root_id: str) -> list[str]:
         """Build the tree of a root (nothing for a node gone, attached or without parts)."""
@@ -300,6 +319,11 @@ class SceneBodies:
             return []
         self._motor_root.update(dict.fromkeys(angles, root_id))
         self._joint_motors[root_id] = [self._nodes[motor] for motor in angles]
+        followers = [m for m in self._joint_motors[root_id] if m.following is not None]  # type: ignore[attr-defined]
+        if followers:
+            self._followers[root_id] = followers
+        else:
+            self._followers.pop(root_id, None)
         if self.physics.dynamics is not None:
             self._targets_due = True
             if root_id in self._mounts:  # the mount stays where it was put

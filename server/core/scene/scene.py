@@ -35,7 +35,7 @@ from .registry import Registry
 
 log = logging.getLogger(__name__)
 _POSE_FIELDS = ("position", "quaternion", "angle", "flipped", "scale")
-_BODY_FIELDS = ("mass", "friction", "static")  # a tree's body is built again with them
+_BODY_FIELDS = ("mass", "friction", "static", "following")  # a tree's body is built again with them
 
 
 class RecordingControl(Protocol):
@@ -153,10 +153,10 @@ class Scene:
                 self.bodies.restructure((node.root().id,))
         elif field in _BODY_FIELDS:
             self.bodies.restructure((node.root().id,))
+            if field == "following":  # followers are kept with their trees (bodies._follow)
+                self.couplings.changed()
         elif field == "max_torque":
             self.bodies.retargeted()
-        elif field == "following":
-            self.couplings.changed()
 
     def turn(self, turns: list[tuple[Motor, float | None]], coupled: bool = True) -> None:
         """Motors to angles, as ``setAngle`` takes them (None and NaN ignored, the rest
