@@ -19,6 +19,8 @@ server has it. The base sits at the file's origin: load it at the robot's pose.
 - Limits: ``effort`` is the motor's torque (N·m); ``velocity`` is required by URDF but
   the server's motors have no speed limit: NO_SPEED_LIMIT says so.
 - Colours: a part's colour as a material (CSS names, ``#hex``, ``0xRRGGBB``).
+- Names: links as their parts' names, joints as their motors' (``setName``, an imported
+  file's), each name once; the rest by id. A follower's joint carries ``<mimic>``.
 """
 
 from __future__ import annotations
@@ -47,10 +49,13 @@ DEFAULT_RGBA = (0.8, 0.8, 0.8, 1.0)  # a part whose colour is not one URDF can s
 
 
 def urdf_zip(tree: Articulation, name: str, density: float, torques: Mapping[str, float],
-             assets: AssetLibrary) -> bytes:
+             assets: AssetLibrary, names: Mapping[str, str] | None = None,
+             follows: Mapping[str, tuple[str, float, float]] | None = None) -> bytes:
     """The zip of ``name/robot.urdf`` and ``name/meshes/*.obj`` for ``tree``; ``torques``
-    are the motors' (by motor id), ``density`` the scene's (kg/m³)."""
-    files = urdf_files(tree, name, density, torques, assets)
+    are the motors' (by motor id), ``density`` the scene's (kg/m³), ``names`` what links
+    and joints are called (by node id; else the id), ``follows`` the followers' leaders,
+    ratios and offsets (by motor id: ``<mimic>``)."""
+    files = urdf_files(tree, name, density, torques, assets, names or {}, follows or {})
     out = io.BytesIO()
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
         for path, data in files.items():
@@ -59,28 +64,35 @@ def urdf_zip(tree: Articulation, name: str, density: float, torques: Mapping[str
 
 
 def urdf_files(tree: Articulation, name: str, density: float, torques: Mapping[str, float],
-               assets: AssetLibrary) -> dict[str, bytes]:
+               assets: AssetLibrary, given: Mapping[str, str] | None = None,
+               follows: Mapping[str, tuple[str, float, float]] | None = None) -> dict[str, bytes]:
     """``robot.urdf`` and its mesh files, by path relative to the URDF."""
     files: dict[str, bytes] = {}
-    robot = ET.Element("robot", name=name)
+    given = given or {}
+    robot = ET.Element("robot", name=given.get(tree.root, name))
     base_mass, masses = tree_masses(tree, density)
-    names = link_names(tree)
+    names = link_names(tree, given)
     robot.append(_link(names[0], tree.base_geometry, NO_POSE, base_mass, files, assets))
     for k, link in enumerate(tree.links):
         robot.append(_link(names[k + 1], link.geometry, link.shape, masses[k], files, assets))
-        robot.append(_joint(k, tree, names, torques))
+        robot.append(_joint(k, tree, names, torques, given, follows or {}))
     ET.indent(robot)
     files["robot.urdf"] = b'<?xml version="1.0"?>\n' + ET.tostring(robot, encoding="utf-8")
     return files
 
 
-def link_names(tree: Articulation) -> list[str]:
-    """The URDF name of the base and of every link: its part's id, else (a link where two
-    joints meet) the id of the motor that turns it, with ``.link``."""
-    names = [tree.base_part or tree.root]
+def link_names(tree: Articulation, given: Mapping[str, str] | None = None) -> list[str]:
+    """The URDF name of the base and of every link: its part's name (``given``) or id, else
+    (a link where two joints meet) its motor's, with ``.link``."""
+    given = given or {}
+    base = tree.base_part or tree.root
+    names = [given.get(base, base)]
     for k, link in enumerate(tree.links):
-        names.append(link.part if link.part is not None else
-                     f"{link.joint.motor if link.joint else k}.link")
+        if link.part is not None:
+            names.append(given.get(link.part, link.part))
+        else:
+            motor = link.joint.motor if link.joint else str(k)
+            names.append(f"{given.get(motor, motor)}.link")
     return names
 
 
@@ -176,14 +188,16 @@ def _obj(mesh: trimesh.Trimesh) -> bytes:
                                            header=None).encode()
 
 
-def _joint(k: int, tree: Articulation, names: list[str], torques: Mapping[str, float]) -> ET.Element:
+def _joint(k: int, tree: Articulation, names: list[str], torques: Mapping[str, float],
+           given: Mapping[str, str], follows: Mapping[str, tuple[str, float, float]]) -> ET.Element:
     link = tree.links[k]
     joint = link.joint
     if joint is None:
         element = ET.Element("joint", name=f"{names[k + 1]}.fixed", type="fixed")
     else:
         limited = math.isfinite(joint.lower) and math.isfinite(joint.upper)
-        element = ET.Element("joint", name=joint.motor, type="revolute" if limited else "continuous")
+        element = ET.Element("joint", name=given.get(joint.motor, joint.motor),
+                             type="revolute" if limited else "continuous")
     ET.SubElement(element, "parent", link=names[link.parent + 1])
     ET.SubElement(element, "child", link=names[k + 1])
     element.append(_origin(link.origin))
@@ -193,6 +207,10 @@ def _joint(k: int, tree: Articulation, names: list[str], torques: Mapping[str, f
         if limited:
             limits.update(lower=repr(float(joint.lower)), upper=repr(float(joint.upper)))
         ET.SubElement(element, "limit", **limits)
+        if joint.motor in follows:
+            leader, ratio, offset = follows[joint.motor]
+            ET.SubElement(element, "mimic", joint=given.get(leader, leader),
+                          multiplier=repr(float(ratio)), offset=repr(float(offset)))
     return element
 
 

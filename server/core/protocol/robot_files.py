@@ -12,6 +12,7 @@ a loop of exports never holds up a scene's ticks.
 from __future__ import annotations
 
 import pickle
+from collections import Counter
 from dataclasses import dataclass
 
 from typing import Any
@@ -38,9 +39,12 @@ class UrdfJob:
     robot_id: str
     density: float
     torques: dict[str, float]
+    names: dict[str, str]                          # node id -> its name in the file
+    follows: dict[str, tuple[str, float, float]]   # follower id -> (leader id, ratio, offset)
 
     def write(self, assets: AssetLibrary) -> bytes:
-        return urdf_zip(self.tree, self.robot_id, self.density, self.torques, assets)
+        return urdf_zip(self.tree, self.robot_id, self.density, self.torques, assets,
+                        self.names, self.follows)
 
 
 @dataclass(frozen=True)
@@ -73,8 +77,39 @@ def urdf_job(scene: Scene, robot_id: str) -> UrdfJob:
     """``GET …/robots/{id}/urdf``: the zip of ``{id}/robot.urdf`` and its meshes; the base
     at the file's origin (load it at the robot's position and rotation)."""
     robot, tree = _compiled(scene, robot_id)
-    torques = {motor.id: motor.get_max_torque() for motor in robot.get_motors()}
-    return UrdfJob(tree, robot.id, scene.physics.density, torques)
+    motors = robot.get_motors()
+    torques = {motor.id: motor.get_max_torque() for motor in motors}
+    follows = {m.id: m.following for m in motors if m.following is not None and m.leader() is not None}
+    return UrdfJob(tree, robot.id, scene.physics.density, torques, file_names(robot),
+                   follows)  # type: ignore[arg-type]
+
+
+def file_names(robot: Robot) -> dict[str, str]:
+    """What a robot's nodes are called in files: their names (a motor's ``setName``, an
+    imported link's). A name several nodes share is qualified by the nearest node above
+    with a name of its own ("Index finger proximal"), then numbered; a node without a name
+    keeps its id. No two nodes get one name."""
+    nodes = list(robot.walk())
+    own = {n.id: n.name for n in nodes if isinstance(getattr(n, "name", None), str) and n.name}
+    counts = Counter(own.values())
+    names: dict[str, str] = {}
+    used = {n.id for n in nodes}
+    for node in nodes:
+        name = own.get(node.id)
+        if name is None:
+            continue
+        if counts[name] > 1:
+            above = node.parent
+            while above is not None and counts[own.get(above.id, name)] != 1:
+                above = above.parent
+            name = f"{own[above.id]} {name}" if above is not None else name
+        unique, k = name, 1
+        while unique in used and unique != node.id:
+            k += 1
+            unique = f"{name} {k}"
+        names[node.id] = unique
+        used.add(unique)
+    return names
 
 
 def glb_job(scene: Scene, robot_id: str) -> GlbJob:

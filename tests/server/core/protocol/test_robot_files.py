@@ -17,7 +17,7 @@ from server.core.model.motor import MotorZ
 from server.core.model.parts import Ball, Box
 from server.core.model.robot import Robot
 from server.core.physics.assets import BUNDLED_DIR
-from server.core.protocol.robot_files import robot_glb, robot_urdf
+from server.core.protocol.robot_files import file_names, robot_glb, robot_urdf
 from server.errors import UnknownObject
 
 HANDS = [EdgedHand, RoundHand, AnthroHand]
@@ -49,11 +49,12 @@ def test_a_hands_urdf_loads_into_pybullet_with_every_part_where_the_server_has_i
         body = pybullet.loadURDF(str(urdf), hand.position, hand.quaternion, useFixedBase=True,
                                  physicsClientId=client)
         links = {}
+        named = {file_names(hand).get(m.id, m.id): m for m in hand.get_motors()}
         for j in range(pybullet.getNumJoints(body, physicsClientId=client)):
             info = pybullet.getJointInfo(body, j, physicsClientId=client)
             links[info[12].decode()] = j
             if info[2] == pybullet.JOINT_REVOLUTE:  # named by its motor
-                pybullet.resetJointState(body, j, scene.nodes[info[1].decode()].get_angle(),
+                pybullet.resetJointState(body, j, named[info[1].decode()].get_angle(),
                                          physicsClientId=client)
         placed = _visual_origins(urdf)
         parts = [p for p in hand.get_parts() if p.physical]
@@ -86,8 +87,10 @@ def test_the_urdf_has_limits_torques_inertials_and_mesh_files(scene, tmp_path):
     robot = ET.parse(urdf).getroot()
     joints = {j.get("name"): j for j in robot.findall("joint") if j.get("type") != "fixed"}
     motors = hand.get_motors()
-    assert list(joints) == [m.id for m in motors]  # every motor, in motor order
-    limit = joints[motors[3].id].find("limit")
+    names = file_names(hand)
+    assert list(joints) == [names.get(m.id, m.id) for m in motors]  # every motor, in motor order
+    assert "Thumb" in names.values() or any(m.name for m in motors) is False
+    limit = joints[names.get(motors[3].id, motors[3].id)].find("limit")
     assert float(limit.get("effort")) == 1234
     assert (float(limit.get("lower")), float(limit.get("upper"))) == (motors[3].min, motors[3].max)
     for link in robot.findall("link"):
@@ -168,3 +171,53 @@ def test_an_unknown_robot_is_refused_by_name(scene):
         with pytest.raises(UnknownObject) as refused:
             robot_urdf(scene, name)
         assert name in refused.value.message
+
+
+def _reimported(scene, robot, library):
+    """The robot made again from its own URDF export, at the same pose and angles."""
+    from server.core.kit.limits import DEFAULT
+    from server.core.model.imported import ImportedRobot
+    from server.core.physics.robot_archive import open_archive
+    from server.core.physics.urdf_reading import read_urdf
+    description = read_urdf(open_archive(robot_urdf(scene, robot.id), None, DEFAULT), DEFAULT,
+                            lambda glb: library.store(glb, DEFAULT)["name"])
+    again = ImportedRobot(scene, "again", library.store_robot(description, DEFAULT)["name"])
+    again.set_position(robot.position)
+    again.set_quaternion(robot.quaternion)
+    names = file_names(robot)
+    angles = {names.get(m.id, m.id): m.angle for m in robot.get_motors()}
+    for motor in again.get_motors():
+        if motor.following is None:
+            motor.set_angle(angles[motor.name])
+    return again, names
+
+
+@pytest.mark.parametrize("kind", ["imported", EdgedHand, AnthroHand])
+def test_a_robot_made_again_from_its_urdf_is_the_same_robot(kind, tmp_path):
+    from server.core.physics.assets import AssetLibrary
+    from server.core.scene.scene import Scene
+    from tests.hand_files import stored_hand
+    from server.core.model.imported import ImportedRobot
+    library = AssetLibrary(uploads=tmp_path)
+    scene = Scene("round-trip", assets=library)
+    robot = ImportedRobot(scene, "h", stored_hand(library)) if kind == "imported" else kind(scene, "h", True)
+    robot.set_position((0.1, 0.2, 0.3))
+    robot.set_rotation(0.3, -0.5, 1.1)
+    draw = random.Random(3)
+    for motor in robot.get_motors():
+        motor.set_angle(draw.uniform(max(motor.min, -1.2), min(motor.max, 1.2)))
+    again, names = _reimported(scene, robot, library)
+    parts = {p.name: p for p in again.get_parts() if getattr(p, "name", None)}
+    for part in robot.get_parts():
+        if not part.physical:
+            continue
+        twin = parts[names.get(part.id, part.id)]
+        (p, q), (p2, q2) = part.world_pose(), twin.world_pose()
+        assert np.allclose(p, p2, atol=1e-6) and abs(abs(np.dot(q, q2)) - 1) < 1e-9, part.id
+    motors = {m.name: m for m in again.get_motors()}
+    for motor in robot.get_motors():
+        twin = motors[names.get(motor.id, motor.id)]
+        assert (twin.min, twin.max) == pytest.approx((motor.min, motor.max), abs=1e-6)
+        assert twin.angle == pytest.approx(motor.angle, abs=1e-6)
+        assert (twin.following is None) == (motor.following is None)
+    scene.close()
