@@ -52,3 +52,34 @@ def test_an_imported_hand_is_drawn_in_its_files_colours_and_curls(browser, pages
         (tmp_path / "curled.png").write_bytes(viewer.screenshot())
         print("pictures in", tmp_path)
     assert not reddish(curled.at(project(tip, *CAMERA, picture.size)))
+
+
+DROP = """async ([data, name, x, y]) => {
+    const bytes = Uint8Array.from(atob(data), (c) => c.charCodeAt(0));
+    const files = new DataTransfer();
+    files.items.add(new File([bytes], name));
+    const canvas = VP.renderer.domElement;
+    const box = canvas.getBoundingClientRect();
+    canvas.dispatchEvent(new DragEvent('drop', { dataTransfer: files, bubbles: true, cancelable: true,
+                                                 clientX: box.left + x * box.width, clientY: box.top + y * box.height }));
+}"""
+
+
+def test_a_robot_file_dropped_on_a_controllers_viewer_lands_where_it_was_dropped(
+        browser, pages, server, scene, scene_name):
+    import base64
+    vp.set_camera_position(0, 2, 2)
+    vp.set_camera_target(0, 0, 0)
+    scene.sync()
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}&role=controller")
+    wait_until(viewer, "() => VP.drawn()")
+    viewer.evaluate(DROP, [base64.b64encode(hand_files.hand_zip()).decode(), "hand.zip", 0.5, 0.5])
+    wait_until(viewer, "() => document.getElementById('robot-drop').textContent.includes('test_hand (api.')")
+    assert viewer.evaluate("() => document.getElementById('robot-drop').textContent").endswith(', 9 motors')
+    [robot] = [r for r in server.get(f"/api/scenes/{scene_name}/robots") if r["owner"] == "api"]
+    assert robot["position"] == [0.0, 0.0, 0.0]  # the middle of the picture: the camera's target
+    viewer.evaluate(DROP, [base64.b64encode(b"not a robot").decode(), "notes.urdf", 0.5, 0.5])
+    wait_until(viewer, "() => /neither a zip nor a URDF/.test(document.getElementById('robot-drop').textContent)")
+    viewer.evaluate(DROP, [base64.b64encode(b"x").decode(), "photo.png", 0.5, 0.5])
+    wait_until(viewer, "() => /drop a .urdf/.test(document.getElementById('robot-drop').textContent)")
+    assert len(server.get(f"/api/scenes/{scene_name}/robots")) == 1

@@ -4,6 +4,7 @@ import { Connection } from './connection.js';
 import { readOptions, socketUrl } from './options.js';
 import { mountRecorder } from './recorder.js';
 import { Replay, mountTimeline } from './replay.js';
+import { mountRobotDrop } from './robot_drop.js';
 import { mountViewer } from './viewer.js';
 
 const options = readOptions();
@@ -22,5 +23,8 @@ if (options.recording) {   // a recording, played here (read-only: motor panels 
 		onMessage: (message) => viewer.receive(message),
 		onState: (state) => viewer.setState(state),
 	});
-	if (options.role === 'controller') mountRecorder(options);
+	if (options.role === 'controller') {
+		mountRecorder(options);
+		mountRobotDrop(options, viewer.stage.camera, viewer.stage.renderer.domElement);
+	}
 }
