@@ -176,6 +176,15 @@ async def robot_urdf(request: Request, scene: str, robot_id: str) -> Response:
     return await _file(request, scene, robot_files.packed_urdf_job, robot_id, "application/zip", "zip")
 
 
+@router.get("/scenes/{scene}/robots/{robot_id}/mjcf", responses=FILE_OR_NOT_FOUND, response_class=Response,
+            summary="A robot as an MJCF zip: robot.xml (bodies, hinges, limits, inertials, couplings, "
+                    "a position actuator per leading motor) and its meshes, for MuJoCo")
+async def robot_mjcf(request: Request, scene: str, robot_id: str) -> Response:
+    """Written from the tree the physics compiles, as the URDF is; followers as joint
+    equalities. It compiles in MuJoCo (``mujoco.MjModel.from_xml_path``)."""
+    return await _file(request, scene, robot_files.packed_mjcf_job, robot_id, "application/zip", "mjcf.zip")
+
+
 @router.get("/scenes/{scene}/robots/{robot_id}/glb", responses=FILE_OR_NOT_FOUND, response_class=Response,
             summary="A robot's look as a GLB: its parts' meshes, colours and poses as they are now")
 async def robot_glb(request: Request, scene: str, robot_id: str) -> Response:

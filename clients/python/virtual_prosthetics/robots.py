@@ -56,6 +56,13 @@ class Robot(Shown):
         its meshes beside it; its base at the file's origin. Returns the path."""
         return self._export("urdf", path)
 
+    def export_mjcf(self, path: str | Path) -> Path:
+        """Write the robot as an MJCF zip to ``path`` (not in the manual): ``{id}/robot.xml``
+        with bodies, hinges, limits, inertials, followers as joint equalities and a
+        position actuator per leading motor, and its meshes; MuJoCo compiles it. Returns
+        the path."""
+        return self._export("mjcf", path)
+
     def export_glb(self, path: str | Path) -> Path:
         """Write the robot's look, as it is now, as a GLB file to ``path`` (not in the
         manual): its parts' meshes with their colours and world poses. Returns the path."""

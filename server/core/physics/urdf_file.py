@@ -124,12 +124,12 @@ def _shapes(geometry: dict[str, Any], stem: str, files: dict[str, bytes],
     if kind == "box":
         shaped = _geometry("box", size=" ".join(repr(float(s)) for s in geometry["size"]))
         return shaped, shaped
-    files[f"{stem}.obj"] = _obj(_hull(geometry))
+    files[f"{stem}.obj"] = obj_bytes(hull_mesh(geometry))
     collision = _geometry("mesh", filename=f"{stem}.obj")
     drawn = drawn_mesh(geometry, assets)
     if drawn is None:
         return collision, collision
-    files[f"{stem}.drawn.obj"] = _obj(drawn)
+    files[f"{stem}.drawn.obj"] = obj_bytes(drawn)
     return collision, _geometry("mesh", filename=f"{stem}.drawn.obj")
 
 
@@ -163,11 +163,12 @@ def inertia_of(geometry: dict[str, Any], mass: float) -> np.ndarray:
     if kind == "box":
         x, y, z = geometry["size"]
         return np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * (mass / 12)
-    hull = _hull(geometry)
+    hull = hull_mesh(geometry)
     return np.asarray(hull.moment_inertia) * (mass / hull.mass)  # trimesh: density 1
 
 
-def _hull(geometry: dict[str, Any]) -> trimesh.Trimesh:
+def hull_mesh(geometry: dict[str, Any]) -> trimesh.Trimesh:
+    """The convex hull Bullet collides with, as a mesh."""
     return trimesh.convex.convex_hull(np.asarray(solid_points(geometry), float))
 
 
@@ -183,7 +184,8 @@ def drawn_mesh(geometry: dict[str, Any], assets: AssetLibrary) -> trimesh.Trimes
     return trimesh.Trimesh(*placed(geometry, mesh.vertices, mesh.triangles), process=False)
 
 
-def _obj(mesh: trimesh.Trimesh) -> bytes:
+def obj_bytes(mesh: trimesh.Trimesh) -> bytes:
+    """A mesh as an OBJ file's bytes (no normals, no textures)."""
     return trimesh.exchange.obj.export_obj(mesh, include_normals=False, include_texture=False,
                                            header=None).encode()
 

@@ -1,4 +1,5 @@
-"""A robot of a scene as files other tools open: URDF (a zip with its meshes) and GLB.
+"""A robot of a scene as files other tools open: URDF and MJCF (zips with their meshes)
+and GLB.
 
 Both are written from the tree the scene's physics compiled and simulates
 (:mod:`server.core.physics.articulation`), with the scene's figures for what the tree does
@@ -26,6 +27,7 @@ from ..model.structure import structure_of
 from ..physics.articulation import Articulation
 from ..physics.assets import AssetLibrary
 from ..physics.glb_file import DrawnPart, glb_bytes
+from ..physics.mjcf_file import mjcf_zip
 from ..physics.urdf_file import urdf_zip
 from ..scene.scene import Scene
 from .reports import robot_report
@@ -44,6 +46,15 @@ class UrdfJob:
 
     def write(self, assets: AssetLibrary) -> bytes:
         return urdf_zip(self.tree, self.robot_id, self.density, self.torques, assets,
+                        self.names, self.follows)
+
+
+@dataclass(frozen=True)
+class MjcfJob(UrdfJob):
+    """What a robot's MJCF zip is written from (what its URDF is)."""
+
+    def write(self, assets: AssetLibrary) -> bytes:
+        return mjcf_zip(self.tree, self.robot_id, self.density, self.torques, assets,
                         self.names, self.follows)
 
 
@@ -148,6 +159,15 @@ def robot_glb(scene: Scene, robot_id: str) -> bytes:
 
 def packed_urdf_job(scene: Scene, robot_id: str) -> bytes:
     return packed(urdf_job(scene, robot_id))
+
+
+def packed_mjcf_job(scene: Scene, robot_id: str) -> bytes:
+    return packed(MjcfJob(**vars(urdf_job(scene, robot_id))))
+
+
+def robot_mjcf(scene: Scene, robot_id: str) -> bytes:
+    """The robot's MJCF zip, written here."""
+    return MjcfJob(**vars(urdf_job(scene, robot_id))).write(scene.assets)
 
 
 def packed_glb_job(scene: Scene, robot_id: str) -> bytes:

@@ -13,7 +13,7 @@ from tests.hand_files import hand_zip
 
 API = json.loads((Path(__file__).resolve().parents[3] / "protocol" / "api.json").read_text())
 CLIENT_ONLY = {"delete"}
-ROBOT_FILES = {"export_urdf", "export_glb"}  # REST downloads, not protocol calls
+ROBOT_FILES = {"export_urdf", "export_mjcf", "export_glb"}  # REST downloads, not protocol calls
 
 
 def table_methods(type_name):

@@ -4,7 +4,9 @@ upload is a 4xx naming what is wrong that makes nothing."""
 
 from __future__ import annotations
 
+import io
 import json
+import zipfile
 
 import pytest
 
@@ -41,6 +43,12 @@ def test_a_urdf_zip_placed_in_a_scene_is_a_robot_any_client_steers(server, scene
         assert hand.get_angles()[:3] == pytest.approx([1.0, ratio + offset, ratio + offset])
         motors = server.get(f"/api/scenes/{scene_name}/robots/api.1")["motors"]
         assert [m["angle"] for m in motors[:3]] == pytest.approx([1.0, ratio + offset, ratio + offset])
+        for form, description in (("urdf", "robot.urdf"), ("mjcf", "robot.xml")):  # names kept
+            status, headers, data = request(server, "GET", f"/api/scenes/{scene_name}/robots/api.1/{form}")
+            with zipfile.ZipFile(io.BytesIO(data)) as archive:
+                text = archive.read(f"api.1/{description}").decode()
+            assert status == 200 and 'name="index_middle_joint"' in text, form
+            assert ('<mimic joint="index_proximal_joint"' in text) == (form == "urdf")
     finally:
         session.close()
 

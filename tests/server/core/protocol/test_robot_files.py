@@ -17,7 +17,7 @@ from server.core.model.motor import MotorZ
 from server.core.model.parts import Ball, Box
 from server.core.model.robot import Robot
 from server.core.physics.assets import BUNDLED_DIR
-from server.core.protocol.robot_files import file_names, robot_glb, robot_urdf
+from server.core.protocol.robot_files import file_names, robot_glb, robot_mjcf, robot_urdf
 from server.errors import UnknownObject
 
 HANDS = [EdgedHand, RoundHand, AnthroHand]
@@ -173,14 +173,16 @@ def test_an_unknown_robot_is_refused_by_name(scene):
         assert name in refused.value.message
 
 
-def _reimported(scene, robot, library):
-    """The robot made again from its own URDF export, at the same pose and angles."""
+def _reimported(scene, robot, library, form):
+    """The robot made again from its own URDF or MJCF export, at the same pose and angles."""
     from server.core.kit.limits import DEFAULT
     from server.core.model.imported import ImportedRobot
+    from server.core.physics.mjcf_reading import read_mjcf
     from server.core.physics.robot_archive import open_archive
     from server.core.physics.urdf_reading import read_urdf
-    description = read_urdf(open_archive(robot_urdf(scene, robot.id), None, DEFAULT), DEFAULT,
-                            lambda glb: library.store(glb, DEFAULT)["name"])
+    read, export = (read_urdf, robot_urdf) if form == "urdf" else (read_mjcf, robot_mjcf)
+    description = read(open_archive(export(scene, robot.id), None, DEFAULT), DEFAULT,
+                       lambda glb: library.store(glb, DEFAULT)["name"])
     again = ImportedRobot(scene, "again", library.store_robot(description, DEFAULT)["name"])
     again.set_position(robot.position)
     again.set_quaternion(robot.quaternion)
@@ -192,8 +194,9 @@ def _reimported(scene, robot, library):
     return again, names
 
 
+@pytest.mark.parametrize("form", ["urdf", "mjcf"])
 @pytest.mark.parametrize("kind", ["imported", EdgedHand, AnthroHand])
-def test_a_robot_made_again_from_its_urdf_is_the_same_robot(kind, tmp_path):
+def test_a_robot_made_again_from_its_urdf_or_mjcf_is_the_same_robot(kind, form, tmp_path):
     from server.core.physics.assets import AssetLibrary
     from server.core.scene.scene import Scene
     from tests.hand_files import stored_hand
@@ -206,7 +209,7 @@ def test_a_robot_made_again_from_its_urdf_is_the_same_robot(kind, tmp_path):
     draw = random.Random(3)
     for motor in robot.get_motors():
         motor.set_angle(draw.uniform(max(motor.min, -1.2), min(motor.max, 1.2)))
-    again, names = _reimported(scene, robot, library)
+    again, names = _reimported(scene, robot, library, form)
     parts = {p.name: p for p in again.get_parts() if getattr(p, "name", None)}
     for part in robot.get_parts():
         if not part.physical:
@@ -220,4 +223,24 @@ def test_a_robot_made_again_from_its_urdf_is_the_same_robot(kind, tmp_path):
         assert (twin.min, twin.max) == pytest.approx((motor.min, motor.max), abs=1e-6)
         assert twin.angle == pytest.approx(motor.angle, abs=1e-6)
         assert (twin.following is None) == (motor.following is None)
+    scene.close()
+
+
+def test_the_mjcf_compiles_in_mujoco_with_an_actuator_per_leading_motor(tmp_path):
+    import mujoco
+    from server.core.model.imported import ImportedRobot
+    from server.core.physics.assets import AssetLibrary
+    from server.core.scene.scene import Scene
+    from tests.hand_files import motor_names, stored_hand
+    library = AssetLibrary(uploads=tmp_path / "uploads")
+    (tmp_path / "uploads").mkdir()
+    scene = Scene("mjcf", assets=library)
+    ImportedRobot(scene, "h", stored_hand(library))
+    zipfile.ZipFile(io.BytesIO(robot_mjcf(scene, "h"))).extractall(tmp_path)
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "h" / "robot.xml"))
+    joints = [model.joint(j).name for j in range(model.njnt)]
+    assert joints == motor_names()
+    leaders = [name for name in joints if name.endswith("proximal_joint")]
+    assert [model.actuator(a).name for a in range(model.nu)] == leaders
+    assert model.neq == len(joints) - len(leaders)  # each follower, an equality on its leader
     scene.close()
