@@ -1,11 +1,14 @@
 """A robot's look as one GLB file: what takes a hand to Blender or any web page.
 
-Each physical part of the compiled tree (:mod:`.articulation`) is one mesh, named by the
-part's id, placed where the server has it (world pose, metres, +Y up as glTF wants) and
-coloured as a viewer colours it (glTF's linear components): spheres, boxes and hulls in the part's colour; a mesh
-file's part with the file's own vertex colours after its ``recolor`` calls; page
-triangles as drawn. trimesh writes the file (binary glTF 2.0); the black edges a viewer
-draws on the edged parts are not in it.
+A robot's file is a node hierarchy (:func:`robot_glb_bytes`): its root node where the
+robot is (+Y up, as glTF wants), and a node for each link of the compiled tree
+(:mod:`.articulation`), named as the URDF names it, below its parent's, with its local
+transform (the joint's place turned by the motor's angle now); a link's part is that
+node's mesh. Parts are coloured as a viewer colours them (glTF's linear components):
+spheres, boxes and hulls by a material of the part's colour; a mesh file's part by the
+file's own vertex colours after its ``recolor`` calls; page triangles as drawn. trimesh
+writes the file (binary glTF 2.0); the black edges a viewer draws on the edged parts are
+not in it. :func:`glb_bytes` draws loose parts, each at its pose (recordings' models).
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from typing import Any, Sequence
 import numpy as np
 import trimesh
 from trimesh.exchange.gltf import export_glb
+from trimesh.visual.material import PBRMaterial
 
 from ..kit.math3d import Pose, to_matrix
 from .assets import AssetLibrary, placed
@@ -24,6 +28,7 @@ from .geometry import solid_points, triangle_arrays
 from .urdf_file import rgba
 
 SPHERE_SEGMENTS = 32  # around and from pole to pole: a multiple of 4 puts corners on the axes
+ROUGHNESS = 0.8  # a matte surface, as the viewer's Phong material draws parts
 
 
 @dataclass(frozen=True)
@@ -48,6 +53,34 @@ def glb_bytes(parts: Sequence[DrawnPart], assets: AssetLibrary) -> bytes:
     return export_glb(scene)
 
 
+@dataclass(frozen=True)
+class DrawnLink:
+    """A node of a robot's file: its name, its parent's index among the links (-1: the
+    robot's root node), its pose in its parent's frame, and the part it carries (the part's
+    ``pose``: where it sits in the link's frame)."""
+
+    name: str
+    parent: int
+    pose: Pose
+    part: DrawnPart | None = None
+
+
+def robot_glb_bytes(name: str, pose: Pose, links: Sequence[DrawnLink], assets: AssetLibrary) -> bytes:
+    """The binary glTF of a robot: a root node ``name`` at ``pose`` and its links below it."""
+    scene = trimesh.Scene()
+    scene.graph.update(frame_from=scene.graph.base_frame, frame_to=name, matrix=_matrix(pose))
+    for link in links:
+        parent = name if link.parent < 0 else links[link.parent].name
+        if link.part is None:
+            scene.graph.update(frame_from=parent, frame_to=link.name, matrix=_matrix(link.pose))
+            continue
+        mesh = part_mesh(link.part, assets)
+        mesh.apply_transform(_matrix(link.part.pose))  # the part's place in the link, baked in
+        scene.add_geometry(mesh, node_name=link.name, geom_name=link.part.id,
+                           parent_node_name=parent, transform=_matrix(link.pose))
+    return export_glb(scene)
+
+
 def part_mesh(part: DrawnPart, assets: AssetLibrary) -> trimesh.Trimesh:
     """The coloured mesh of one part, in its own frame."""
     geometry = part.geometry
@@ -62,7 +95,10 @@ def part_mesh(part: DrawnPart, assets: AssetLibrary) -> trimesh.Trimesh:
         mesh = trimesh.Trimesh(*triangle_arrays(geometry), process=False)
     else:  # hulls, cylinders (three.js draws a cylinder as the hull of its corners)
         mesh = trimesh.convex.convex_hull(np.asarray(solid_points(geometry), float))
-    mesh.visual = trimesh.visual.ColorVisuals(mesh, face_colors=_rgba8(linear(geometry.get("color"))))
+    colour = geometry.get("color")
+    mesh.visual = trimesh.visual.TextureVisuals(material=PBRMaterial(
+        name=str(colour if colour is not None else "default"), baseColorFactor=_rgba8(linear(colour)),
+        metallicFactor=0.0, roughnessFactor=ROUGHNESS))
     return mesh
 
 

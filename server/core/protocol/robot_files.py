@@ -20,15 +20,15 @@ from typing import Any
 
 from ...errors import UnknownObject
 from ..kit.ids import owner_of
-from ..kit.math3d import Quat, Vec3
+from ..kit.math3d import ORIGIN, Pose, Quat, Vec3, axis_angle, compose
 from ..model.imported import ImportedRobot
 from ..model.robot import Robot
-from ..model.structure import structure_of
-from ..physics.articulation import Articulation
+from ..model.structure import base_pose, structure_of
+from ..physics.articulation import NO_POSE, Articulation
 from ..physics.assets import AssetLibrary
-from ..physics.glb_file import DrawnPart, glb_bytes
+from ..physics.glb_file import DrawnLink, DrawnPart, robot_glb_bytes
 from ..physics.mjcf_file import mjcf_zip
-from ..physics.urdf_file import urdf_zip
+from ..physics.urdf_file import link_names, urdf_zip
 from ..scene.scene import Scene
 from .reports import robot_report
 
@@ -60,12 +60,14 @@ class MjcfJob(UrdfJob):
 
 @dataclass(frozen=True)
 class GlbJob:
-    """What a robot's GLB is written from: its parts where they are now."""
+    """What a robot's GLB is written from: its links' nodes as they are now."""
 
-    parts: tuple[DrawnPart, ...]
+    name: str
+    pose: Pose
+    links: tuple[DrawnLink, ...]
 
     def write(self, assets: AssetLibrary) -> bytes:
-        return glb_bytes(list(self.parts), assets)
+        return robot_glb_bytes(self.name, self.pose, self.links, assets)
 
 
 PLACED_OWNER = "api"  # owns robots placed through REST (never a client's id: those are c<n>)
@@ -124,16 +126,26 @@ def file_names(robot: Robot) -> dict[str, str]:
 
 
 def glb_job(scene: Scene, robot_id: str) -> GlbJob:
-    """``GET …/robots/{id}/glb``: the robot's parts as one binary glTF, where they are now."""
-    _, tree = _compiled(scene, robot_id)
-    geometries = ([tree.base_geometry] if tree.base_part is not None else []) + \
-        [link.geometry for link in tree.links if link.part is not None]
-    parts = []
-    for key, geometry in zip(tree.parts(), geometries):
-        node = scene.nodes[key]
-        parts.append(DrawnPart(key, geometry, node.world_pose(),  # type: ignore[arg-type]
-                               getattr(node, "recolors", ())))
-    return GlbJob(tuple(parts))
+    """``GET …/robots/{id}/glb``: the robot as one binary glTF, a node per link with its
+    local transform (its motor's angle now), where it is now."""
+    robot, tree = _compiled(scene, robot_id)
+    names = file_names(robot)
+    titles = link_names(tree, names)
+
+    def drawn(part: str | None, geometry: Any, shape: Pose) -> DrawnPart | None:
+        return None if part is None else DrawnPart(part, geometry, shape,
+                                                   getattr(scene.nodes[part], "recolors", ()))
+    links = [DrawnLink(f"{titles[0]} base", -1, NO_POSE, drawn(tree.base_part, tree.base_geometry, NO_POSE))] \
+        if tree.base_part is not None else []
+    first = len(links)
+    for k, link in enumerate(tree.links):
+        turn = NO_POSE if link.joint is None else \
+            (ORIGIN, axis_angle(link.joint.axis, scene.nodes[link.joint.motor].angle))  # type: ignore[attr-defined]
+        parent = link.parent + first if link.parent >= 0 else first - 1
+        links.append(DrawnLink(titles[k + 1], parent, compose(link.origin, turn),
+                               drawn(link.part, link.geometry, link.shape)))
+    root = scene.nodes[tree.root]
+    return GlbJob(names.get(root.id, root.id), base_pose(root), tuple(links))
 
 
 def packed(job: UrdfJob | GlbJob) -> bytes:

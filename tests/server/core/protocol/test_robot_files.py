@@ -154,7 +154,24 @@ def test_the_glb_colours_parts_as_the_viewer_does(scene):
     assert (76, 76, 76) in colours and (0, 54, 255) not in colours  # 0.3 × 255
     box = trimesh.load(io.BytesIO(robot_glb(scene, "r")), file_type="glb").geometry["b"]
     # CSS colours are sRGB; glTF's (and three.js's) are linear: steelblue is (70, 130, 180)
-    assert {tuple(c) for c in np.asarray(box.visual.vertex_colors)[:, :3].tolist()} == {(16, 57, 116)}
+    assert box.visual.material.name == "steelblue"
+    assert tuple(box.visual.material.baseColorFactor[:3]) == (16, 57, 116)
+
+
+def test_a_robots_glb_is_a_node_per_link_with_local_transforms(scene):
+    hand = _posed(scene, EdgedHand)
+    opened = trimesh.load(io.BytesIO(robot_glb(scene, "h")), file_type="glb")
+    parents = opened.graph.transforms.parents
+    palm, spread = hand.get_parts()[0], hand.get_motors()[0]
+    finger = next(p for p in hand.get_parts() if p.type_name == "EdgedFinger")  # the thumb's first
+    # a link per part, and one where two motors meet (the spread's), each below its parent
+    assert [finger.id, parents[finger.id], parents[parents[finger.id]], parents[palm.id]] == \
+        [finger.id, f"{spread.id}.link", palm.id, "h"]
+    assert parents["h"] == opened.graph.base_frame
+    local, _ = opened.graph.get(finger.id, f"{spread.id}.link")
+    world, _ = opened.graph.get(finger.id)
+    assert world[:3, 3] == pytest.approx(np.asarray(finger.world_pose()[0]), abs=1e-9)
+    assert not np.allclose(local, world)  # local transforms, not world poses
 
 
 def test_a_robot_without_parts_is_a_glb_that_draws_nothing(scene):
