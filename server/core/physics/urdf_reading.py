@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import io
 import math
+import re
 from typing import Any, Callable
 
 import numpy as np
@@ -65,7 +66,10 @@ def parse_xml(data: bytes, what: str) -> Any:
     try:
         tree = etree.parse(io.BytesIO(data), parser)
     except etree.XMLSyntaxError as error:
-        raise BadAsset(f"the {what} is not well-formed XML: {str(error)[:160]}") from None
+        if "Unsupported version" not in str(error):
+            raise BadAsset(f"the {what} is not well-formed XML: {str(error)[:160]}") from None
+        # files in the field say <?xml version="0.0"?> (PyBullet's minitaur): read as UTF-8
+        return parse_xml(re.sub(rb"^\s*<\?xml[^>]*\?>", b"", data, count=1), what)
     if tree.docinfo.doctype:
         raise BadAsset(f"the {what} has a DOCTYPE; descriptions with DTDs or entities are not read")
     return tree.getroot()

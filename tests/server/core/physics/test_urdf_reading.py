@@ -92,3 +92,8 @@ def test_a_continuous_joint_turns_without_limits():
     robot = read(zipped({"h.urdf": urdf, "tip.stl": hand_files.tip_stl()}))
     thumb = robot.motors()[0]
     assert (thumb.name, thumb.lower, thumb.upper) == ("thumb_proximal_joint", -math.inf, math.inf)
+
+
+def test_a_description_that_declares_an_xml_version_no_parser_knows_is_read_as_utf8():
+    data = zipped({"h.urdf": '<?xml version="0.0" ?>\n' + hand_urdf("tip.stl"), "tip.stl": hand_files.tip_stl()})
+    assert read(data).name == "test_hand"  # PyBullet's own minitaur.urdf says version 0.0
