@@ -128,8 +128,15 @@ class Motor(Part):
 
     def set_angle_following(self, leader: Motor) -> None:
         """Where a new follower goes at once: its share of the leader's angle."""
-        _, ratio, offset = self.following  # type: ignore[misc]
-        self.scene.turn([(self, ratio * leader.target + offset)], coupled=False)
+        self.scene.turn([(self, self.share_of(leader.target))], coupled=False)
+
+    def share_of(self, leader_angle: float) -> float | None:
+        """A follower's angle when its leader is at ``leader_angle``: ``ratio·a + offset``
+        within its own limits (None: not a follower, or no finite angle)."""
+        if self.following is None:
+            return None
+        _, ratio, offset = self.following
+        return self.within_limits(ratio * leader_angle + offset)
 
     def constructor_args(self) -> list[Any]:
         return [self.axis, self.min, self.max, self.default]

@@ -130,8 +130,7 @@ class SceneBodies:
                 leader = follower.leader()  # type: ignore[attr-defined]
                 if leader is None:
                     continue
-                _, ratio, offset = follower.following  # type: ignore[attr-defined]
-                aim = follower.within_limits(ratio * leader.angle + offset)  # type: ignore[attr-defined]
+                aim = follower.share_of(leader.angle)  # type: ignore[attr-defined]
                 if aim is not None and aim != follower.target:  # type: ignore[attr-defined]
                     follower.target = aim  # type: ignore[attr-defined]
                     self._targets_due = True

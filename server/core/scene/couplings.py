@@ -48,8 +48,7 @@ class Couplings:
             while stack:
                 leader, at = stack.pop()
                 for follower in index.get(leader.id, ()):
-                    _, ratio, offset = follower.following  # type: ignore[misc]
-                    aim = follower.within_limits(ratio * at + offset)
+                    aim = follower.share_of(at)
                     expanded.append((follower, aim))
                     if aim is not None:
                         stack.append((follower, aim))
