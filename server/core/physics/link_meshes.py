@@ -39,12 +39,28 @@ class Element:
     rgba: Sequence[float] | None = None
 
 
+class TriangleBudget:
+    """The triangles of a robot's meshes so far, refused past ``robotTriangles``."""
+
+    def __init__(self, limits: Limits) -> None:
+        self.limits = limits
+        self.triangles = 0
+
+    def count(self, triangles: int, what: str) -> None:
+        """Add ``triangles`` (of ``what``) to the robot's total."""
+        self.triangles += triangles
+        if self.triangles > self.limits.robot_triangles:
+            raise LimitExceeded(f"the robot's meshes come to more than {self.limits.robot_triangles} "
+                                f"triangles (at {what})", limit="robotTriangles",
+                                value=self.limits.robot_triangles)
+
+
 class MeshReader:
     """Reads an upload's mesh files (each once), within the robot's triangle limit."""
 
     def __init__(self, archive: RobotArchive, limits: Limits) -> None:
-        self.archive, self.limits = archive, limits
-        self.triangles = 0
+        self.archive = archive
+        self.budget = TriangleBudget(limits)
         self._read: dict[str, Any] = {}
 
     def mesh(self, reference: str, scale: Sequence[float] | float | None = None) -> Any:
@@ -74,16 +90,8 @@ class MeshReader:
             raise BadAsset(f"mesh {path} holds no triangles")
         if not np.isfinite(loaded.vertices).all() or np.abs(loaded.vertices).max() > MAX_SIZE * 1000:
             raise BadAsset(f"mesh {path}: its coordinates must be finite and not huge")
-        self.count(len(loaded.faces), path)
+        self.budget.count(len(loaded.faces), path)
         return loaded
-
-    def count(self, triangles: int, what: str) -> None:
-        """Add ``triangles`` to the robot's total, refusing past ``robotTriangles``."""
-        self.triangles += triangles
-        if self.triangles > self.limits.robot_triangles:
-            raise LimitExceeded(f"the robot's meshes come to more than {self.limits.robot_triangles} "
-                                f"triangles (at {what})", limit="robotTriangles",
-                                value=self.limits.robot_triangles)
 
 
 class ArchiveResolver:

@@ -21,10 +21,12 @@ import numpy as np
 
 from ...errors import BadAsset, Forbidden
 from ..kit.limits import Limits
+from ..kit.math3d import to_matrix
 from . import link_meshes
-from .link_meshes import Element
+from .link_meshes import Element, TriangleBudget
 from .robot_archive import RobotArchive, inside_upload
-from .robot_description import Coupling, JointDescription, LinkDescription, RobotDescription, checked
+from .robot_description import (Coupling, JointDescription, LinkDescription, RobotDescription,
+                                checked, diagonal_in)
 from .urdf_reading import Store, parse_xml
 
 FILE_ELEMENTS = {"include": None, "mesh": "meshdir", "skin": "meshdir", "hfield": "meshdir",
@@ -106,7 +108,7 @@ class _Converter:
         self.links: list[LinkDescription] = []
         self.link_of: dict[int, int] = {}      # body id -> index of the link carrying it
         self.anchor: dict[int, np.ndarray] = {}  # body id -> its link frame's offset in the body
-        self.triangles = 0
+        self.budget = TriangleBudget(limits)
 
     def robot(self) -> RobotDescription:
         m = self.m
@@ -226,11 +228,7 @@ class _Converter:
         m = self.m
         vertices = m.mesh_vert[m.mesh_vertadr[mesh]:m.mesh_vertadr[mesh] + m.mesh_vertnum[mesh]]
         faces = m.mesh_face[m.mesh_faceadr[mesh]:m.mesh_faceadr[mesh] + m.mesh_facenum[mesh]]
-        self.triangles += len(faces)
-        if self.triangles > self.limits.robot_triangles:
-            from ...errors import LimitExceeded
-            raise LimitExceeded(f"the robot's meshes come to more than {self.limits.robot_triangles} "
-                                f"triangles", limit="robotTriangles", value=self.limits.robot_triangles)
+        self.budget.count(len(faces), f"mesh {self._name(self.mj.mjtObj.mjOBJ_MESH, mesh)}")
         return trimesh.Trimesh(np.array(vertices, dtype=float), np.array(faces), process=False)
 
     def _inertia(self, body: int, anchor: np.ndarray) -> tuple[Any, Any, Any]:
@@ -239,10 +237,8 @@ class _Converter:
         if mass <= 0:
             return None, None, None
         w, x, y, z = m.body_iquat[body]
-        turn = _matrix((x, y, z, w))
-        tensor = turn @ np.diag(m.body_inertia[body]) @ turn.T
         centre = tuple(float(c) for c in np.asarray(m.body_ipos[body]) - anchor)
-        return mass, centre, tuple(max(float(d), 0.0) for d in np.diag(tensor))
+        return mass, centre, diagonal_in(_matrix((x, y, z, w)), np.diag(m.body_inertia[body]))
 
     def _couplings(self) -> list[Coupling]:
         m, mj = self.m, self.mj
@@ -279,7 +275,6 @@ class _Converter:
 
 
 def _matrix(quaternion: tuple[float, float, float, float]) -> np.ndarray:
-    from scipy.spatial.transform import Rotation
-    return Rotation.from_quat(quaternion).as_matrix()
+    return np.asarray(to_matrix(quaternion))
 
 

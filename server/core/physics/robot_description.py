@@ -17,6 +17,8 @@ import math
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+import numpy as np
+
 from ...errors import BadAsset
 from ..kit.limits import MAX_COORDINATE, MAX_SIZE
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
@@ -125,6 +127,12 @@ def checked(robot: RobotDescription) -> RobotDescription:
                 raise BadAsset(f"coupling of {coupling.follower!r} to {coupling.leader!r}: the "
                                f"robot has no turning joint {name!r}")
     return robot
+
+
+def diagonal_in(turn: np.ndarray, tensor: np.ndarray) -> Vec3:
+    """The moments of an inertia tensor given in a frame turned by ``turn`` (3×3) from the
+    link's, about the link's axes (the products are dropped: Bullet takes a diagonal)."""
+    return tuple(max(float(d), 0.0) for d in np.diag(turn @ tensor @ turn.T))  # type: ignore[return-value]
 
 
 def _link(index: int, entry: dict[str, Any]) -> LinkDescription:

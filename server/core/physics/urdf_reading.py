@@ -24,7 +24,8 @@ from ..kit.math3d import Pose
 from . import link_meshes
 from .link_meshes import Element, MeshReader
 from .robot_archive import RobotArchive
-from .robot_description import Coupling, JointDescription, LinkDescription, RobotDescription, checked
+from .robot_description import (Coupling, JointDescription, LinkDescription, RobotDescription,
+                                checked, diagonal_in)
 
 MOTOR_JOINTS = {"revolute": "revolute", "continuous": "revolute", "fixed": "fixed"}
 Store = Callable[[bytes], str]  # keeps a link's GLB; its upload's name
@@ -118,9 +119,8 @@ def _link(link: Any, joint: Any, index: dict[str, int], reader: MeshReader,
     if inertial is not None and inertial.mass is not None and inertial.mass > 0:
         placement = _matrix(inertial.origin)
         mass, centre = float(inertial.mass), tuple(float(c) for c in placement[:3, 3])
-        if inertial.inertia is not None:  # the tensor about the centre, turned into the link's axes
-            tensor = placement[:3, :3] @ np.asarray(inertial.inertia, dtype=float) @ placement[:3, :3].T
-            inertia = tuple(max(float(d), 0.0) for d in np.diag(tensor))
+        if inertial.inertia is not None:  # the tensor about the centre, in the inertial frame
+            inertia = diagonal_in(placement[:3, :3], np.asarray(inertial.inertia, dtype=float))
     return LinkDescription(
         link.name, index[joint.parent] if joint is not None else -1,
         None if joint is None else _joint(joint), None if glb is None else store(glb),
