@@ -21,12 +21,11 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..kit.math3d import IDENTITY, Pose, compose, to_matrix
+from ..kit.math3d import Pose, to_matrix
 from .articulation import NO_POSE, Articulation
 from .assets import AssetLibrary
-from .dynamics import SHAPELESS_INERTIA, tree_masses
-from .geometry import centroid
-from .urdf_file import drawn_mesh, file_stem, hull_mesh, inertia_of, link_names, obj_bytes, rgba
+from .dynamics import tree_masses
+from .urdf_file import drawn_mesh, file_stem, hull_mesh, inertial, link_names, obj_bytes, rgba
 
 POSITION_GAIN = 50.0  # N·m/rad of each exported position actuator (MuJoCo's kp)
 
@@ -66,9 +65,7 @@ def mjcf_zip(tree: Articulation, name: str, density: float, torques: Mapping[str
 def _body(parent: ET.Element, name: str, origin: Pose, geometry: dict[str, Any] | None, shape: Pose,
           mass: float, asset: ET.Element, files: dict[str, bytes], assets: AssetLibrary) -> ET.Element:
     body = ET.SubElement(parent, "body", name=name, pos=_numbers(origin[0]), quat=_wxyz(origin[1]))
-    centre = (0.0, 0.0, 0.0) if geometry is None else centroid(geometry)
-    inertia = np.eye(3) * SHAPELESS_INERTIA if geometry is None else inertia_of(geometry, mass)
-    at = compose(shape, (centre, IDENTITY))
+    at, inertia = inertial(geometry, shape, mass)
     turn = np.asarray(to_matrix(at[1]))
     inertia = turn @ inertia @ turn.T  # MuJoCo's fullinertia is in the body's axes
     ET.SubElement(body, "inertial", pos=_numbers(at[0]), mass=repr(float(mass)),

@@ -139,14 +139,19 @@ def _geometry(kind: str, **attributes: str) -> ET.Element:
     return element
 
 
+def inertial(geometry: dict[str, Any] | None, shape: Pose, mass: float) -> tuple[Pose, np.ndarray]:
+    """Where a link's mass sits (the centre of its part's volume, in the part's axes, in
+    the link's frame) and its inertia tensor there (SHAPELESS_INERTIA without a part)."""
+    if geometry is None:
+        return compose(shape, ((0.0, 0.0, 0.0), IDENTITY)), np.eye(3) * SHAPELESS_INERTIA
+    return compose(shape, (centroid(geometry), IDENTITY)), inertia_of(geometry, mass)
+
+
 def _inertial(geometry: dict[str, Any] | None, shape: Pose, mass: float) -> ET.Element:
     """Mass at the centre of the part's volume, with its shape's inertia there."""
     element = ET.Element("inertial")
-    if geometry is None:
-        centre, inertia = (0.0, 0.0, 0.0), np.eye(3) * SHAPELESS_INERTIA
-    else:
-        centre, inertia = centroid(geometry), inertia_of(geometry, mass)
-    element.append(_origin(compose(shape, (centre, IDENTITY))))  # the part's axes
+    at, inertia = inertial(geometry, shape, mass)
+    element.append(_origin(at))
     ET.SubElement(element, "mass", value=repr(float(mass)))
     ET.SubElement(element, "inertia", **{f"i{a}{b}": repr(float(inertia[i][j])) for i, j, a, b in (
         (0, 0, "x", "x"), (0, 1, "x", "y"), (0, 2, "x", "z"), (1, 1, "y", "y"), (1, 2, "y", "z"),

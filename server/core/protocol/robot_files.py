@@ -173,13 +173,18 @@ def packed_urdf_job(scene: Scene, robot_id: str) -> bytes:
     return packed(urdf_job(scene, robot_id))
 
 
+def mjcf_job(scene: Scene, robot_id: str) -> MjcfJob:
+    """``GET …/robots/{id}/mjcf``: what the URDF is written from, written as MJCF."""
+    return MjcfJob(**vars(urdf_job(scene, robot_id)))
+
+
 def packed_mjcf_job(scene: Scene, robot_id: str) -> bytes:
-    return packed(MjcfJob(**vars(urdf_job(scene, robot_id))))
+    return packed(mjcf_job(scene, robot_id))
 
 
 def robot_mjcf(scene: Scene, robot_id: str) -> bytes:
-    """The robot's MJCF zip, written here."""
-    return MjcfJob(**vars(urdf_job(scene, robot_id))).write(scene.assets)
+    """:func:`mjcf_job`, written here."""
+    return mjcf_job(scene, robot_id).write(scene.assets)
 
 
 def packed_glb_job(scene: Scene, robot_id: str) -> bytes:
