@@ -202,8 +202,9 @@ export function setCameraTarget(...target) {
 	currentSession().call(SCENE_ID, 'setCameraTarget', target);
 }
 
-// Not in 1.0: setPhysics('dynamic', {gravity, substeps, solverIterations, solverTolerance,
-// friction, density}) (options left out take their defaults) or setPhysics('kinematic').
+// Not in 1.0: setPhysics('dynamic', {unit, gravity, substeps, solverIterations,
+// solverTolerance, friction, density}) (options left out take their defaults; unit: metres
+// per scene unit, masses, forces and torques are SI) or setPhysics('kinematic').
 export function setPhysics(mode, options) {
 	currentSession().call(SCENE_ID, 'setPhysics', options === undefined ? [mode] : [mode, options]);
 }

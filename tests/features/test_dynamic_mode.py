@@ -12,6 +12,7 @@ from server.core.model.robot import Robot
 from server.core.model.sensor import Sensor
 
 TICK = 1 / 60
+METRES = {"unit": 1.0}  # a scene unit a metre: figures of a world of metre-sized things
 
 
 def run(scene, seconds):
@@ -24,7 +25,7 @@ def run(scene, seconds):
 def test_a_ball_dropped_from_2_m_lands_and_rests_without_jitter(scene):
     ball = Ball(scene, "b", 0.25)
     ball.set_position((0, 2, 0))
-    scene.set_physics("dynamic")
+    scene.set_physics("dynamic", METRES)
     heights = [frame["poses"]["b"][1] for frame in run(scene, 1) if "b" in frame.get("poses", {})]
     assert heights[0] < 2 and min(heights) > 0.24  # it fell, and never through the ground
     run(scene, 1)
@@ -103,7 +104,7 @@ def test_a_hand_stays_at_its_mount_within_the_solver_tolerance(scene, kind, tole
     tolerance of 0 (every iteration) within a tenth of one."""
     hand = kind(scene, "h", True)
     hand.set_position((0, 3, 0))
-    scene.set_physics("dynamic", {} if tolerance is None else {"solverTolerance": tolerance})
+    scene.set_physics("dynamic", METRES if tolerance is None else {**METRES, "solverTolerance": tolerance})
     run(scene, 2)
     assert hand.position == pytest.approx((0, 3, 0), abs=within)
 
@@ -119,7 +120,7 @@ def test_a_heavy_hand_under_strong_gravity_does_not_sink_at_its_mount(scene):
 def test_the_clock_of_a_dynamic_scene_is_its_physics_a_late_tick_slows_it(scene):
     ball = Ball(scene, "b", 0.25)
     ball.set_position((0, 50, 0))
-    scene.set_physics("dynamic")
+    scene.set_physics("dynamic", METRES)
     scene.tick(1.0)  # a tick a whole second late: the world catches up at most 2 ticks
     assert scene.time == pytest.approx(2 / 60)
     fallen = 50 - ball.position[1]
@@ -127,10 +128,11 @@ def test_the_clock_of_a_dynamic_scene_is_its_physics_a_late_tick_slows_it(scene)
 
 
 def test_masses_come_from_volume_and_density_unless_given(scene):
-    box = Box(scene, "b", 1, 2, 0.5)
-    assert box.get_mass() == pytest.approx(1000.0)
-    scene.set_physics("dynamic", {"density": 500})
-    assert box.get_mass() == pytest.approx(500.0)
+    box = Box(scene, "b", 1, 2, 0.5)  # 1 cubic scene unit of PLA
+    unit = scene.physics.unit  # 1.0 hands at a human's size: a scene unit is 5.4 cm
+    assert box.get_mass() == pytest.approx(1240.0 * unit ** 3) == pytest.approx(0.198, abs=0.001)
+    scene.set_physics("dynamic", {"density": 500, "unit": 0.1})
+    assert box.get_mass() == pytest.approx(0.5)
     box.set_mass(3.0)
     assert box.get_mass() == 3.0
 
@@ -161,7 +163,7 @@ def test_motors_drive_with_at_most_their_torque(scene):
     motor.set_angle(-math.pi / 2)  # the arm sticks out sideways: gravity pulls it down
     weak = motor.set_max_torque(10.0)
     assert weak is motor and motor.get_max_torque() == 10.0
-    scene.set_physics("dynamic")
+    scene.set_physics("dynamic", METRES)
     run(scene, 1.5)
     assert motor.angle < -math.pi / 2 - 0.5 or motor.angle > 0.5 - math.pi / 2  # it sagged
     motor.set_max_torque(1e5)
@@ -189,26 +191,25 @@ def _smooth(t, start, span):
 
 
 def test_a_ball_squeezed_in_a_lifted_hand_stays_where_it_is_held(scene):
-    """A hand's size world (a human hand × 18.4: gravity and torques scaled as the tasks
-    scale them) and the tasks' grasp of a ball: the thumb turned to face the fingers, the
+    """A human hand's world (a scene unit of 1/18.4 m, as the tasks set it) and the tasks' grasp of a ball: the thumb turned to face the fingers, the
     hand down over the ball, thumb then fingers closed, lifted. Held, the ball must stay:
     without Bullet's friction anchors it crept out by millimetres (a human hand's) a
     second while every finger still pressed on it."""
-    s = 18.4
+    s = 18.4  # scene units a metre
     hand = EdgedHand(scene, "h", True)
     hand.set_rotation(-math.pi / 2, 0, 0)  # palm down, fingers along -Z
     hand.set_position((0, 4.6, 0))
     hand.flex_fingers(0)
     for motor in hand.get_motors():
-        motor.set_max_torque(0.3 * s ** 5)
+        motor.set_max_torque(0.3)  # N·m
     hand.get_motors()[0].set_angle(-1.0)  # the thumb turned back, to face the fingers
     table = Box(scene, "table", 5, 1.4, 5)
     table.set_position((0, 0.7, -1.9))
     table.set_static(True)
     ball = Ball(scene, "ball", 0.5)
     ball.set_position((0, 1.9, -1.925))  # past the palm, under the fingers
-    ball.set_mass(0.3 * s ** 3)
-    scene.set_physics("dynamic", {"gravity": 9.81 * s, "solverIterations": 150})
+    ball.set_mass(0.3)  # kg
+    scene.set_physics("dynamic", {"unit": 1 / s, "solverIterations": 150})
     for k in range(int(3.5 / TICK)):
         t = k * TICK
         hand.set_position((0, 2.6 + 2 * (1 - _smooth(t, 0.3, 0.5)) + 2 * _smooth(t, 2.27, 1), 0))
@@ -251,10 +252,10 @@ def test_a_mount_moved_every_tick_glides_and_does_not_fling_what_rests_on_it(sce
     assert highest - top < speed ** 2 / (2 * 9.81) * 1.3  # thrown no higher than its speed says
 
 
-def _resting(scene, *items):
+def _resting(scene, *items, options=None):
     """Things put down and left alone for longer than Bullet waits before it puts still
     bodies to sleep (2 s): nothing may then hang where it rested."""
-    scene.set_physics("dynamic")
+    scene.set_physics("dynamic", options)
     run(scene, 3.5)
     return [item.position for item in items]
 
@@ -312,7 +313,7 @@ def test_a_ball_held_still_on_a_palm_falls_when_the_palm_drops_away(scene):
     away faster than it falls: a body Bullet let sleep would hang there (its island goes
     to sleep the step it is alone)."""
     robot, ball = _ball_on_palm(scene, 2)
-    (rested,) = _resting(scene, ball)
+    (rested,) = _resting(scene, ball, options=METRES)
     robot.set_position((0, 1, 0))  # a metre down in one tick
     run(scene, 0.1)
     assert ball.position[1] < rested[1] - 0.02  # falling after it

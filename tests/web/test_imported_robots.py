@@ -25,6 +25,7 @@ def test_an_imported_hand_is_drawn_in_its_files_colours_and_curls(browser, pages
                                                                   scene_name, tmp_path):
     archive = tmp_path / "hand.zip"
     archive.write_bytes(hand_files.hand_zip())
+    vp.set_physics("kinematic", unit=1.0)  # a scene unit a metre: the file's figures
     hand = vp.load_robot(archive, rotation=[0, 0, 0])
     vp.set_camera_position(*CAMERA[0])
     vp.set_camera_target(*CAMERA[1])

@@ -69,7 +69,7 @@ test('a paused scene stands still until the script steps it, a tick at a time', 
 		ball.setPosition(0, 5, 0);
 		await assert.rejects(Prosthetic.step(), (error) => error.code === 'not_paused' && /pause\(\)/.test(error.message));
 		await Prosthetic.pause();
-		Prosthetic.setPhysics('dynamic', { gravity: 9.81 });
+		Prosthetic.setPhysics('dynamic', { gravity: 9.81, unit: 1 });  // a scene unit a metre
 		await Prosthetic.sync();
 		const start = session.mirror.time;
 		await new Promise((r) => setTimeout(r, 300));
@@ -149,7 +149,7 @@ test('a page switches its scene to dynamic: objects fall, forces are felt, motor
 		pad.setPosition(0, 0.1, 0);
 		const load = new Prosthetic.Ball(0.3).setMass(10);
 		load.setPosition(0, 2, 0);
-		Prosthetic.setPhysics('dynamic', { gravity: 9.81 });
+		Prosthetic.setPhysics('dynamic', { gravity: 9.81, unit: 1 });  // a scene unit a metre
 		await Prosthetic.sync();
 		assert.equal(Prosthetic.getPhysics().mode, 'dynamic');
 		assert.equal(await load.getMass(), 10);

@@ -219,7 +219,8 @@ class Session:
 
     def set_physics(self, mode: str, **options: float) -> None:
         """``setPhysics`` (not in the manual): ``"kinematic"`` (1.0's: motors jump, nothing
-        falls) or ``"dynamic"``, with options ``gravity``, ``substeps``,
+        falls) or ``"dynamic"``, with options ``unit`` (metres per scene unit: masses,
+        forces and torques are SI at the size it makes things), ``gravity``, ``substeps``,
         ``solver_iterations``, ``solver_tolerance``, ``friction``, ``density`` (left out:
         the defaults)."""
         wire = {_camel(name): value for name, value in options.items()}

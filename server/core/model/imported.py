@@ -5,7 +5,8 @@ Every link becomes a :class:`RobotLink` part (its file's meshes drawn, its colli
 elements' envelope, its mass and inertia), every turning joint a :class:`Motor` about the
 joint's axis, named as the joint and limited as it is, placed where the joint is; a fixed
 joint places its link on its parent; a coupled joint follows its leader
-(:meth:`Motor.follow`). Ids are ``<robot>/<k>`` in the order made, so a document makes the
+(:meth:`Motor.follow`). The file's metres are the scene's size: the robot is scaled by one
+over the scene's unit. Ids are ``<robot>/<k>`` in the order made, so a document makes the
 same robot again from the file's name alone, as a hand from its constructor.
 """
 
@@ -21,9 +22,6 @@ from .parts import Part
 from .robot import Robot
 
 LINK_COLOR = "lightgray"  # a link with an envelope and nothing drawn (shown as its hull)
-# N·m of a joint whose file gives no effort: a small servo's at human size (the 1.0 default,
-# 2·10⁴ N·m, is for 1.0's scaled world; on a finger link of grams it only shakes the joint)
-IMPORTED_TORQUE = 1.0
 
 
 class RobotLink(Part):
@@ -65,6 +63,9 @@ class ImportedRobot(Robot):
             if link.mesh is not None:
                 scene.assets.mesh(link.mesh)
         super().__init__(scene, node_id)
+        # its file is in metres: at the scene's unit it keeps its size beside 1.0's hands
+        # (a unit changed later leaves it as it came in; setScale still stretches it)
+        self.scale = (1 / scene.physics.unit,) * 3
         self.filename = filename
         self.name = description.name
         self._made = 0
@@ -93,7 +94,7 @@ class ImportedRobot(Robot):
                 motor = Motor(self.scene, self._next_id(), joint.axis, joint.lower, joint.upper,
                               clamp(0.0, joint.lower, joint.upper))
                 motor.name = joint.name
-                motor.max_torque = joint.effort or IMPORTED_TORQUE
+                motor.max_torque = joint.effort or None  # (no effort: the default's)
                 motor.position, motor.quaternion = joint.origin
                 motor._link(holder)
                 motors[joint.name] = motor

@@ -65,7 +65,8 @@ class Part(Node):
 
     def get_mass(self) -> float:
         """The part's mass in dynamic mode (kg): its own, or its volume (as stretched by the
-        scales above it) times the scene's density; 0 for a part without a body."""
+        scales above it, in the scene's unit) times the scene's density; 0 for a part
+        without a body."""
         if self.mass is not None:
             return self.mass
         geometry = self.geometry()
@@ -73,7 +74,7 @@ class Part(Node):
             return 0.0
         scale = self.world_scale()
         shape = geometry if scale == UNIT_SCALE else scaled(geometry, scale)
-        return self.scene.physics.density * volume(shape)
+        return self.scene.physics.density * volume(shape) * self.scene.physics.unit ** 3
 
     def set_friction(self, friction: float) -> Part:
         """The part's friction coefficient in dynamic mode (instead of the scene's); returns

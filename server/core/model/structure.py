@@ -84,7 +84,7 @@ def _add(links: list[Link], place: _Place, frame: Pose, part: Node | None,
          geometry: dict[str, Any] | None, scale: Vec3 = UNIT_SCALE) -> int:
     """A new link at ``frame`` relative to the place (through its pending joint if any),
     carrying ``part`` (with its mass and friction, when it was given any)."""
-    carried = {} if part is None else {name: getattr(part, name, None) for name in _CARRIED}
+    carried = {} if part is None else _carried(part, scale)
     part_id = None if part is None else part.id
     if place.pending is not None:
         joint, origin = place.pending
@@ -95,6 +95,21 @@ def _add(links: list[Link], place: _Place, frame: Pose, part: Node | None,
 
 
 _CARRIED = ("mass", "friction", "centre", "inertia")  # a part's figures its link keeps
+
+
+def _carried(part: Node, scale: Vec3) -> dict[str, Any]:
+    """A part's figures its link keeps, its centre of mass and inertia (a robot file's, in
+    the file's lengths) stretched as its shape is: the inertia by the square of the
+    scale's mean (exact for the uniform scale a robot file is placed with)."""
+    carried = {name: getattr(part, name, None) for name in _CARRIED}
+    if scale != UNIT_SCALE:
+        centre, inertia = carried["centre"], carried["inertia"]
+        if centre is not None:
+            carried["centre"] = tuple(c * s for c, s in zip(centre, scale))
+        if inertia is not None:
+            squared = abs(scale[0] * scale[1] * scale[2]) ** (2 / 3)
+            carried["inertia"] = tuple(i * squared for i in inertia)
+    return carried
 
 
 def _stops(motor: Node) -> list[Node]:

@@ -16,12 +16,13 @@ offset is also the inertial frame and the part's world pose is read without comp
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any, Callable
 
 from ...errors import LimitExceeded
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
+from .geometry import scaled
 
 NO_POSE: Pose = (ORIGIN, IDENTITY)
 UNSCALED: Vec3 = (1.0, 1.0, 1.0)
@@ -65,7 +66,19 @@ class Link:
     mass: float | None = None      # kg, given by setMass (None: from volume and density)
     friction: float | None = None  # given by setFriction (None: the scene's)
     centre: Vec3 | None = None     # centre of mass in the part's frame, from a robot file
-    inertia: Vec3 | None = None    # principal moments (kg·m²) about it, from a robot file
+    inertia: Vec3 | None = None    # principal moments (kg·length²) about it, from a robot file
+
+    def stretched(self, factor: float) -> Link:
+        """The same link with every length ``factor`` times as long (its masses kept)."""
+        return replace(self, origin=_longer(self.origin, factor), shape=_longer(self.shape, factor),
+                       geometry=None if self.geometry is None else scaled(self.geometry, (factor,) * 3),
+                       scale=tuple(s * factor for s in self.scale),
+                       centre=None if self.centre is None else tuple(c * factor for c in self.centre),
+                       inertia=None if self.inertia is None else tuple(i * factor ** 2 for i in self.inertia))
+
+
+def _longer(pose: Pose, factor: float) -> Pose:
+    return tuple(p * factor for p in pose[0]), pose[1]  # type: ignore[return-value]
 
 
 @dataclass(frozen=True)
@@ -85,6 +98,16 @@ class Articulation:
     base_friction: float | None = None  # as Link.friction
     mounted: bool = False  # a robot: in dynamic mode its base is held where it is put
     static: bool = False   # never moves in dynamic mode (a table)
+
+    def in_metres(self, unit: float) -> Articulation:
+        """The tree of a scene of ``unit`` metres per scene unit, with its lengths in metres
+        (what files are written from)."""
+        if unit == 1.0:
+            return self
+        geometry = self.base_geometry
+        return replace(self, base_geometry=None if geometry is None else scaled(geometry, (unit,) * 3),
+                       base_scale=tuple(s * unit for s in self.base_scale),
+                       links=tuple(link.stretched(unit) for link in self.links))
 
     def scales(self) -> list[Vec3]:
         """The world scale of every physical part, in :meth:`parts` order."""

@@ -10,17 +10,24 @@ torque (``POSITION_CONTROL``), so a finger stopped by an object stays where it s
 
 Defaults, and why (:class:`Physics`):
 
-- ``gravity`` 9.81 m/s² down (−Y): sizes are metres. The 1.0 hands are about 16 times a
-  human hand; a task that wants motion to look like a human hand's scales gravity by the
-  hand's size (Froude: time goes as √(length/g)), see the Python client's tasks.
+- ``unit`` DEFAULT_UNIT metres per scene unit: positions, sizes and the 1.0 API stay in
+  scene units (1.0's figures), and everything else is SI at the size the unit makes
+  things: gravity (m/s²), masses (kg), densities (kg/m³), torques (N·m) and forces (N).
+  By default a 1.0 hand is a human hand's size (palm to tip 0.19 m); a robot imported
+  from a file in metres keeps its size beside it. Bullet itself works in scene units of
+  length and the mass of a cube of water a scene unit on a side (:class:`BulletUnits`): a
+  1.0 hand weighs in it what it weighed before units, and one conversion at Bullet's
+  door keeps the solver's figures as they were tuned.
+- ``gravity`` 9.81 m/s² down (−Y).
 - ``substeps`` 5: physics steps of 1/300 s (five per 60 Hz tick). PyBullet's grasping
   examples step at 240 Hz or more; fewer steps let fingers sink into what they squeeze.
 - ``solverIterations`` 50: the fewest of the 50-150 that PyBullet's examples use with
   which a closed hand holds its objects (more cost time every step).
 - ``solverTolerance`` 0.05: the solver ends a step's iterations early once one changes no
-  constraint's impulse by more than this share of the impulse gravity gives the world's
-  lightest part in a step (Bullet's residual threshold, kept relative to that part so a
-  world of any size, density or gravity converges alike). A hand touching nothing settles
+  constraint row's velocity by more than this share of the speed gravity gives anything in
+  a step (Bullet's residual threshold: Bullet measures a row's change as a velocity, so a
+  share of an impulse, as this was first, let fingers of grams sag 0.07 rad at a human
+  unit while ones of a 1.0 hand's Bullet masses held). A hand touching nothing settles
   in a few iterations instead of all of them: the bench's 10 hands and 50 objects tick in
   about 16 ms instead of 20. Held objects hold as with every iteration (the grasp task's
   table), and a heavy hand under strong gravity stays within 1 mm of its mount; 0 runs
@@ -37,8 +44,9 @@ Defaults, and why (:class:`Physics`):
   seconds and cost nearly nothing. A sleeper is woken when it is put somewhere, and every
   one when a free body goes (it may have held some up). Every tree is a multibody: single bodies as
   Bullet rigid bodies solve faster but held the grasp task's objects less well.
-- ``density`` 1000 kg/m³ (water; plastics and flesh are near it): a part's mass is its
-  volume times this, unless ``setMass`` gave it one.
+- ``density`` 1240 kg/m³ (PLA, what printed prosthetic hands are made of): a part's mass
+  is its volume times this, unless ``setMass`` gave it one. A 1.0 hand then weighs
+  0.22-0.27 kg at the default unit (0.17-0.22 kg of water: its parts are 1.6 cm thick).
 """
 
 from __future__ import annotations
@@ -65,26 +73,36 @@ MAX_STEPS_PER_TICK = 2  # × substeps: a late tick catches up this far, no furth
 # than take seconds a tick. CPU time, not the wall clock: a loaded machine's waits are no
 # work of the scene's, and cut nothing from it.
 STEP_BUDGET = 0.04
-BETWEEN_MASS = 0.1  # kg: a link that carries no part (where two joints meet)
-MOUNT_FORCE = 1e9  # N: what a robot's mount pulls with (its constraint's bound)
-MOUNT_MASS = 1.0  # kg: a robot base without a part of its own
-SHAPELESS_INERTIA = 1e-3  # kg·m², of a base or link without a part (a ball of 0.1 kg, 0.16 m)
+# Figures without a part, in Bullet's units (kg × unit³ in SI: the same share of a 1.0 hand
+# at any unit; Bullet only needs some, and a link a million times lighter than its
+# neighbours left a motor pushing through a wall)
+BETWEEN_MASS = 0.1  # a link that carries no part (where two joints meet), the least a part weighs
+# What a robot's mount pulls with (its constraint's bound): far past the weight of a 1 kg
+# robot at any unit from 1.5 cm up (8.7 kN at the default unit)
+MOUNT_FORCE = 1e9
+MOUNT_MASS = 1.0  # a robot base without a part of its own
+SHAPELESS_INERTIA = 1e-3  # of a base or link without a part (× unit⁵: kg·m²)
 SPINNING, ROLLING = 0.2, 0.002  # of a free body's lateral friction (robots and static
 # bodies carry none: Bullet adds both bodies' shares, so a free body's contact with a finger
 # or a table gets 0.2 and 0.002 of the two frictions' product, and contacts of fingers with
 # fingers, palms or the ground carry no turning friction, which the solver would pay for)
 BREAKING_THRESHOLD = 0.02  # Bullet's own: contacts persist while resting (kinematic: 0.0005)
-# What a motor drives with unless setMaxTorque says otherwise (N·m): enough for every
-# bundled hand to hold its fingers level and close on a ball of its own size (about
-# 250 kg at 1000 kg/m³) under 9.81 m/s². One figure for every motor: the drawn sizes of
-# the 1.0 motors are pictures, not actuators (a round finger's spread motor is drawn with
-# size 0), so a designer gives real actuators their torques.
-DEFAULT_MAX_TORQUE = 2e4
+# What a motor drives with unless setMaxTorque (or a robot file's effort) says otherwise
+# (N·m): a small servo's, enough for every bundled hand at the default unit to hold its
+# fingers level and close on a ball of its own size (about 40 g) under 9.81 m/s². One
+# figure for every motor: the drawn sizes of the 1.0 motors are pictures, not actuators (a
+# round finger's spread motor is drawn with size 0), so a designer gives real actuators
+# their torques.
+DEFAULT_MAX_TORQUE = 0.2
 SLEEP_CROWD = 256  # free bodies past which resting ones sleep
 
 
+# The 1.0 edged hand's palm to tip (3.5 scene units) as a human's (0.19 m, wrist crease to
+# the middle finger's tip): 1.0 hands at a human hand's size.
+DEFAULT_UNIT = 0.19 / 3.5
+
 _RANGES: dict[str, tuple[float, float, type]] = {
-    "gravity": (-1000.0, 1000.0, float), "substeps": (1, 20, int),
+    "unit": (1e-4, 100.0, float), "gravity": (-1000.0, 1000.0, float), "substeps": (1, 20, int),
     "solverIterations": (1, 500, int), "solverTolerance": (0.0, 1.0, float),
     "friction": (0.0, 10.0, float),
     "density": (1.0, 100_000.0, float),
@@ -96,12 +114,13 @@ class Physics:
     """A scene's physics: its mode and, for dynamic mode, its options (wire names)."""
 
     mode: str = KINEMATIC
+    unit: float = DEFAULT_UNIT
     gravity: float = 9.81
     substeps: int = 5
     solverIterations: int = 50  # noqa: N815 (the wire's name)
     solverTolerance: float = 0.05  # noqa: N815
     friction: float = 1.0
-    density: float = 1000.0
+    density: float = 1240.0
 
     @property
     def dynamic(self) -> bool:
@@ -115,6 +134,11 @@ class Physics:
     def wire(self) -> dict[str, Any]:
         """As ``getPhysics`` answers and documents keep it."""
         return asdict(self)
+
+    @property
+    def bullet(self) -> BulletUnits:
+        """How this scene's SI figures go into Bullet and come out."""
+        return BulletUnits(self.unit)
 
     @classmethod
     def of(cls, mode: Any, options: Any = None) -> Physics:
@@ -132,6 +156,33 @@ class Physics:
             raise BadArguments(f"physics options: no option {', '.join(sorted(unknown))}; the "
                                f"options are {', '.join(_RANGES)}")
         return replace(cls(mode), **{name: _option(name, value) for name, value in options.items()})
+
+
+@dataclass(frozen=True)
+class BulletUnits:
+    """Bullet's units in a scene of ``unit`` metres per scene unit: lengths in scene units,
+    seconds, and masses in the mass of a scene unit's cube of water over 1000 (so a
+    density in kg/m³ is the same number in Bullet's units); forces and torques follow."""
+
+    unit: float
+
+    @property
+    def mass(self) -> float:
+        """Kilograms in one Bullet unit of mass."""
+        return self.unit ** 3
+
+    @property
+    def force(self) -> float:
+        """Newtons in one Bullet unit of force (mass × length / s²)."""
+        return self.unit ** 4
+
+    @property
+    def torque(self) -> float:
+        """N·m in one Bullet unit of torque (and kg·m² in one of inertia)."""
+        return self.unit ** 5
+
+    def acceleration(self, metres_per_s2: float) -> float:
+        return metres_per_s2 / self.unit
 
 
 def _option(name: str, value: Any) -> float | int:
@@ -156,14 +207,15 @@ class Dynamics:
         self.steps = 0  # physics steps taken
         self._mounts: dict[int, Pose] = {}  # mount constraint -> where it is
         self._glides: dict[int, Pose] = {}  # mount constraint -> where it goes over the next steps
-        self._lightest: dict[int, float] = {}  # body -> the mass of its lightest part (kg)
+        self._moving: set[int] = set()  # bodies with parts that move (the solver's tolerance)
         self.iterations = physics.solverIterations  # what steps use now (STEP_BUDGET)
         self.held_back = 0  # steps the last advance left out (STEP_BUDGET)
         self.clock: Callable[[], float] = time.thread_time  # the CPU-seconds steps cost
         self._free: set[int] = set()  # free bodies (SLEEP_CROWD)
         self.sleeping = False  # resting free bodies sleep (more than SLEEP_CROWD of them)
         self._wake_all = False  # before the next step (a free body went)
-        pybullet.setGravity(0, -physics.gravity, 0, physicsClientId=client)
+        self.units = physics.bullet
+        pybullet.setGravity(0, -self.units.acceleration(physics.gravity), 0, physicsClientId=client)
         pybullet.setPhysicsEngineParameter(fixedTimeStep=physics.step,
                                            numSolverIterations=physics.solverIterations,
                                            contactBreakingThreshold=BREAKING_THRESHOLD,
@@ -172,10 +224,11 @@ class Dynamics:
     # --- building ----------------------------------------------------------------------
 
     def masses(self, tree: Articulation) -> tuple[float, list[float]]:
-        """The base's mass and every link's (kg), as :func:`tree_masses` weighs them; 0 for
-        the base of a static tree (Bullet: fixed)."""
-        base, links = tree_masses(tree, self.physics.density, self._volume)
-        return (0.0 if tree.static else base), links
+        """The base's mass and every link's in Bullet's units, as :func:`tree_masses` weighs
+        them; 0 for the base of a static tree (Bullet: fixed)."""
+        base, links = tree_masses(tree, self.physics.density, self._volume, self.units.unit)
+        per = self.units.mass
+        return (0.0 if tree.static else base / per), [mass / per for mass in links]
 
     def _volume(self, geometry: dict[str, Any]) -> float:
         return self._solid(geometry)[0]
@@ -211,8 +264,8 @@ class Dynamics:
             p.changeDynamics(body, link, localInertiaDiagonal=(SHAPELESS_INERTIA,) * 3,
                              physicsClientId=client)
         for k, link in enumerate(tree.links):  # a robot file's own inertia (else the shape's)
-            if link.inertia is not None:
-                p.changeDynamics(body, k, localInertiaDiagonal=[max(i, 1e-12)
+            if link.inertia is not None:  # (kg·scene unit²)
+                p.changeDynamics(body, k, localInertiaDiagonal=[max(i / self.units.mass, 1e-12)
                                                                 for i in link.inertia],
                                  physicsClientId=client)
         for k in joint_links:
@@ -224,7 +277,7 @@ class Dynamics:
             p.setJointMotorControlArray(body, list(joint_links), p.VELOCITY_CONTROL,
                                         forces=[0.0] * len(joint_links), physicsClientId=client)
         if not tree.mounted or tree.static:
-            if body in self._lightest:  # a free body
+            if body in self._moving:  # a free body
                 self._free.add(body)
                 self._doze(body)
             return None
@@ -235,22 +288,19 @@ class Dynamics:
         return mount
 
     def _weigh(self, body: int, tree: Articulation) -> None:
-        """Note the lightest part of a tree that moves (the solver's tolerance follows it)."""
-        if tree.static:
-            return
-        base, links = self.masses(tree)
-        parts = ([base] if tree.base_geometry is not None else []) + \
-            [mass for mass, link in zip(links, tree.links) if link.geometry is not None]
-        if parts:
-            self._lightest[body] = min(parts)
+        """Note a tree with parts that moves (the solver's tolerance is kept from then on)."""
+        if not tree.static and (tree.base_geometry is not None or
+                                any(link.geometry is not None for link in tree.links)):
+            self._moving.add(body)
             self._tolerate()
 
     def _tolerate(self) -> None:
-        """Bullet's residual threshold (the square of an impulse, N²·s²) from
-        ``solverTolerance`` and the lightest part in the world (none: every iteration)."""
-        lightest = min(self._lightest.values(), default=0.0)
-        impulse = self.physics.solverTolerance * lightest * abs(self.physics.gravity) * self.physics.step
-        self.p.setPhysicsEngineParameter(solverResidualThreshold=impulse * impulse,
+        """Bullet's residual threshold (the square of a row's velocity change, in Bullet's
+        units) from ``solverTolerance``: a share of the speed gravity gives in a step
+        (nothing moving: every iteration)."""
+        speed = self.physics.solverTolerance * abs(self.units.acceleration(self.physics.gravity)) \
+            * self.physics.step if self._moving else 0.0
+        self.p.setPhysicsEngineParameter(solverResidualThreshold=speed * speed,
                                          physicsClientId=self.client)
 
     def _surface(self, body: int, tree: Articulation) -> None:
@@ -268,9 +318,11 @@ class Dynamics:
 
     def drive(self, body: int, joint_links: Sequence[int], targets: list[float],
               torques: list[float]) -> None:
-        """Every motor of a tree toward its target, with at most its torque."""
+        """Every motor of a tree toward its target, with at most its torque (N·m)."""
+        per = self.units.torque
         self.p.setJointMotorControlArray(body, list(joint_links), self.p.POSITION_CONTROL,
-                                         targetPositions=targets, forces=torques,
+                                         targetPositions=targets,
+                                         forces=[torque / per for torque in torques],
                                          physicsClientId=self.client)
 
     def mount(self, constraint: int, pose: Pose) -> None:
@@ -289,7 +341,8 @@ class Dynamics:
         if mount is not None:
             self._mounts.pop(mount, None)
             self._glides.pop(mount, None)
-        if self._lightest.pop(body, None) is not None:
+        if body in self._moving:
+            self._moving.discard(body)
             self._tolerate()
 
     def _doze(self, new: int | None = None) -> None:
@@ -383,23 +436,29 @@ class Dynamics:
 
 
 def tree_masses(tree: Articulation, density: float,
-                volume_of: Callable[[dict[str, Any]], float] = volume) -> tuple[float, list[float]]:
-    """The base's mass and every link's (kg): a part's own (``setMass``), else its volume
-    times ``density``; BETWEEN_MASS for a link without a part, MOUNT_MASS for a base
-    without one."""
+                volume_of: Callable[[dict[str, Any]], float] = volume,
+                unit: float = 1.0) -> tuple[float, list[float]]:
+    """The base's mass and every link's (kg) in a scene of ``unit`` metres per scene unit:
+    a part's own (``setMass``), else its volume times ``density``; BETWEEN_MASS for a link
+    without a part, MOUNT_MASS for a base without one (both in Bullet's units)."""
+    per_mass = unit ** 3
+    per_volume, least = density * per_mass, BETWEEN_MASS * per_mass
+
     def of(given: float | None, geometry: dict[str, Any] | None) -> float:
         if given is not None:
             return given
-        return BETWEEN_MASS if geometry is None else max(BETWEEN_MASS, density * volume_of(geometry))
-    base = MOUNT_MASS if tree.base_geometry is None else of(tree.base_mass, tree.base_geometry)
+        return least if geometry is None else max(least, per_volume * volume_of(geometry))
+    base = MOUNT_MASS * per_mass if tree.base_geometry is None else of(tree.base_mass, tree.base_geometry)
     return base, [of(link.mass, link.geometry) for link in tree.links]
 
 
-def forces_by_part(points: Sequence[Sequence[Any]], keys_of: Mapping[int, list[str | None]]) -> dict[str, float]:
-    """Newtons pressing on each part: the normal forces of its contact points, summed."""
+def forces_by_part(points: Sequence[Sequence[Any]], keys_of: Mapping[int, list[str | None]],
+                   newtons: float = 1.0) -> dict[str, float]:
+    """Newtons pressing on each part: the normal forces of its contact points, summed
+    (``newtons`` in one of Bullet's units of force)."""
     found: dict[str, float] = {}
     for point in points:
-        force = point[9]
+        force = point[9] * newtons
         if force > 0.0:
             for key in (keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]):
                 if key is not None:

@@ -386,7 +386,7 @@ class PhysicsWorld:
         nearest, inf, tolerance = found.get, math.inf, TOUCH_TOLERANCE
         points = pybullet.getContactPoints(physicsClientId=client)
         if self.dynamics is not None:
-            self.forces = forces_by_part(points, keys_of)
+            self.forces = forces_by_part(points, keys_of, self.dynamics.units.force)
         for point in points:
             a, b = keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]
             pair = (a, b) if a < b else (b, a)

@@ -167,9 +167,10 @@ def scaled(geometry: dict[str, Any], scale: Sequence[float]) -> dict[str, Any]:
         vertices = np.asarray(geometry["vertices"], float).reshape(-1, 3) * s
         return {**geometry, "vertices": vertices.ravel().tolist()}
     if kind == "mesh":  # a file's triangles for rays, its envelope for contacts
-        return {**geometry, "scale": s.tolist(),
+        return {**geometry, "scale": (np.asarray(geometry.get("scale", (1.0, 1.0, 1.0))) * s).tolist(),
                 "points": (np.asarray(geometry["points"]) * s).tolist()}
-    return {"kind": "convex", "points": (np.asarray(solid_points(geometry)) * s).tolist()}
+    look = {key: geometry[key] for key in ("color", "edges") if key in geometry}
+    return {"kind": "convex", "points": (np.asarray(solid_points(geometry)) * s).tolist(), **look}
 
 
 def solid_points(geometry: dict[str, Any]) -> list[list[float]]:

@@ -24,13 +24,12 @@ import numpy as np
 from ..kit.math3d import Pose, to_matrix
 from .articulation import NO_POSE, Articulation
 from .assets import AssetLibrary
-from .dynamics import tree_masses
-from .urdf_file import drawn_mesh, file_stem, hull_mesh, inertial, link_names, obj_bytes, rgba
+from .urdf_file import Masses, drawn_mesh, file_stem, hull_mesh, inertial, link_names, obj_bytes, rgba
 
 POSITION_GAIN = 50.0  # N·m/rad of each exported position actuator (MuJoCo's kp)
 
 
-def mjcf_zip(tree: Articulation, name: str, density: float, torques: Mapping[str, float],
+def mjcf_zip(tree: Articulation, name: str, masses: Masses, torques: Mapping[str, float],
              assets: AssetLibrary, names: Mapping[str, str], follows: Mapping[str, tuple[str, float, float]]) -> bytes:
     """The zip of ``name/robot.xml`` and ``name/meshes/*.obj`` for ``tree`` (arguments as
     :func:`.urdf_file.urdf_zip`'s)."""
@@ -38,12 +37,12 @@ def mjcf_zip(tree: Articulation, name: str, density: float, torques: Mapping[str
     model = ET.Element("mujoco", model=names.get(tree.root, name))
     ET.SubElement(model, "compiler", angle="radian", meshdir="meshes")
     asset, world = ET.SubElement(model, "asset"), ET.SubElement(model, "worldbody")
-    base_mass, masses = tree_masses(tree, density)
+    base_mass, link_masses = masses
     titles = link_names(tree, names)
     bodies = [_body(world, titles[0], NO_POSE, tree.base_geometry, NO_POSE, base_mass, asset, files, assets)]
     for k, link in enumerate(tree.links):
         body = _body(bodies[link.parent + 1], titles[k + 1], link.origin, link.geometry, link.shape,
-                     masses[k], asset, files, assets)
+                     link_masses[k], asset, files, assets)
         if link.joint is not None:
             limited = math.isfinite(link.joint.lower) and math.isfinite(link.joint.upper)
             joint = ET.Element("joint", name=names.get(link.joint.motor, link.joint.motor), type="hinge",

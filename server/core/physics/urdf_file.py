@@ -11,6 +11,7 @@ server has it. The base sits at the file's origin: load it at the robot's pose.
 - Shapes: spheres and boxes as URDF's own; every other part (hulls, cylinders, mesh
   files, page triangles) as an OBJ file of the hull Bullet collides with, and, for a mesh
   file's part or page triangles, a second OBJ of the triangles a viewer draws.
+- Lengths in metres, masses in kilograms (the tree is given in metres).
 - Inertials: the part's mass (``setMass``, else its volume × the scene's density, as
   dynamic mode weighs it), at the centre of its volume, with the exact inertia of its
   shape (Bullet itself takes a hull's inertia from its bounding box and recomputes it on
@@ -41,21 +42,22 @@ from scipy.spatial.transform import Rotation
 from ..kit.math3d import IDENTITY, Pose, compose
 from .articulation import NO_POSE, Articulation
 from .assets import AssetLibrary, placed
-from .dynamics import SHAPELESS_INERTIA, tree_masses
 from .geometry import centroid, solid_points, triangle_arrays
 
+Masses = tuple[float, list[float]]  # the base's and each link's (kg), as tree_masses weighs them
+SHAPELESS_RADIUS = 0.01  # m: a link without a part is a ball of its mass this big
 NO_SPEED_LIMIT = 1000.0  # rad/s written as every joint's URDF velocity limit
 DEFAULT_RGBA = (0.8, 0.8, 0.8, 1.0)  # a part whose colour is not one URDF can say
 
 
-def urdf_zip(tree: Articulation, name: str, density: float, torques: Mapping[str, float],
+def urdf_zip(tree: Articulation, name: str, masses: Masses, torques: Mapping[str, float],
              assets: AssetLibrary, names: Mapping[str, str] | None = None,
              follows: Mapping[str, tuple[str, float, float]] | None = None) -> bytes:
     """The zip of ``name/robot.urdf`` and ``name/meshes/*.obj`` for ``tree``; ``torques``
-    are the motors' (by motor id), ``density`` the scene's (kg/m³), ``names`` what links
+    are the motors' (by motor id), ``masses`` the base's and the links' (kg), ``names`` what links
     and joints are called (by node id; else the id), ``follows`` the followers' leaders,
     ratios and offsets (by motor id: ``<mimic>``)."""
-    files = urdf_files(tree, name, density, torques, assets, names or {}, follows or {})
+    files = urdf_files(tree, name, masses, torques, assets, names or {}, follows or {})
     out = io.BytesIO()
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
         for path, data in files.items():
@@ -63,18 +65,18 @@ def urdf_zip(tree: Articulation, name: str, density: float, torques: Mapping[str
     return out.getvalue()
 
 
-def urdf_files(tree: Articulation, name: str, density: float, torques: Mapping[str, float],
+def urdf_files(tree: Articulation, name: str, masses: Masses, torques: Mapping[str, float],
                assets: AssetLibrary, given: Mapping[str, str] | None = None,
                follows: Mapping[str, tuple[str, float, float]] | None = None) -> dict[str, bytes]:
     """``robot.urdf`` and its mesh files, by path relative to the URDF."""
     files: dict[str, bytes] = {}
     given = given or {}
     robot = ET.Element("robot", name=given.get(tree.root, name))
-    base_mass, masses = tree_masses(tree, density)
+    base_mass, link_masses = masses
     names = link_names(tree, given)
     robot.append(_link(names[0], tree.base_geometry, NO_POSE, base_mass, files, assets))
     for k, link in enumerate(tree.links):
-        robot.append(_link(names[k + 1], link.geometry, link.shape, masses[k], files, assets))
+        robot.append(_link(names[k + 1], link.geometry, link.shape, link_masses[k], files, assets))
         robot.append(_joint(k, tree, names, torques, given, follows or {}))
     ET.indent(robot)
     files["robot.urdf"] = b'<?xml version="1.0"?>\n' + ET.tostring(robot, encoding="utf-8")
@@ -141,9 +143,9 @@ def _geometry(kind: str, **attributes: str) -> ET.Element:
 
 def inertial(geometry: dict[str, Any] | None, shape: Pose, mass: float) -> tuple[Pose, np.ndarray]:
     """Where a link's mass sits (the centre of its part's volume, in the part's axes, in
-    the link's frame) and its inertia tensor there (SHAPELESS_INERTIA without a part)."""
+    the link's frame) and its inertia tensor there (a ball of SHAPELESS_RADIUS without a part)."""
     if geometry is None:
-        return compose(shape, ((0.0, 0.0, 0.0), IDENTITY)), np.eye(3) * SHAPELESS_INERTIA
+        return compose(shape, ((0.0, 0.0, 0.0), IDENTITY)), np.eye(3) * (0.4 * mass * SHAPELESS_RADIUS ** 2)
     return compose(shape, (centroid(geometry), IDENTITY)), inertia_of(geometry, mass)
 
 

@@ -3,8 +3,8 @@ and GLB.
 
 Both are written from the tree the scene's physics compiled and simulates
 (:mod:`server.core.physics.articulation`), with the scene's figures for what the tree does
-not carry: the motors' torques, the density parts are weighed with, the parts' poses and
-recolours. What a file needs is taken from the scene (a :class:`UrdfJob` or
+not carry: the motors' torques, the parts' masses, the parts' poses and recolours. Files
+are SI: lengths in metres (the scene's unit), masses in kilograms, torques in N·m. What a file needs is taken from the scene (a :class:`UrdfJob` or
 :class:`GlbJob`: quick), and the file is written from it elsewhere (meshing parts takes
 seconds for a hand): the server writes files in a process beside the scenes, so that
 a loop of exports never holds up a scene's ticks.
@@ -27,8 +27,9 @@ from ..model.structure import base_pose, structure_of
 from ..physics.articulation import NO_POSE, Articulation
 from ..physics.assets import AssetLibrary
 from ..physics.glb_file import DrawnLink, DrawnPart, robot_glb_bytes
+from ..physics.dynamics import tree_masses
 from ..physics.mjcf_file import mjcf_zip
-from ..physics.urdf_file import link_names, urdf_zip
+from ..physics.urdf_file import Masses, link_names, urdf_zip
 from ..scene.scene import Scene
 from .reports import robot_report
 
@@ -39,13 +40,13 @@ class UrdfJob:
 
     tree: Articulation
     robot_id: str
-    density: float
+    masses: Masses  # the base's and each link's (kg)
     torques: dict[str, float]
     names: dict[str, str]                          # node id -> its name in the file
     follows: dict[str, tuple[str, float, float]]   # follower id -> (leader id, ratio, offset)
 
     def write(self, assets: AssetLibrary) -> bytes:
-        return urdf_zip(self.tree, self.robot_id, self.density, self.torques, assets,
+        return urdf_zip(self.tree, self.robot_id, self.masses, self.torques, assets,
                         self.names, self.follows)
 
 
@@ -54,7 +55,7 @@ class MjcfJob(UrdfJob):
     """What a robot's MJCF zip is written from (what its URDF is)."""
 
     def write(self, assets: AssetLibrary) -> bytes:
-        return mjcf_zip(self.tree, self.robot_id, self.density, self.torques, assets,
+        return mjcf_zip(self.tree, self.robot_id, self.masses, self.torques, assets,
                         self.names, self.follows)
 
 
@@ -93,7 +94,9 @@ def urdf_job(scene: Scene, robot_id: str) -> UrdfJob:
     motors = robot.get_motors()
     torques = {motor.id: motor.get_max_torque() for motor in motors}
     follows = {m.id: m.following for m in motors if m.following is not None and m.leader() is not None}
-    return UrdfJob(tree, robot.id, scene.physics.density, torques, file_names(robot),
+    unit = scene.physics.unit
+    masses = tree_masses(tree, scene.physics.density, unit=unit)
+    return UrdfJob(tree.in_metres(unit), robot.id, masses, torques, file_names(robot),
                    follows)  # type: ignore[arg-type]
 
 
@@ -129,6 +132,7 @@ def glb_job(scene: Scene, robot_id: str) -> GlbJob:
     """``GET …/robots/{id}/glb``: the robot as one binary glTF, a node per link with its
     local transform (its motor's angle now), where it is now."""
     robot, tree = _compiled(scene, robot_id)
+    tree = tree.in_metres(scene.physics.unit)
     names = file_names(robot)
     titles = link_names(tree, names)
 
@@ -145,7 +149,9 @@ def glb_job(scene: Scene, robot_id: str) -> GlbJob:
         links.append(DrawnLink(titles[k + 1], parent, compose(link.origin, turn),
                                drawn(link.part, link.geometry, link.shape)))
     root = scene.nodes[tree.root]
-    return GlbJob(names.get(root.id, root.id), base_pose(root), tuple(links))
+    (x, y, z), rotation = base_pose(root)
+    unit = scene.physics.unit
+    return GlbJob(names.get(root.id, root.id), ((x * unit, y * unit, z * unit), rotation), tuple(links))
 
 
 def packed(job: UrdfJob | GlbJob) -> bytes:

@@ -42,7 +42,8 @@ def test_a_robot_exports_to_urdf_and_glb_files(scene, tmp_path):
     assert len(joints) == len(hand.get_motors()) == 20  # named as the motors are
     assert joints[:5] == ["Thumb", "Thumb proximal", "Thumb middle", "Thumb distal", "Index finger"]
     look = trimesh.load(hand.export_glb(tmp_path / "hand.glb"))
-    assert len(look.geometry) == 16 and look.bounds[0][1] > 0.5  # the palm and 15 segments, raised
+    metres = vp.get_physics()["unit"]  # files are in metres
+    assert len(look.geometry) == 16 and look.bounds[0][1] > 0.5 * metres  # the palm and 15 segments, raised
 
 
 def test_a_file_of_a_robot_deleted_is_refused_by_name(scene, tmp_path):

@@ -99,15 +99,15 @@ def test_a_script_switches_the_scene_to_dynamic_and_things_fall_and_are_felt(sce
 
 def test_in_dynamic_mode_a_motor_reads_where_it_is_not_where_it_was_sent(scene):
     arm = vp.Robot()
-    motor = vp.MotorZ().set_max_torque(1.0)  # far too weak for the finger
+    motor = vp.MotorZ().set_max_torque(1e-5)  # N·m: far too weak for the finger
     arm.attach_chain(motor, vp.EdgedFinger(2))
     arm.set_position(0, 3, 0)
     vp.set_physics("dynamic")
     motor.set_angle(-1.5)
-    assert motor.get_max_torque() == 1.0
-    motor.set_max_torque(2.0)  # a change after it was made reaches the mirror too
+    assert motor.get_max_torque() == 1e-5
+    motor.set_max_torque(2e-5)  # a change after it was made reaches the mirror too
     scene.sync()
-    assert motor.get_max_torque() == 2.0
+    assert motor.get_max_torque() == 2e-5
     time.sleep(1.0)
     scene.sync()
     assert motor.get_angle() != pytest.approx(-1.5, abs=0.2)  # the finger hangs down instead

@@ -79,7 +79,7 @@ def test_bad_robot_uploads_are_refused_naming_what_is_wrong_and_make_nothing(ser
 def test_an_mjcf_zip_is_placed_as_mujoco_compiles_it_and_runs_in_dynamic_mode(server, scene_name):
     session = vp.connect(server.ws, scene_name)
     try:
-        vp.set_physics("dynamic")
+        vp.set_physics("dynamic", unit=1.0)  # a scene unit a metre: the hand 0.4 m up
         status, _, body = request(server, "POST", f"/api/scenes/{scene_name}/robots?position=0,0.4,0",
                                   hand_files.mjcf_zip())
         robot = json.loads(body)

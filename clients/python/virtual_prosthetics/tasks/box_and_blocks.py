@@ -90,7 +90,7 @@ def build(session: Session, kind: str, rng: random.Random, count: int = BLOCKS) 
                        scene=session)
             cube.set_position(*at)
             cube.set_rotation(0, rng.uniform(-0.2, 0.2), 0)
-            cube.set_mass(scale.mass(BLOCK_MASS))
+            cube.set_mass(BLOCK_MASS)
         blocks.append(cube)
     figures = FIGURES[kind]
     with session.connection.gathering():
@@ -102,7 +102,7 @@ def build(session: Session, kind: str, rng: random.Random, count: int = BLOCKS) 
     session.sync()
     motors = hand.get_motors()
     for motor in motors:
-        motor.set_max_torque(scale.torque(GRIP.torque))
+        motor.set_max_torque(GRIP.torque)
     for index, angle in OPPOSED_THUMB[kind].items():
         motors[index].set_angle(angle)
     return Stage(session, scale, hand, blocks, walls, 0.0, wall, kind)
@@ -170,7 +170,7 @@ def box_and_blocks(session: Session, hand: str, seed: int, *,
     scale = Scale.of(hand)
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+        session.set_physics("dynamic", unit=scale.unit, solver_iterations=SOLVER_ITERATIONS)
         stage = build(session, hand, random.Random(seed), blocks)
         drive(session, 1.0, lambda t: None)  # the heap settles
         before = stage.moved()
@@ -179,5 +179,5 @@ def box_and_blocks(session: Session, hand: str, seed: int, *,
         moved = stage.moved() - before
         stage.remove()
         return {"task": "box-and-blocks", "hand": hand, "seed": seed, "seconds": seconds,
-                "scale": scale.factor, "gravity": scale.gravity, "blocks": moved,
+                "scale": scale.factor, "unit": scale.unit, "blocks": moved,
                 "humanNorm": [55, 89]}

@@ -113,6 +113,6 @@ def baseline(grip: Grip, phases: Phases = PHASES) -> Control:
 
 def prepare(trial: Trial, grip: Grip) -> None:
     """The hand's motors as strong as the grip says (scaled to the hand)."""
-    torque = trial.scale.torque(grip.torque)
+    torque = grip.torque
     for motor in trial.hand.get_motors():
         motor.set_max_torque(torque)

@@ -121,7 +121,7 @@ def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: 
     scale = Scale.of(hand)
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+        session.set_physics("dynamic", unit=scale.unit, solver_iterations=SOLVER_ITERATIONS)
         rng = random.Random(seed)
         results = []
         for pattern in (p for p in PATTERNS if p.name in patterns):
@@ -131,7 +131,7 @@ def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: 
                                   controller(grip), side_by_side)
                 results.append(summary(pattern, weight, done))
         return {"task": "grasp", "hand": hand, "seed": seed, "scale": scale.factor,
-                "gravity": scale.gravity, "results": results}
+                "unit": scale.unit, "results": results}
 
 
 def summary(pattern: Pattern, weight: str, trials: list[Trial]) -> dict[str, Any]:

@@ -55,7 +55,7 @@ def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: i
     scale = Scale.of(hand)
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", gravity=scale.gravity, solver_iterations=SOLVER_ITERATIONS)
+        session.set_physics("dynamic", unit=scale.unit, solver_iterations=SOLVER_ITERATIONS)
         pattern = PATTERNS[0]
         grip = pattern.grips[hand]
         done = run_trials(session, hand, pattern.item, draws(random.Random(seed), trials),

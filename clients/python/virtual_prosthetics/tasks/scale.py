@@ -1,10 +1,10 @@
-"""How a task's human-sized world is scaled to a 1.0 hand.
+"""How a task's human-sized world is laid out around a 1.0 hand.
 
-The 1.0 hands are about 18× a human hand. A task scales every length by ``s`` = the hand's
-palm-to-tip length over :data:`HUMAN_HAND` (0.19 m), and gravity by the same ``s``: a fall
-of ``s·h`` under ``s·g`` takes as long as a fall of ``h`` under ``g``, so motion looks real
-at the scene's own speed. Densities stay as they are (mass × s³); forces are then × s⁴ and
-torques × s⁵, and results are given back in a human hand's newtons.
+The 1.0 hands are about 18 scene units long; a task's scene is set to the unit
+(``setPhysics``' ``unit``, metres per scene unit) that makes its hand exactly a human
+hand's size: :data:`HUMAN_HAND` (0.19 m) over the hand's palm-to-tip length. Positions and
+sizes are then the human metres over that unit (``Scale.length``); masses, torques,
+gravity and the forces read back are SI as they are (the server converts).
 """
 
 from __future__ import annotations
@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 HUMAN_HAND = 0.19  # metres from the wrist crease to the tip of the middle finger
-GRAVITY = 9.81
 
 
 @dataclass(frozen=True)
@@ -40,27 +39,19 @@ FIGURES = {
 
 @dataclass(frozen=True)
 class Scale:
-    """A human-sized world scaled to a hand (see the module's docstring)."""
+    """A human-sized world at a hand's size (see the module's docstring)."""
 
-    factor: float
+    factor: float  # scene units per metre
 
     @classmethod
     def of(cls, hand: str) -> Scale:
         return cls(FIGURES[hand].length / HUMAN_HAND)
 
     def length(self, metres: float) -> float:
+        """Scene units of ``metres``."""
         return metres * self.factor
 
-    def mass(self, kilograms: float) -> float:
-        return kilograms * self.factor ** 3
-
-    def torque(self, newton_metres: float) -> float:
-        return newton_metres * self.factor ** 5
-
     @property
-    def gravity(self) -> float:
-        return GRAVITY * self.factor
-
-    def human_force(self, scene_newtons: float) -> float:
-        """A force of the scaled world in a human hand's newtons."""
-        return scene_newtons / self.factor ** 4
+    def unit(self) -> float:
+        """The scene's unit (metres per scene unit) that makes the hand a human's size."""
+        return 1 / self.factor

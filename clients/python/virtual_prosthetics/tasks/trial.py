@@ -67,7 +67,7 @@ class Trial:
         self.heights.append(bottom - self.table_top)
         self.offsets.append(tuple(a - b for a, b in zip(position, hand)))
         force = self.session.read(lambda mirror: mirror.forces.get(self.obj.id, 0.0))
-        self.forces.append(self.scale.human_force(force))
+        self.forces.append(force)
 
     def slip(self) -> float:
         """How far the object moved in the hand while observed (human metres)."""
@@ -118,7 +118,7 @@ def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple
             obj.set_position(*at)
             if item.shape == "cylinder":
                 obj.set_rotation(0, 0, math.pi / 2)
-            obj.set_mass(scale.mass(weight * mass_factor))
+            obj.set_mass(weight * mass_factor)
             obj.set_friction(friction_factor)
         trials.append(Trial(session, kind, scale, hand, obj, table, item, home, top,
                             weight * mass_factor, friction_factor, 0.6 * length))

@@ -8,7 +8,7 @@ from virtual_prosthetics.tasks import box_and_blocks as bb
 
 
 def test_the_box_holds_150_blocks_on_one_side_and_counts_those_put_across(scene):
-    scene.set_physics("dynamic", gravity=bb.Scale.of("edged").gravity)
+    scene.set_physics("dynamic", unit=bb.Scale.of("edged").unit)
     stage = bb.build(scene, "edged", random.Random(0))
     scene.sync()
     positions = stage.block_positions()

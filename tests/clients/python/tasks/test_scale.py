@@ -1,4 +1,4 @@
-"""The hand figures the tasks predict are the server's, and the scaling keeps time real."""
+"""The hand figures the tasks predict are the server's, and a task's unit makes its hand human-sized."""
 
 import math
 
@@ -35,11 +35,17 @@ def test_each_hands_figures_are_where_the_server_puts_the_hand(kind):
     scene.close()
 
 
-def test_scaled_gravity_keeps_falls_as_long_as_at_human_size():
+def test_a_tasks_unit_makes_its_hand_a_human_hands_size_on_the_server():
     scale = Scale.of("edged")
-    assert scale.factor == pytest.approx(FIGURES["edged"].length / HUMAN_HAND)
-    human = math.sqrt(2 * 0.1 / 9.81)
-    scaled = math.sqrt(2 * scale.length(0.1) / scale.gravity)
-    assert scaled == pytest.approx(human)
-    weight = scale.mass(0.2) * scale.gravity  # a 200 g object's weight, in the scene
-    assert scale.human_force(weight) == pytest.approx(0.2 * 9.81)
+    scene = Scene("unit")
+    scene.set_physics("kinematic", {"unit": scale.unit})
+    hand = EdgedHand(scene, "h", True)
+    hand.set_rotation(-math.pi / 2, 0, 0)
+    hand.flex_fingers(0)  # straight and together
+    hand.spread_fingers(0)
+    scene.tick(1 / 60)
+    boxes = [scene.bodies.physics.aabb(part.id) for part in hand.get_parts() if part.physical]
+    along = max(box[1][2] for box in boxes) - min(box[0][2] for box in boxes)
+    assert along * scene.physics.unit == pytest.approx(HUMAN_HAND, abs=0.005)  # metres
+    assert scale.length(HUMAN_HAND) == pytest.approx(FIGURES["edged"].length)
+    scene.close()

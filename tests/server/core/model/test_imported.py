@@ -62,14 +62,14 @@ def test_links_sit_where_the_files_kinematics_put_them_with_mimic_joints_followi
     assert sorted(p.name for p in links) == sorted(expected)
     for part in links:
         position, quaternion = part.world_pose()
-        matrix = expected[part.name]
-        assert np.allclose(position, matrix[:3, 3], atol=1e-9), part.name
+        matrix = expected[part.name]  # (in metres: the robot is scaled to the scene's unit)
+        assert np.allclose(np.asarray(position) * lab.physics.unit, matrix[:3, 3], atol=1e-9), part.name
         assert np.allclose(np.asarray(to_matrix(quaternion)), matrix[:3, :3], atol=1e-9), part.name
 
 
 def test_an_imported_robot_is_drawn_enveloped_weighed_and_driven_in_dynamic_mode(lab, hand_file):
     robot = ImportedRobot(lab, "c1.1", hand_file)
-    robot.set_position((0.0, 0.3, 0.0))
+    robot.set_position((0.0, 6.0, 0.0))  # 0.33 m up (the scene's unit: 1.0 hands human-sized)
     palm, mount = robot.get_parts()[0], robot.get_parts()[1]
     assert palm.geometry()["kind"] == "mesh" and len(palm.geometry()["points"]) == 8
     assert (mount.physical, "points" in mount.geometry()) == (False, False)  # drawn, not solid
@@ -81,7 +81,7 @@ def test_an_imported_robot_is_drawn_enveloped_weighed_and_driven_in_dynamic_mode
     angles = robot.get_angles()
     assert angles[0] == pytest.approx(1.0, abs=0.02) and angles[3] == pytest.approx(0.5, abs=0.02)
     assert angles[1] == pytest.approx(0.85, abs=0.03)  # a follower driven with its leader
-    assert palm.world_pose()[0] == pytest.approx((0.0, 0.3, 0.0), abs=1e-3)  # held at its mount
+    assert palm.world_pose()[0] == pytest.approx((0.0, 6.0, 0.0), abs=1e-3)  # held at its mount
     assert [m.get_max_torque() for m in robot.get_motors()] == [0.5] * 9  # the file's effort
 
 
@@ -127,6 +127,7 @@ def test_an_mjcf_hands_bodies_sit_where_mujoco_puts_them(lab, library):
     for body in ("thumb_distal", "index_distal", "middle_proximal", "middle_distal"):
         position, quaternion = compose(inverse(palm), pose(body))
         anchor = -0.005 if body == "middle_proximal" else 0.0  # its link sits at its joint
-        ours = compose(links[body].world_pose(), ((0.0, 0.0, -anchor), (0.0, 0.0, 0.0, 1.0)))
-        assert np.allclose(ours[0], position, atol=1e-9), body
+        unit = lab.physics.unit  # the robot is in scene units of this many metres
+        ours = compose(links[body].world_pose(), ((0.0, 0.0, -anchor / unit), (0.0, 0.0, 0.0, 1.0)))
+        assert np.allclose(np.asarray(ours[0]) * unit, position, atol=1e-9), body
         assert np.allclose(np.asarray(to_matrix(ours[1])), np.asarray(to_matrix(quaternion)), atol=1e-9), body

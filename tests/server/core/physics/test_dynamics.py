@@ -5,8 +5,9 @@ import math
 import pytest
 
 from server.core.model.parts import Ball, Box
+from server.core.model.sensor import Sensor
 from server.core.physics import dynamics
-from server.core.physics.dynamics import DEFAULT_MAX_TORQUE, Physics
+from server.core.physics.dynamics import DEFAULT_MAX_TORQUE, DEFAULT_UNIT, Physics
 from server.errors import BadArguments, OutOfRange, WrongType
 
 
@@ -38,9 +39,11 @@ def test_bad_options_are_refused_naming_what_was_wrong(mode, options, error, wor
 
 
 def test_the_default_torque_holds_a_hand_level():
-    # an edged finger of 1000 kg/m³ (about 80 kg a segment, three of them, their centres
-    # 0.5, 1.5 and 2.5 m out) held level under 9.81 m/s², with room to grip
-    assert DEFAULT_MAX_TORQUE > 2 * 80 * 9.81 * (0.5 + 1.5 + 2.5)
+    # an edged finger at the default unit and density (segments of about 0.08 cubic scene
+    # units, 16 g, their centres 0.5, 1.5 and 2.5 scene units out) held level under
+    # 9.81 m/s², with room to grip
+    segment = Physics().density * 0.08 * DEFAULT_UNIT ** 3
+    assert DEFAULT_MAX_TORQUE > 2 * segment * 9.81 * DEFAULT_UNIT * (0.5 + 1.5 + 2.5)
 
 
 def test_a_tick_takes_no_more_steps_than_its_budget_and_costly_steps_get_fewer_iterations(scene):
@@ -117,3 +120,30 @@ def test_a_world_at_rest_is_not_stepped_until_something_changes(scene):
     for _ in range(30):
         scene.tick(1 / 60)
     assert world.steps > steps and balls[0].position[1] < 2.5
+
+
+@pytest.mark.parametrize("unit", [DEFAULT_UNIT, 1.0])
+def test_a_ball_falls_at_g_in_metres_whatever_the_unit(scene, unit):
+    ball = Ball(scene, "b", 0.25)
+    ball.set_position((0, 50 / unit, 0))  # 50 m up
+    scene.set_physics("dynamic", {"unit": unit})
+    for _ in range(12):  # (Bullet's drag, which grows with speed², is small this soon)
+        scene.tick(1 / 60)
+    fallen = (50 / unit - ball.position[1]) * unit  # metres
+    assert fallen == pytest.approx(9.81 * scene.time ** 2 / 2, rel=0.05)
+
+
+def test_a_resting_box_presses_with_its_weight_in_newtons(scene):
+    pad = Box(scene, "pad", 4, 0.2, 4)
+    pad.set_static(True)
+    pad.set_position((0, 0.1, 0))
+    sensor = Sensor(scene, "s")
+    sensor.attach_to_slot(pad)
+    load = Box(scene, "load", 1, 1, 1)  # a cube of 5.4 cm at the default unit
+    load.set_position((0, 0.7, 0))
+    scene.set_physics("dynamic")
+    for _ in range(90):
+        scene.tick(1 / 60)
+    mass = load.get_mass()
+    assert mass == pytest.approx(scene.physics.density * DEFAULT_UNIT ** 3)  # kg
+    assert sensor.sense_force() == pytest.approx(mass * 9.81, rel=0.05)  # N, about 2 N

@@ -12,6 +12,7 @@ import pytest
 import trimesh
 from scipy.spatial.transform import Rotation
 
+from server.core.physics.dynamics import DEFAULT_MAX_TORQUE
 from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
 from server.core.model.motor import MotorZ
 from server.core.model.parts import Ball, Box
@@ -46,7 +47,8 @@ def test_a_hands_urdf_loads_into_pybullet_with_every_part_where_the_server_has_i
     urdf = _unzipped(robot_urdf(scene, "h"), tmp_path)
     client = pybullet.connect(pybullet.DIRECT)
     try:
-        body = pybullet.loadURDF(str(urdf), hand.position, hand.quaternion, useFixedBase=True,
+        unit = scene.physics.unit  # the file is in metres
+        body = pybullet.loadURDF(str(urdf), np.asarray(hand.position) * unit, hand.quaternion, useFixedBase=True,
                                  physicsClientId=client)
         links = {}
         named = {file_names(hand).get(m.id, m.id): m for m in hand.get_motors()}
@@ -64,7 +66,7 @@ def test_a_hands_urdf_loads_into_pybullet_with_every_part_where_the_server_has_i
                                           physicsClientId=client)
             offset, _ = placed[part.id]
             where = np.asarray(state[4]) + Rotation.from_quat(state[5]).apply(offset)
-            assert where == pytest.approx(part.world_pose()[0], abs=1e-6), part.id
+            assert where == pytest.approx(np.asarray(part.world_pose()[0]) * unit, abs=1e-6), part.id
     finally:
         pybullet.disconnect(client)
 
@@ -105,11 +107,13 @@ def test_a_palm_weighs_its_volume_times_the_density_at_its_centre(scene, tmp_pat
     robot = Robot(scene, "h")
     box = Box(scene, "b", 2, 1, 0.5)
     box.attach_to_slot(robot)
-    scene.set_physics("dynamic", {"density": 300})
+    scene.set_physics("dynamic", {"density": 300, "unit": 0.1})  # a box of 20 × 10 × 5 cm
     link = [l for l in ET.parse(_unzipped(robot_urdf(scene, "h"), tmp_path)).getroot()
             .findall("link") if l.get("name") == "b"][0]
-    assert float(link.find("inertial/mass").get("value")) == pytest.approx(2 * 1 * 0.5 * 300)
-    assert float(link.find("inertial/inertia").get("ixx")) == pytest.approx(300 / 12 * (1 + 0.25))
+    mass = 0.2 * 0.1 * 0.05 * 300
+    assert float(link.find("inertial/mass").get("value")) == pytest.approx(mass)
+    assert float(link.find("inertial/inertia").get("ixx")) == pytest.approx(mass / 12 * (0.1 ** 2 + 0.05 ** 2))
+    assert float(link.find("collision/geometry/box").get("size").split()[0]) == pytest.approx(0.2)
 
 
 def test_an_unlimited_motor_is_a_continuous_joint(scene, tmp_path):
@@ -129,7 +133,9 @@ def test_a_hands_glb_opens_in_trimesh_with_the_hands_bounds(scene, kind):
     parts = [p for p in hand.get_parts() if p.physical]
     assert set(opened.graph.nodes_geometry) == {p.id for p in parts}
     corners = np.concatenate([_drawn_corners(p) for p in parts])
-    assert opened.bounds == pytest.approx(np.array([corners.min(axis=0), corners.max(axis=0)]), abs=1e-4)
+    metres = np.array([corners.min(axis=0), corners.max(axis=0)]) * scene.physics.unit
+    assert opened.bounds == pytest.approx(metres, abs=1e-5)
+    assert 0.15 < np.ptp(opened.bounds, axis=0).max() < 0.25  # a human hand's size
 
 
 def _drawn_corners(part):
@@ -170,7 +176,7 @@ def test_a_robots_glb_is_a_node_per_link_with_local_transforms(scene):
     assert parents["h"] == opened.graph.base_frame
     local, _ = opened.graph.get(finger.id, f"{spread.id}.link")
     world, _ = opened.graph.get(finger.id)
-    assert world[:3, 3] == pytest.approx(np.asarray(finger.world_pose()[0]), abs=1e-9)
+    assert world[:3, 3] == pytest.approx(np.asarray(finger.world_pose()[0]) * scene.physics.unit, abs=1e-9)
     assert not np.allclose(local, world)  # local transforms, not world poses
 
 
@@ -261,3 +267,17 @@ def test_the_mjcf_compiles_in_mujoco_with_an_actuator_per_leading_motor(tmp_path
     assert [model.actuator(a).name for a in range(model.nu)] == leaders
     assert model.neq == len(joints) - len(leaders)  # each follower, an equality on its leader
     scene.close()
+
+
+@pytest.mark.parametrize("kind", HANDS)
+def test_a_1_0_hand_exports_at_a_human_hands_size_weight_and_torque(scene, kind, tmp_path):
+    hand = kind(scene, "h", True)
+    hand.flex_fingers(0)
+    hand.spread_fingers(0)
+    urdf = ET.parse(_unzipped(robot_urdf(scene, "h"), tmp_path)).getroot()
+    mass = sum(float(m.get("value")) for m in urdf.iter("mass"))
+    efforts = {float(limit.get("effort")) for limit in urdf.iter("limit")}
+    opened = trimesh.load(io.BytesIO(robot_glb(scene, "h")), file_type="glb")
+    length = np.ptp(opened.bounds, axis=0).max()
+    assert 0.15 < length < 0.25 and 0.2 < mass < 1.0  # metres and kilograms
+    assert efforts == {DEFAULT_MAX_TORQUE}  # N·m, a small servo's

@@ -41,8 +41,10 @@ def test_a_leader_stopped_by_an_object_stops_its_followers(scene):
     wall = Box(scene, "wall", 0.5, 3.0, 3.0)
     wall.set_static()
     wall.set_position((-0.9, 3.8, 0.0))  # in the way of the first segment turning left
-    a.set_max_torque(50.0)
-    scene.set_physics("dynamic", {"gravity": 0.0})
+    a.set_max_torque(50.0)  # N·m: a finger of metres and kilograms, its followers strong
+    b.set_max_torque(2e4)
+    c.set_max_torque(2e4)
+    scene.set_physics("dynamic", {"gravity": 0.0, "unit": 1.0})
     a.set_angle(1.4)
     settle(scene)
     assert a.angle < 1.0  # the wall holds the first segment
