@@ -10,6 +10,7 @@ import yourdfpy
 
 from server.core.kit.limits import DEFAULT
 from server.core.kit.math3d import to_matrix
+from server.core.model.hands import EdgedHand
 from server.core.model.imported import ImportedRobot, RobotLink
 from server.core.physics.assets import AssetLibrary
 from server.core.physics.robot_archive import open_archive
@@ -131,3 +132,19 @@ def test_an_mjcf_hands_bodies_sit_where_mujoco_puts_them(lab, library):
         ours = compose(links[body].world_pose(), ((0.0, 0.0, -anchor / unit), (0.0, 0.0, 0.0, 1.0)))
         assert np.allclose(np.asarray(ours[0]) * unit, position, atol=1e-9), body
         assert np.allclose(np.asarray(to_matrix(ours[1])), np.asarray(to_matrix(quaternion)), atol=1e-9), body
+
+
+def test_beside_a_1_0_hand_an_imported_hand_keeps_its_metres(lab, hand_file):
+    edged = EdgedHand(lab, "c1.h", True)
+    edged.flex_fingers(0)
+    edged.spread_fingers(0)
+    robot = ImportedRobot(lab, "c1.1", hand_file)
+    robot.set_position((4.0, 0.0, 0.0))
+    lab.tick(1 / 60)
+
+    def extent(parts):  # metres along y, the fingers' way for both hands
+        boxes = [lab.bodies.physics.aabb(p.id) for p in parts if p.physical]
+        return (max(b[1][1] for b in boxes) - min(b[0][1] for b in boxes)) * lab.physics.unit
+    palm = next(p for p in robot.get_parts() if isinstance(p, RobotLink) and p.name == "palm")
+    assert extent([palm]) == pytest.approx(hand_files.PALM[1], abs=0.002)  # 10 cm, as its file says
+    assert extent(edged.get_parts()) == pytest.approx(0.19, abs=0.01)  # a human hand's
