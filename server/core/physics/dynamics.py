@@ -15,9 +15,9 @@ Defaults, and why (:class:`Physics`):
   things: gravity (m/s²), masses (kg), densities (kg/m³), torques (N·m) and forces (N).
   By default a 1.0 hand is a human hand's size (palm to tip 0.19 m); a robot imported
   from a file in metres keeps its size beside it. Bullet itself works in scene units of
-  length and the mass of a cube of water a scene unit on a side (:class:`BulletUnits`): a
-  1.0 hand weighs in it what it weighed before units, and one conversion at Bullet's
-  door keeps the solver's figures as they were tuned.
+  length and masses of unit³ kg (:class:`BulletUnits`: a density in kg/m³ is the same
+  number in it), so a 1.0 hand's figures in Bullet are near what they were before units
+  and one conversion at Bullet's door keeps the solver's figures as they were tuned.
 - ``gravity`` 9.81 m/s² down (−Y).
 - ``substeps`` 5: physics steps of 1/300 s (five per 60 Hz tick). PyBullet's grasping
   examples step at 240 Hz or more; fewer steps let fingers sink into what they squeeze.
@@ -89,7 +89,7 @@ SPINNING, ROLLING = 0.2, 0.002  # of a free body's lateral friction (robots and 
 BREAKING_THRESHOLD = 0.02  # Bullet's own: contacts persist while resting (kinematic: 0.0005)
 # What a motor drives with unless setMaxTorque (or a robot file's effort) says otherwise
 # (N·m): a small servo's, enough for every bundled hand at the default unit to hold its
-# fingers level and close on a ball of its own size (about 40 g) under 9.81 m/s². One
+# fingers level and close on a ball of its own size (about 50 g) under 9.81 m/s². One
 # figure for every motor: the drawn sizes of the 1.0 motors are pictures, not actuators (a
 # round finger's spread motor is drawn with size 0), so a designer gives real actuators
 # their torques.

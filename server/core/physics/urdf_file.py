@@ -15,8 +15,9 @@ server has it. The base sits at the file's origin: load it at the robot's pose.
 - Inertials: the part's mass (``setMass``, else its volume × the scene's density, as
   dynamic mode weighs it), at the centre of its volume, with the exact inertia of its
   shape (Bullet itself takes a hull's inertia from its bounding box and recomputes it on
-  loading unless told ``URDF_USE_INERTIA_FROM_FILE``). A link without a part weighs
-  BETWEEN_MASS, a base without one MOUNT_MASS, as in dynamic mode.
+  loading unless told ``URDF_USE_INERTIA_FROM_FILE``). A link or base without a part
+  weighs what dynamic mode gives it (:func:`.dynamics.tree_masses`), as a ball of
+  SHAPELESS_RADIUS.
 - Limits: ``effort`` is the motor's torque (N·m); ``velocity`` is required by URDF but
   the server's motors have no speed limit: NO_SPEED_LIMIT says so.
 - Colours: a part's colour as a material (CSS names, ``#hex``, ``0xRRGGBB``).
