@@ -281,3 +281,19 @@ def test_a_1_0_hand_exports_at_a_human_hands_size_weight_and_torque(scene, kind,
     length = np.ptp(opened.bounds, axis=0).max()
     assert 0.15 < length < 0.25 and 0.2 < mass < 1.0  # metres and kilograms
     assert efforts == {DEFAULT_MAX_TORQUE}  # N·m, a small servo's
+
+
+@pytest.mark.parametrize("kind", HANDS)
+def test_a_1_0_hands_mjcf_holds_its_aim_in_mujoco(scene, kind, tmp_path):
+    import mujoco
+    kind(scene, "h", True)
+    zipfile.ZipFile(io.BytesIO(robot_mjcf(scene, "h"))).extractall(tmp_path)
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "h" / "robot.xml"))
+    data = mujoco.MjData(model)
+    data.ctrl[:] = 0.8  # every actuator's aim (a joint's limits may stop it short)
+    for _ in range(1500):  # 3 s of MuJoCo's own steps
+        mujoco.mj_step(model, data)
+    joints = [model.actuator_trnid[a, 0] for a in range(model.nu)]
+    aims = np.clip(0.8, model.jnt_range[joints, 0], model.jnt_range[joints, 1])
+    reached = data.qpos[[model.jnt_qposadr[j] for j in joints]]
+    assert np.all(np.isfinite(data.qpos)) and np.abs(reached - aims).max() < 0.06  # not flung
