@@ -70,14 +70,16 @@ class Link:
 
     def stretched(self, factor: float) -> Link:
         """The same link with every length ``factor`` times as long (its masses kept)."""
-        return replace(self, origin=_longer(self.origin, factor), shape=_longer(self.shape, factor),
+        return replace(self, origin=stretched_pose(self.origin, factor),
+                       shape=stretched_pose(self.shape, factor),
                        geometry=None if self.geometry is None else scaled(self.geometry, (factor,) * 3),
                        scale=tuple(s * factor for s in self.scale),
                        centre=None if self.centre is None else tuple(c * factor for c in self.centre),
                        inertia=None if self.inertia is None else tuple(i * factor ** 2 for i in self.inertia))
 
 
-def _longer(pose: Pose, factor: float) -> Pose:
+def stretched_pose(pose: Pose, factor: float) -> Pose:
+    """A pose whose place is ``factor`` times as far from its frame's origin."""
     return tuple(p * factor for p in pose[0]), pose[1]  # type: ignore[return-value]
 
 

@@ -254,7 +254,7 @@ class Dynamics:
         :meth:`drive` only), and for a robot its mount (the constraint's id)."""
         p, client = self.p, self.client
         self._surface(body, tree)
-        self._weigh(body, tree)
+        self._note_moving(body, tree)
         # Bullet gives a link without a shape no inertia at all, and a joint between two
         # such turns the whole motor's torque into spin of nothing: a motor then holds any
         # load whatever its torque. They get that of a small ball of their mass.
@@ -287,7 +287,7 @@ class Dynamics:
         self._put(mount, base_pose)  # (Bullet's own bound lets a heavy hand sink)
         return mount
 
-    def _weigh(self, body: int, tree: Articulation) -> None:
+    def _note_moving(self, body: int, tree: Articulation) -> None:
         """Note a tree with parts that moves (the solver's tolerance is kept from then on)."""
         if not tree.static and (tree.base_geometry is not None or
                                 any(link.geometry is not None for link in tree.links)):

@@ -24,7 +24,7 @@ from ..kit.math3d import ORIGIN, Pose, Quat, Vec3, axis_angle, compose
 from ..model.imported import ImportedRobot
 from ..model.robot import Robot
 from ..model.structure import base_pose, structure_of
-from ..physics.articulation import NO_POSE, Articulation
+from ..physics.articulation import NO_POSE, Articulation, stretched_pose
 from ..physics.assets import AssetLibrary
 from ..physics.glb_file import DrawnLink, DrawnPart, robot_glb_bytes
 from ..physics.dynamics import tree_masses
@@ -149,9 +149,8 @@ def glb_job(scene: Scene, robot_id: str) -> GlbJob:
         links.append(DrawnLink(titles[k + 1], parent, compose(link.origin, turn),
                                drawn(link.part, link.geometry, link.shape)))
     root = scene.nodes[tree.root]
-    (x, y, z), rotation = base_pose(root)
-    unit = scene.physics.unit
-    return GlbJob(names.get(root.id, root.id), ((x * unit, y * unit, z * unit), rotation), tuple(links))
+    return GlbJob(names.get(root.id, root.id), stretched_pose(base_pose(root), scene.physics.unit),
+                  tuple(links))
 
 
 def packed(job: UrdfJob | GlbJob) -> bytes:
