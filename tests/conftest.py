@@ -191,3 +191,9 @@ def alive(pid: int) -> bool:
         return Path(f"/proc/{pid}/stat").read_text().split(") ")[1][0] != "Z"
     except OSError:
         return False
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Files marked ``long`` go to the workers first (a stable sort keeps every other order):
+    dealt out last, one long file kept a worker busy after the others had finished."""
+    items.sort(key=lambda item: item.get_closest_marker("long") is None)

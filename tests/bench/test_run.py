@@ -13,9 +13,11 @@ from bench.report import BEGIN, END, TARGETS
 from bench.run import commit
 from tests.conftest import ROOT
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 
-# The whole bench on tiny scenes: 55-85 s on a 2-core machine alongside the rest of the
-# suite; its own hang guard leaves room for a machine several times slower.
+
+# The whole bench on tiny scenes (its measures through servers side by side): 50 s alone on
+# a 2-core machine; its own hang guard leaves room for a machine several times slower.
 @pytest.mark.timeout(900)
 def test_bench_quick_writes_every_figure(tmp_path):
     subprocess.run(["make", "-s", "bench-quick", f"BENCH_OUT={tmp_path}"], cwd=ROOT, check=True,

@@ -18,6 +18,8 @@ import virtual_prosthetics as vp
 from tests.conftest import WAIT_SECONDS, RunningServer, crash_server, run_program, start_server, stop_server
 from tests.features.fuzz import CASES
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 
 def glb() -> bytes:
     return trimesh.creation.icosphere(1, 0.2).export(file_type="glb")

@@ -8,6 +8,8 @@ import pytest
 from ..conftest import WAIT_SECONDS, start_server, stop_server
 from .conftest import open_page, open_viewer, wait_until
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 CONTROL, VIEW = "page-control-token", "page-view-token"
 
 

@@ -18,6 +18,8 @@ from tests.conftest import WAIT_SECONDS, free_port
 
 from .conftest import open_page, open_viewer, wait_until
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "web" / "examples"
 ASSETS = EXAMPLES.parents[1] / "assets" / "gltf"
 

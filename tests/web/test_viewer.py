@@ -12,6 +12,7 @@ from tests.conftest import start_server, stop_server
 from .conftest import open_page, open_viewer, red_box_on_a_motor, wait_until
 from .picture import DEFAULT_CAMERA, Picture, background_like, project, reddish
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 
 
 def settled(page, motor_id, angle):

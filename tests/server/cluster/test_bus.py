@@ -19,6 +19,8 @@ import virtual_prosthetics as vp
 from tests.conftest import WAIT_SECONDS, RunningServer, eventually
 from tests.server.cluster.conftest import BusServer, Cluster, bus_server
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 
 @pytest.fixture
 def outage(tmp_path: Path) -> Iterator[tuple[BusServer, Cluster]]:

@@ -23,6 +23,8 @@ from server.cluster.leases import worker_lives
 from tests.server.web.ws_requests import request_all, wait_ticks
 from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus, start_worker
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 WORKER_CORES = 0.2  # of which 80 %: room for three scenes not measured yet (0.05 each)
 
 

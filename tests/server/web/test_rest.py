@@ -19,6 +19,8 @@ from tests.conftest import WAIT_SECONDS, crash_server, eventually, start_server,
 
 from .ws_requests import request_all, wait_ticks
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 
 def test_health(server):
     health = server.get("/api/health")

@@ -19,6 +19,8 @@ from server.web.saving import SceneSaver
 from server.web.scene_store import SceneStore
 from tests.conftest import WAIT_SECONDS, crash_server, eventually, start_server, stop_server, unwritable
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 
 @pytest.fixture
 def kept(tmp_path):

@@ -14,6 +14,8 @@ from tests.conftest import WAIT_SECONDS, eventually, start_server, stop_server
 
 from .ws_requests import next_message, request_all, wait_ticks
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 
 def open_client(server, scene, role="controller"):
     ws = connect(f"{server.ws}/ws?scene={scene}&role={role}", max_size=None).__enter__()

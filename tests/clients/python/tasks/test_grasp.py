@@ -8,6 +8,8 @@ import virtual_prosthetics as vp
 from virtual_prosthetics.tasks import grasp
 from virtual_prosthetics.tasks.__main__ import main
 
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
 
 @pytest.mark.parametrize("hand", ["edged", "round", "anthro"])
 def test_the_baseline_lifts_and_holds_the_ball_and_the_cube_and_leaves_the_scene_as_it_was(
