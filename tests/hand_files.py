@@ -73,6 +73,25 @@ def hand_urdf(mesh_ref: str = "package://handpkg/meshes/tip.stl", extra: str = "
     return "\n".join(parts) + extra + "\n</robot>\n"
 
 
+# a gripper's jaws on the palm: sliding (prismatic) along x, the second mirroring the first
+SLIDE_LIMITS = (0.0, 0.03)  # m
+SLIDE_EFFORT = 15.0         # N
+JAWS = f"""
+  <link name="jaw_a"><visual><geometry><box size="0.01 0.02 0.02"/></geometry></visual>
+    <collision><geometry><box size="0.01 0.02 0.02"/></geometry></collision>
+    <inertial><mass value="0.01"/><inertia ixx="1e-6" iyy="1e-6" izz="1e-6" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="jaw_b"><visual><geometry><box size="0.01 0.02 0.02"/></geometry></visual>
+    <collision><geometry><box size="0.01 0.02 0.02"/></geometry></collision>
+    <inertial><mass value="0.01"/><inertia ixx="1e-6" iyy="1e-6" izz="1e-6" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="jaw_a_slide" type="prismatic"><parent link="palm"/><child link="jaw_a"/>
+    <origin xyz="-0.04 -0.06 0.02" rpy="0 0 0.3"/><axis xyz="1 0 0"/>
+    <limit lower="{SLIDE_LIMITS[0]}" upper="{SLIDE_LIMITS[1]}" effort="{SLIDE_EFFORT}" velocity="0.1"/></joint>
+  <joint name="jaw_b_slide" type="prismatic"><parent link="palm"/><child link="jaw_b"/>
+    <origin xyz="0.04 -0.06 0.02"/><axis xyz="-1 0 0"/>
+    <limit lower="{SLIDE_LIMITS[0]}" upper="{SLIDE_LIMITS[1]}" effort="{SLIDE_EFFORT}" velocity="0.1"/>
+    <mimic joint="jaw_a_slide" multiplier="1" offset="0.001"/></joint>"""
+
+
 def motor_names() -> list[str]:
     """The hand's joints that become motors, in the order the robot lists them."""
     return [f"{digit}_{segment}_joint" for digit in DIGITS for segment in ("proximal", "middle", "distal")]
@@ -87,20 +106,21 @@ def zipped(files: dict[str, bytes | str]) -> bytes:
     return out.getvalue()
 
 
-def hand_zip() -> bytes:
-    """The hand as a ROS package would ship it: ``handpkg/urdf/hand.urdf`` and its mesh."""
+def hand_zip(extra: str = "") -> bytes:
+    """The hand as a ROS package would ship it: ``handpkg/urdf/hand.urdf`` and its mesh
+    (``extra``: more of the URDF, such as :data:`JAWS`)."""
     return zipped({"handpkg/package.xml": "<package><name>handpkg</name></package>",
-                   "handpkg/urdf/hand.urdf": hand_urdf(),
+                   "handpkg/urdf/hand.urdf": hand_urdf(extra=extra),
                    "handpkg/meshes/tip.stl": tip_stl()})
 
 
-def stored_hand(library) -> str:
+def stored_hand(library, extra: str = "") -> str:
     """The hand read and kept in an asset library (as an upload is); its robot file's name."""
     from server.core.kit.limits import DEFAULT
     from server.core.physics.robot_archive import open_archive
     from server.core.physics.urdf_reading import read_urdf
 
-    robot = read_urdf(open_archive(hand_zip(), None, DEFAULT), DEFAULT,
+    robot = read_urdf(open_archive(hand_zip(extra), None, DEFAULT), DEFAULT,
                       lambda glb: library.store(glb, DEFAULT)["name"])
     return library.store_robot(robot, DEFAULT)["name"]
 

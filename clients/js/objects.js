@@ -197,6 +197,12 @@ export class Motor extends Part {
 	}
 }
 
+// Not in 1.0: a motor that slides along its axis (a linear actuator, an imported prismatic
+// joint). Its angle, min and max are lengths in scene units; setMaxTorque sets its force (N).
+export class Slider extends Motor {
+	static vpType = 'Slider';
+}
+
 // MotorX(min, max, def, width, height) and its Y and Z kin.
 function named(type, Class) {
 	return Object.defineProperty(Class, 'name', { value: type });

@@ -19,7 +19,7 @@ const STARTED = performance.now();
 export const SCENE_ID = 'scene';   // the id scene calls are made on
 
 export const CLASSES = Object.freeze({
-	Slot: objects.Slot, Part: objects.Part, Motor: objects.Motor, MotorX: objects.MotorX,
+	Slot: objects.Slot, Part: objects.Part, Motor: objects.Motor, Slider: objects.Slider, MotorX: objects.MotorX,
 	MotorY: objects.MotorY, MotorZ: objects.MotorZ, Ball: objects.Ball, Box: objects.Box,
 	EdgedFinger: objects.EdgedFinger, EdgedTip: objects.EdgedTip, EdgedPalm: objects.EdgedPalm,
 	GLTFPart: objects.GLTFPart, RoundFinger: objects.RoundFinger, RoundPalm: objects.RoundPalm,

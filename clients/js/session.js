@@ -12,13 +12,16 @@ import { encode } from './codec.js';
 import { ConnectionLost } from './errors.js';
 import { callMessage, createMessage } from './messages.js';
 import { Mirror } from './mirror.js';
-import { baseRotation, shownRotation } from './pose.js';
+import { baseRotation, scaleAbove, shownPosition, shownRotation } from './pose.js';
 import { Prediction } from './prediction.js';
 import { ProtocolCore } from './protocol.js';
 import { DEFAULT_SECONDS, within } from './waiting.js';
 
 const ONE = [1, 1, 1];
 const base = new THREE.Quaternion();
+const scale = new THREE.Vector3();  // the scales above a slider, while it is posed
+const slid = new THREE.Vector3();   // how far a slider moved what hangs on it
+const ZERO = new THREE.Vector3();
 const POSED = ['position', 'quaternion', 'angle', 'flipped', 'scale', 'visible'];
 const TEXT_BYTES = 512 * 1024;   // well under the server's messageBytes (1 MiB)
 
@@ -128,6 +131,7 @@ export class Session {
 
 	register(object, id, type) {
 		object.vp = { id, type, session: this, base: new THREE.Quaternion(), angle: 0,
+			basePosition: new THREE.Vector3(),
 			known: new Float64Array(10), visible: true, slots: 0 };
 		object.name = id;
 		this.objects.set(id, object);
@@ -193,9 +197,11 @@ export class Session {
 		return node.children.filter((child) => child.startsWith(prefix)).length;
 	}
 
-	// An object posed as its node: position, base rotation and a motor's turn.
+	// An object posed as its node: position, base rotation and a motor's turn (or slide).
 	pose(object, node) {
 		if (node.position) object.position.fromArray(node.position);
+		if (node.position) object.vp.basePosition.fromArray(node.position);
+		if (node.slides) object.vp.slides = true;
 		if (node.quaternion) object.vp.base.fromArray(node.quaternion);
 		if (node.angle !== undefined) object.vp.angle = node.angle;
 		if (node.axis) object.vp.axis = node.axis;
@@ -205,9 +211,14 @@ export class Session {
 		this.turn(object);
 	}
 
-	// The quaternion an object shows: its base rotation, a motor turned about its axis.
+	// The quaternion an object shows: its base rotation, a motor turned about its axis (a
+	// slider's position: moved along it).
 	turn(object) {
 		shownRotation(object.quaternion, object.vp.base, object.vp);
+		if (object.vp.slides) {
+			shownPosition(object.position, object.vp.basePosition, object.vp.base, object.vp,
+				scaleAbove(scale, object));
+		}
 		this.remember(object);
 	}
 
@@ -218,6 +229,7 @@ export class Session {
 			const child = this.objects.get(childId);
 			if (child && child.parent !== object) object.add(child);
 		}
+		if (object.vp.slides) this.turn(object);   // how far it moves: by the scales above it
 	}
 
 	// --- transforms a page wrote directly -------------------------------------------------
@@ -253,7 +265,12 @@ export class Session {
 	transform(object) {
 		baseRotation(base, object.quaternion, object.vp);
 		object.vp.base.copy(base);
-		const entry = [...object.position.toArray(), ...base.toArray()];
+		const position = object.position.clone();
+		if (object.vp.slides) {   // less what the slider moved it by
+			position.sub(shownPosition(slid, ZERO, base, object.vp, scaleAbove(scale, object)));
+			object.vp.basePosition.copy(position);
+		}
+		const entry = [...position.toArray(), ...base.toArray()];
 		const s = object.scale, known = object.vp.known;
 		if (s.x !== known[7] || s.y !== known[8] || s.z !== known[9]) entry.push(s.x, s.y, s.z);
 		return entry;

@@ -9,7 +9,7 @@
 export * from 'three';
 export { GUI } from 'lil-gui';
 export { AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, GLTFPart, Motor, SceneMesh,
-	MotorX, MotorY, MotorZ, Part, RoundFinger, RoundPalm, Slot } from './objects.js';
+	MotorX, MotorY, MotorZ, Part, RoundFinger, RoundPalm, Slider, Slot } from './objects.js';
 export { AnthroHand, EdgedHand, ImportedRobot, RoundHand, Robot } from './robot.js';
 export { Sensor } from './sensor.js';
 export { ConnectionLost, ProtocolError, ServerError, Timeout, VPError } from './errors.js';

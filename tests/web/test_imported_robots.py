@@ -3,6 +3,7 @@ colours, where the robot's kinematics put it, and moving with its motors."""
 
 from __future__ import annotations
 
+import math
 import os
 
 import virtual_prosthetics as vp
@@ -53,6 +54,33 @@ def test_an_imported_hand_is_drawn_in_its_files_colours_and_curls(browser, pages
         (tmp_path / "curled.png").write_bytes(viewer.screenshot())
         print("pictures in", tmp_path)
     assert not reddish(curled.at(project(tip, *CAMERA, picture.size)))
+
+
+def test_sliding_jaws_are_shown_where_the_server_puts_them(browser, pages, server, scene,
+                                                           scene_name, tmp_path):
+    archive = tmp_path / "jaws.zip"
+    archive.write_bytes(hand_files.hand_zip(hand_files.JAWS))
+    hand = vp.load_robot(archive)  # at the default unit: the robot scaled 18.4 times
+    scene.sync()
+    report = server.get(f"/api/scenes/{scene_name}/robots/{hand.id}")
+    jaws = {p["id"]: p["world"]["position"] for p in report["parts"]
+            if p["type"] == "RobotLink" and p["name"].startswith("jaw")}
+    slides = [m for m in report["motors"] if m["type"] == "Slider"]
+    assert len(jaws) == 2 and [m["name"] for m in slides] == ["jaw_a_slide", "jaw_b_slide"]
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(viewer, DRAWN, list(jaws))
+    unit = vp.get_physics()["unit"]
+    next(m for m in hand.get_motors() if m.id == slides[0]["id"]).set_angle(0.02 / unit)  # 2 cm
+    scene.sync()
+    for part in server.get(f"/api/scenes/{scene_name}/robots/{hand.id}")["parts"]:
+        if part["id"] not in jaws:
+            continue
+        where = part["world"]["position"]  # 2 cm from where it was (the other jaw 2.1: it follows)
+        assert 0.019 < math.dist(where, jaws[part["id"]]) * unit < 0.022
+        wait_until(viewer, """([id, where]) => { const o = VP.objects.get(id); o.updateWorldMatrix(true, false);
+                               const e = o.matrixWorld.elements;
+                               return Math.hypot(e[12] - where[0], e[13] - where[1], e[14] - where[2]) < 1e-6; }""",
+                   [part["id"], where])
 
 
 DROP = """async ([data, name, x, y]) => {

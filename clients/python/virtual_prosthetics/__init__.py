@@ -14,7 +14,7 @@ from .errors import (ConnectionLost, ProtocolError, ServerError, ServerWarning, 
                      VPError)
 from .objects import (AnthroPalm, AnthroThumb, Ball, Box, EdgedFinger, EdgedPalm, EdgedTip,
                       GLTFPart, Motor, MotorX, MotorY, MotorZ, Node, Part, RoundFinger,
-                      RoundPalm, SceneMesh, Slot)
+                      RoundPalm, SceneMesh, Slider, Slot)
 from .robots import AnthroHand, EdgedHand, ImportedRobot, RoundHand, Robot
 from .recordings import Recording, start_recording, stop_recording
 from .runtime import connect, get_time, run, set_animation
@@ -72,7 +72,7 @@ def set_camera_target(*target: float) -> None:
 __all__ = [
     "AnthroHand", "AnthroPalm", "AnthroThumb", "GLTFPart", "RoundFinger", "RoundHand",
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
-    "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor",
+    "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor", "Slider",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset", "ImportedRobot", "load_robot",
     "set_physics", "get_physics", "pause", "resume", "step", "Recording", "start_recording", "stop_recording",

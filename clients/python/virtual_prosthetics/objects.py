@@ -195,6 +195,14 @@ class Motor(Part):
         return self
 
 
+class Slider(Motor):
+    """Not in 1.0: ``Slider(axis, min, max, def)``, a motor that slides along its axis (a
+    linear actuator, an imported prismatic joint). Its angle, min and max are lengths in
+    scene units; ``set_max_torque`` sets its force bound (N)."""
+
+    _type = "Slider"
+
+
 class _AxisMotor(Motor):
     def __init__(self, min: float | None = None, max: float | None = None,
                  default: float | None = None, width: float | None = None,

@@ -17,7 +17,7 @@ from .sensor import Sensor
 
 # The class of every type (a scene makes objects of them for ids this client did not make).
 CLASSES: dict[str, type[Node]] = {cls._type: cls for cls in (
-    objects.Slot, objects.Part, objects.Motor, objects.MotorX, objects.MotorY, objects.MotorZ,
+    objects.Slot, objects.Part, objects.Motor, objects.Slider, objects.MotorX, objects.MotorY, objects.MotorZ,
     objects.Ball, objects.Box, objects.EdgedFinger, objects.EdgedTip, objects.EdgedPalm,
     objects.GLTFPart, objects.RoundFinger, objects.RoundPalm, objects.AnthroPalm,
     objects.AnthroThumb, objects.SceneMesh, Sensor, Robot, EdgedHand, RoundHand, AnthroHand,

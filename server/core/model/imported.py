@@ -15,8 +15,8 @@ from __future__ import annotations
 from typing import Any
 
 from ..physics.assets import MeshFile
-from ..physics.robot_description import LinkDescription, RobotDescription
-from .motor import Motor, clamp
+from ..physics.robot_description import JointDescription, LinkDescription, RobotDescription
+from .motor import Motor, Slider, clamp
 from .node import Node, World
 from .parts import Part
 from .robot import Robot
@@ -91,8 +91,7 @@ class ImportedRobot(Robot):
             joint = link.joint
             holder: Node = self if link.parent < 0 else parts[link.parent]
             if joint is not None and joint.kind != "fixed":
-                motor = Motor(self.scene, self._next_id(), joint.axis, joint.lower, joint.upper,
-                              clamp(0.0, joint.lower, joint.upper))
+                motor = self._motor(joint)
                 motor.name = joint.name
                 motor.max_torque = joint.effort or None  # (no effort: the default's)
                 motor.position, motor.quaternion = joint.origin
@@ -104,8 +103,21 @@ class ImportedRobot(Robot):
             part._link(holder)
             parts.append(part)
         for coupling in description.couplings:
-            motors[coupling.follower].follow(motors[coupling.leader], coupling.ratio,
-                                             coupling.offset)
+            follower, leader = motors[coupling.follower], motors[coupling.leader]
+            into, out_of = self._length(follower), self._length(leader)
+            follower.follow(leader, coupling.ratio * into / out_of, coupling.offset * into)
+
+    def _motor(self, joint: JointDescription) -> Motor:
+        """A joint's motor: a Slider for a prismatic joint, its limits (the file's metres)
+        in scene units."""
+        kind = Slider if joint.kind == "prismatic" else Motor
+        into = self._length(kind)
+        lower, upper = joint.lower * into, joint.upper * into
+        return kind(self.scene, self._next_id(), joint.axis, lower, upper, clamp(0.0, lower, upper))
+
+    def _length(self, motor: Motor | type[Motor]) -> float:
+        """Scene units in one of the file's units of a motor's value (1 for an angle)."""
+        return self.scale[0] if motor.slides else 1.0
 
     def properties(self) -> dict[str, Any]:
         return {**super().properties(), "name": self.name}

@@ -1,4 +1,4 @@
-"""Motors: parts that turn about one axis within limits."""
+"""Motors: parts that turn about one axis within limits, or slide along it (:class:`Slider`)."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ from typing import Any
 
 from ...errors import Cycle, OutOfRange, WrongType
 from ..kit import math3d
-from ..kit.math3d import Pose
-from ..physics.dynamics import DEFAULT_MAX_TORQUE
+from ..kit.math3d import Pose, Vec3
+from ..physics.dynamics import DEFAULT_MAX_FORCE, DEFAULT_MAX_TORQUE
 from . import part_figures
 from .node import World
 from .parts import Part
@@ -31,6 +31,7 @@ class Motor(Part):
 
     type_name = "Motor"
     is_motor = True
+    slides = False  # a Slider's value is a length along its axis
 
     def __init__(self, scene: World, node_id: str, axis: math3d.Axis, min: float = -math.inf,
                  max: float = math.inf, default: float = 0.0) -> None:
@@ -177,3 +178,35 @@ class MotorY(AxisMotor):
 
 class MotorZ(AxisMotor):
     type_name = "MotorZ"
+
+
+class Slider(Motor):
+    """A motor that moves what hangs on it along its axis instead of turning it: a linear
+    actuator, or an imported prismatic (URDF) or slide (MJCF) joint.
+
+    Its value (``getAngle``/``setAngle``, the names the 1.0 API gives a motor's value) and
+    its limits are lengths in scene units, measured in the scene whatever the scales above
+    it; its bound in dynamic mode is a force in newtons (``setMaxTorque`` sets it).
+    """
+
+    type_name = "Slider"
+    slides = True
+
+    def local_pose(self) -> Pose:
+        direction = math3d.rotate(self.quaternion, math3d.unit_axis(self.axis))
+        along = (-self.angle if self.flipped else self.angle) / self._stretch(direction)
+        return tuple(p + d * along for p, d in zip(self.position, direction)), self.quaternion  # type: ignore[return-value]
+
+    def _stretch(self, direction: Vec3) -> float:
+        """How much the scales above stretch a length along ``direction`` (a parent's scale
+        stretches where its children sit)."""
+        if self.parent is None:
+            return 1.0
+        return math.hypot(*(d * s for d, s in zip(direction, self.parent.world_scale()))) or 1.0
+
+    def get_max_torque(self) -> float:
+        """The slider's force bound in dynamic mode (N)."""
+        return DEFAULT_MAX_FORCE if self.max_torque is None else self.max_torque
+
+    def properties(self) -> dict[str, Any]:
+        return {**super().properties(), "slides": True}

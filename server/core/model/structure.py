@@ -65,7 +65,7 @@ def _walk(node: Node, place: _Place, frame: Pose, scale: Vec3, links: list[Link]
 
 def _motor(motor: Any, place: _Place, before: Pose, scale: Vec3, links: list[Link]) -> None:
     """A motor: its joint rides on the one part it turns, or on a link of its own."""
-    joint = Joint(motor.id, _axis(motor.axis, motor.flipped), motor.min, motor.max)
+    joint = Joint(motor.id, _axis(motor.axis, motor.flipped), motor.min, motor.max, motor.slides)
     if place.pending is not None:  # two joints meet: the first gets a link of its own
         place = _Place(_add(links, place, NO_POSE, None, None))
     stops = _stops(motor)

@@ -21,7 +21,7 @@ from functools import cached_property
 from typing import Any, Callable
 
 from ...errors import LimitExceeded
-from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
+from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3, axis_angle
 from .geometry import scaled
 
 NO_POSE: Pose = (ORIGIN, IDENTITY)
@@ -44,12 +44,26 @@ def check_links(root: str, links: int) -> None:
 
 @dataclass(frozen=True)
 class Joint:
-    """A motor as a revolute joint: ``angle`` turns the link about ``axis``."""
+    """A motor as a joint: its value turns the link about ``axis`` (radians) or, for a
+    sliding motor, moves it along ``axis`` (scene units)."""
 
     motor: str   # the motor's node id
     axis: Vec3   # a unit axis of the joint frame, negated for a flipped motor
     lower: float
     upper: float
+    slides: bool = False  # a prismatic joint (its limits are lengths)
+
+    def motion(self, value: float) -> Pose:
+        """The joint's child frame in its joint frame at ``value`` (in the tree's lengths)."""
+        if self.slides:
+            return tuple(a * value for a in self.axis), IDENTITY  # type: ignore[return-value]
+        return ORIGIN, axis_angle(self.axis, value)
+
+    def stretched(self, factor: float) -> Joint:
+        """The joint of a tree ``factor`` times as long (a sliding joint's limits with it)."""
+        if not self.slides:
+            return self
+        return replace(self, lower=self.lower * factor, upper=self.upper * factor)
 
 
 @dataclass(frozen=True)
@@ -71,6 +85,7 @@ class Link:
     def stretched(self, factor: float) -> Link:
         """The same link with every length ``factor`` times as long (its masses kept)."""
         return replace(self, origin=stretched_pose(self.origin, factor),
+                       joint=None if self.joint is None else self.joint.stretched(factor),
                        shape=stretched_pose(self.shape, factor),
                        geometry=None if self.geometry is None else scaled(self.geometry, (factor,) * 3),
                        scale=tuple(s * factor for s in self.scale),
@@ -129,6 +144,11 @@ class Articulation:
         """(link index, joint) of every joint, in link order."""
         return [(k, link.joint) for k, link in enumerate(self.links) if link.joint is not None]
 
+    @cached_property
+    def sliding(self) -> tuple[bool, ...]:
+        """Which joints slide, in the order of :meth:`joints` (a tick drives them all)."""
+        return tuple(joint.slides for _, joint in self.joints())
+
 
 # --- PyBullet ----------------------------------------------------------------------------
 
@@ -138,11 +158,11 @@ BETWEEN_MASS = 1e-3      # a link where two joints meet, carrying nothing
 
 def multibody_arguments(tree: Articulation, base_pose: Pose,
                         shape_of: Callable[[dict[str, Any], Pose], int],
-                        revolute: int, fixed: int) -> dict[str, Any]:
+                        revolute: int, fixed: int, prismatic: int) -> dict[str, Any]:
     """``createMultiBody`` arguments for ``tree`` at ``base_pose``.
 
     ``shape_of(geometry, frame)`` gives a collision shape placed at ``frame`` in its link;
-    ``revolute`` and ``fixed`` are PyBullet's joint type constants.
+    ``revolute``, ``fixed`` and ``prismatic`` are PyBullet's joint type constants.
     """
     links = tree.links
     base_shape = -1 if tree.base_geometry is None else shape_of(tree.base_geometry, NO_POSE)
@@ -158,7 +178,8 @@ def multibody_arguments(tree: Articulation, base_pose: Pose,
         "linkInertialFramePositions": [link.shape[0] for link in links],
         "linkInertialFrameOrientations": [link.shape[1] for link in links],
         "linkParentIndices": [link.parent + 1 for link in links],  # PyBullet: 0 is the base
-        "linkJointTypes": [fixed if link.joint is None else revolute for link in links],
+        "linkJointTypes": [fixed if link.joint is None else prismatic if link.joint.slides
+                           else revolute for link in links],
         "linkJointAxis": [(0.0, 0.0, 1.0) if link.joint is None else link.joint.axis
                           for link in links],
     }

@@ -94,6 +94,7 @@ BREAKING_THRESHOLD = 0.02  # Bullet's own: contacts persist while resting (kinem
 # round finger's spread motor is drawn with size 0), so a designer gives real actuators
 # their torques.
 DEFAULT_MAX_TORQUE = 0.2
+DEFAULT_MAX_FORCE = 20.0  # N: a sliding motor's bound (a small linear actuator's)
 SLEEP_CROWD = 256  # free bodies past which resting ones sleep
 
 
@@ -227,6 +228,12 @@ class Dynamics:
         """The base's mass and every link's in Bullet's units, as :func:`tree_masses` weighs
         them; 0 for the base of a static tree (Bullet: fixed)."""
         base, links = tree_masses(tree, self.physics.density, self._volume, self.units.unit)
+        if tree.base_geometry is None and any(tree.sliding):
+            # a sliding motor's load reaches a base only through the solver (a turning one's
+            # through the tree itself): on a base of MOUNT_MASS, 155 times lighter than the
+            # block it held up, the mount sank 6 % of the block's size; as heavy as what
+            # hangs on it, the base holds still
+            base = max(base, sum(links))
         per = self.units.mass
         return (0.0 if tree.static else base / per), [mass / per for mass in links]
 
@@ -317,12 +324,14 @@ class Dynamics:
     # --- driving -----------------------------------------------------------------------
 
     def drive(self, body: int, joint_links: Sequence[int], targets: list[float],
-              torques: list[float]) -> None:
-        """Every motor of a tree toward its target, with at most its torque (N·m)."""
-        per = self.units.torque
+              torques: list[float], sliding: Sequence[bool]) -> None:
+        """Every motor of a tree toward its target, with at most its torque (N·m; a
+        sliding joint's: its force, N)."""
+        torque, force = self.units.torque, self.units.force
         self.p.setJointMotorControlArray(body, list(joint_links), self.p.POSITION_CONTROL,
                                          targetPositions=targets,
-                                         forces=[torque / per for torque in torques],
+                                         forces=[bound / (force if slides else torque)
+                                                 for bound, slides in zip(torques, sliding)],
                                          physicsClientId=self.client)
 
     def mount(self, constraint: int, pose: Pose) -> None:

@@ -150,7 +150,7 @@ class PhysicsWorld:
         client, dynamics = self._client, self.dynamics
         free = self._clearance is not None and not tree.mounted and not tree.static
         arguments = multibody_arguments(tree, base_pose, self._shape, pybullet.JOINT_REVOLUTE,
-                                        pybullet.JOINT_FIXED)
+                                        pybullet.JOINT_FIXED, pybullet.JOINT_PRISMATIC)
         if dynamics is not None:
             arguments["baseMass"], arguments["linkMasses"] = dynamics.masses(tree)
             base_centre, centres = dynamics.centres(tree)
@@ -287,10 +287,10 @@ class PhysicsWorld:
 
     def drive(self, root: str, targets: list[float], torques: list[float]) -> None:
         """Dynamic mode: the joints of the tree of ``root`` toward ``targets`` (in the order
-        of its joints), each with at most its torque."""
+        of its joints), each with at most its torque (a sliding joint's: its force)."""
         built = self._trees[root]
         if built.joints and self.dynamics is not None:
-            self.dynamics.drive(built.body, built.joint_links, targets, torques)
+            self.dynamics.drive(built.body, built.joint_links, targets, torques, built.tree.sliding)
 
     def motion(self, root: str, bullet_pose: Any = None) -> tuple[Pose | None, list[float]]:
         """Dynamic mode: where the base of the tree of ``root`` is (None: static) and its

@@ -33,6 +33,7 @@ from .urdf_file import Masses, drawn_mesh, file_stem, hull_mesh, inertial, link_
 # 50 N·m/rad, no armature and self-collision, MuJoCo's default step went unstable (NaN) in
 # 0.02-0.4 s; with these, every joint holds within 0.04 rad of its aim.
 POSITION_SPAN = 0.1  # rad
+SLIDE_SPAN = 0.01  # m: a slide joint's (its actuator's force over it)
 ARMATURE = 1e-4  # kg·m²
 DAMPING = 0.01  # N·m·s/rad
 
@@ -56,7 +57,8 @@ def mjcf_zip(tree: Articulation, name: str, masses: Masses, torques: Mapping[str
                      link_masses[k], asset, files, assets)
         if link.joint is not None:
             limited = math.isfinite(link.joint.lower) and math.isfinite(link.joint.upper)
-            joint = ET.Element("joint", name=names.get(link.joint.motor, link.joint.motor), type="hinge",
+            joint = ET.Element("joint", name=names.get(link.joint.motor, link.joint.motor),
+                               type="slide" if link.joint.slides else "hinge",
                                axis=_numbers(link.joint.axis), limited=str(limited).lower())
             if limited:
                 joint.set("range", _numbers((link.joint.lower, link.joint.upper)))
@@ -110,13 +112,14 @@ def _couplings(model: ET.Element, tree: Articulation, names: Mapping[str, str],
     equality, actuators = ET.Element("equality"), ET.Element("actuator")
     for _, joint in tree.joints():
         title = names.get(joint.motor, joint.motor)
+        span = SLIDE_SPAN if joint.slides else POSITION_SPAN
         if joint.motor in follows:
             leader, ratio, offset = follows[joint.motor]
             ET.SubElement(equality, "joint", joint1=title, joint2=names.get(leader, leader),
                           polycoef=_numbers((offset, ratio, 0.0, 0.0, 0.0)))
         else:
             torque = float(torques.get(joint.motor, 1.0))
-            ET.SubElement(actuators, "position", name=title, joint=title, kp=repr(torque / POSITION_SPAN),
+            ET.SubElement(actuators, "position", name=title, joint=title, kp=repr(torque / span),
                           forcelimited="true", forcerange=_numbers((-torque, torque)))
     for element in (equality, actuators):
         if len(element):

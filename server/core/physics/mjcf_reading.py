@@ -5,17 +5,17 @@ The model is compiled from the upload's files alone: every file the XML names (i
 meshes, textures, height fields, skins, and the ``meshdir``/``texturedir``/``assetdir``
 they are found in) must be a plain relative path to a member of the upload, checked before
 MuJoCo sees it (MuJoCo looks on the disk for a file it is not given). Then each body under
-the world becomes a link in the frame of its first joint; hinge joints become motors (a
-body with several gets a link for each), fixed bodies hold their link; ``<equality><joint>``
-and fixed tendons of two joints (held by an equality or driven by an actuator) become
-couplings; slide, ball and free joints are refused by name. Visual elements are geoms of
+the world becomes a link in the frame of its first joint; hinge joints become motors and
+slide joints sliders (a body with several gets a link for each), fixed bodies hold their
+link; ``<equality><joint>`` and fixed tendons of two joints (held by an equality or driven
+by an actuator) become couplings; ball and free joints are refused by name. Visual elements are geoms of
 groups 0-2, collision elements geoms that collide (``contype``/``conaffinity``).
 """
 
 from __future__ import annotations
 
 import posixpath
-from typing import Any
+from typing import Any, Iterable
 
 import numpy as np
 
@@ -49,11 +49,13 @@ def read_mjcf(archive: RobotArchive, limits: Limits, store: Store) -> RobotDescr
 
 
 def _model_files(archive: RobotArchive) -> dict[str, bytes]:
-    """The upload's files by their path from the model's folder, once every file the XML
-    files name is known to be one of them."""
-    folder = archive.folder
-    inside = {posixpath.relpath(path, folder or "."): data for path, data in archive.files.items()
-              if not folder or path.startswith(folder + "/")}
+    """The upload's files the model names (its includes, meshes, textures, height fields
+    and skins), by their path in the upload, once each is known to be one of them.
+
+    A path may climb out of the model's folder (``meshdir="../meshes"``) as long as it
+    stays inside the upload. MuJoCo's file system looks a file up by its name alone (it
+    drops the folders of the names it is given and asks for), so two different files of
+    one name cannot both be given: they are refused, naming both."""
     dirs: dict[str, str] = {}
     named: list[tuple[str, str]] = []
     pending, seen = [archive.description], set()
@@ -77,24 +79,40 @@ def _model_files(archive: RobotArchive) -> dict[str, bytes]:
                                    f"textures, height fields and skins name files here")
                 named.append((element.tag, _relative(name, "file")))
                 if element.tag == "include":
-                    pending.append(inside_upload(posixpath.join(folder, name), name))
-    for tag, name in named:
-        kind = FILE_ELEMENTS[tag]
-        base = "" if kind is None else dirs.get(kind, dirs.get("assetdir", ""))
-        path = posixpath.normpath(posixpath.join(base, name))
-        if path not in inside:
-            raise BadAsset(f"<{tag} file={name!r}>: {path!r} is not in the upload")
-    return inside
+                    pending.append(_named_path(archive, "include", name, dirs))
+    return _by_name({_named_path(archive, tag, name, dirs): tag for tag, name in named}, archive)
+
+
+def _named_path(archive: RobotArchive, tag: str, name: str, dirs: dict[str, str]) -> str:
+    """Where in the upload a file named by a ``<tag>`` is (its kind's folder first)."""
+    kind = FILE_ELEMENTS[tag]
+    base = "" if kind is None else dirs.get(kind, dirs.get("assetdir", ""))
+    path = inside_upload(posixpath.join(archive.folder, base, name), name)
+    if path not in archive.files:
+        raise BadAsset(f"<{tag} file={name!r}>: {path!r} is not in the upload")
+    return path
+
+
+def _by_name(paths: Iterable[str], archive: RobotArchive) -> dict[str, bytes]:
+    """The files at ``paths``, refused if two different ones share a name."""
+    files: dict[str, bytes] = {}
+    first: dict[str, str] = {}
+    for path in paths:
+        other = first.setdefault(posixpath.basename(path), path)
+        if other != path and archive.files[other] != archive.files[path]:
+            raise BadAsset(f"{other!r} and {path!r} are different files of one name: MuJoCo "
+                           f"finds a model's files by their names alone; rename one")
+        files[other] = archive.files[other]
+    return files
 
 
 def _relative(name: str, what: str) -> str:
-    """A path the model names, refused unless it is plain, relative and stays inside."""
+    """A path the model names, refused unless it is plain and relative (where it leads is
+    checked once it is joined to its folder)."""
     if "://" in name or name.startswith(("/", "~")) or "\\" in name or "\0" in name:
         raise Forbidden(f"{what} {name!r}: only relative paths inside the upload are read",
                         filename=name)
     normal = posixpath.normpath(name) if name else "."
-    if normal == ".." or normal.startswith("../"):
-        raise Forbidden(f"{what} {name!r} leaves the upload", filename=name)
     return "" if normal == "." else normal
 
 
@@ -127,7 +145,7 @@ class _Converter:
         return self.mj.mj_id2name(self.m, kind, index) or f"{kind.name[6:].lower()}{index}"
 
     def _body(self, body: int) -> None:
-        """The links of a body: one in the frame of each of its hinges (the last carries the
+        """The links of a body: one in the frame of each of its joints (the last carries the
         body), or one fixed where the body is."""
         m, mj = self.m, self.mj
         parent = int(m.body_parentid[body])
@@ -159,13 +177,13 @@ class _Converter:
         m, mj = self.m, self.mj
         name = self._name(mj.mjtObj.mjOBJ_JOINT, joint)
         kind = int(m.jnt_type[joint])
-        if kind != mj.mjtJoint.mjJNT_HINGE:
+        if kind not in (mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE):
             raise BadAsset(f"joint {name!r} is {mj.mjtJoint(kind).name[6:].lower()}: only hinge "
-                           f"joints are taken (a hand's joints turn; slide joints are not "
-                           f"supported yet)")
+                           f"and slide joints are taken (a hand's joints turn or slide)")
         lower, upper = m.jnt_range[joint] if m.jnt_limited[joint] else (-np.inf, np.inf)
         axis = np.asarray(m.jnt_axis[joint], dtype=float)
-        return JointDescription(name, "revolute", (tuple(float(c) for c in origin[0]), origin[1]),  # type: ignore[arg-type]
+        sliding = kind == mj.mjtJoint.mjJNT_SLIDE
+        return JointDescription(name, "prismatic" if sliding else "revolute", (tuple(float(c) for c in origin[0]), origin[1]),  # type: ignore[arg-type]
                                 tuple(float(a) for a in axis / np.linalg.norm(axis)),  # type: ignore[arg-type]
                                 float(lower), float(upper), None)
 

@@ -26,21 +26,22 @@ from .articulation import MAX_LINKS
 
 FORMAT = "virtual-prosthetics-robot"
 VERSION = 1
-JOINT_KINDS = ("revolute", "fixed")  # sliding (prismatic) joints: not yet, refused by name
+JOINT_KINDS = ("revolute", "prismatic", "fixed")
 MAX_NAME = 200
 
 
 @dataclass(frozen=True)
 class JointDescription:
-    """How a link hangs on its parent: a motor (``revolute``) or rigidly (``fixed``)."""
+    """How a link hangs on its parent: a motor that turns (``revolute``) or slides
+    (``prismatic``), or rigidly (``fixed``)."""
 
     name: str
     kind: str
     origin: Pose = (ORIGIN, IDENTITY)  # the joint frame in the parent link's frame
     axis: Vec3 = (0.0, 0.0, 1.0)       # a unit vector of the joint frame
-    lower: float = -math.inf           # radians
+    lower: float = -math.inf           # radians (prismatic: metres)
     upper: float = math.inf
-    effort: float | None = None        # N·m the file allows (None: not given)
+    effort: float | None = None        # N·m (prismatic: N) the file allows (None: not given)
 
 
 @dataclass(frozen=True)

@@ -48,6 +48,7 @@ from .geometry import centroid, solid_points, triangle_arrays
 Masses = tuple[float, list[float]]  # the base's and each link's (kg), as tree_masses weighs them
 SHAPELESS_RADIUS = 0.01  # m: a link without a part is a ball of its mass this big
 NO_SPEED_LIMIT = 1000.0  # rad/s written as every joint's URDF velocity limit
+FAR_SLIDE = 1000.0  # m: the limits written for a sliding joint that has none
 DEFAULT_RGBA = (0.8, 0.8, 0.8, 1.0)  # a part whose colour is not one URDF can say
 
 
@@ -207,7 +208,7 @@ def _joint(k: int, tree: Articulation, names: list[str], torques: Mapping[str, f
     else:
         limited = math.isfinite(joint.lower) and math.isfinite(joint.upper)
         element = ET.Element("joint", name=given.get(joint.motor, joint.motor),
-                             type="revolute" if limited else "continuous")
+                             type="prismatic" if joint.slides else "revolute" if limited else "continuous")
     ET.SubElement(element, "parent", link=names[link.parent + 1])
     ET.SubElement(element, "child", link=names[k + 1])
     element.append(_origin(link.origin))
@@ -216,6 +217,8 @@ def _joint(k: int, tree: Articulation, names: list[str], torques: Mapping[str, f
         limits = {"effort": repr(float(torques.get(joint.motor, 0.0))), "velocity": repr(NO_SPEED_LIMIT)}
         if limited:
             limits.update(lower=repr(float(joint.lower)), upper=repr(float(joint.upper)))
+        elif joint.slides:  # a prismatic joint without limits could not move (0 to 0)
+            limits.update(lower=repr(-FAR_SLIDE), upper=repr(FAR_SLIDE))
         ET.SubElement(element, "limit", **limits)
         if joint.motor in follows:
             leader, ratio, offset = follows[joint.motor]

@@ -4,9 +4,9 @@ yourdfpy (the URDF model viser and others use) parses the file; what it does not
 PyBullet's ``<contact><lateral_friction>``, is read from the same XML tree. The XML is
 parsed without entities or a network (a ``DOCTYPE`` is refused), so a description cannot
 reach a file by an entity either. Links are ordered from the root (the one link no joint
-holds) down; revolute and continuous joints become motors, fixed ones hold their link
-where they put it, ``<mimic>`` becomes a coupling, and prismatic, floating and planar
-joints are refused naming the joint.
+holds) down; revolute and continuous joints become motors, prismatic ones sliders, fixed
+ones hold their link where they put it, ``<mimic>`` becomes a coupling, and floating and
+planar joints are refused naming the joint.
 """
 
 from __future__ import annotations
@@ -27,7 +27,8 @@ from .robot_archive import RobotArchive
 from .robot_description import (Coupling, JointDescription, LinkDescription, RobotDescription,
                                 checked, diagonal_in)
 
-MOTOR_JOINTS = {"revolute": "revolute", "continuous": "revolute", "fixed": "fixed"}
+MOTOR_JOINTS = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic",
+                "fixed": "fixed"}
 Store = Callable[[bytes], str]  # keeps a link's GLB; its upload's name
 
 
@@ -82,9 +83,8 @@ def _tree_order(robot: Any) -> list[tuple[str, Any]]:
     held = set()
     for joint in robot.joints:
         if joint.type not in MOTOR_JOINTS:
-            raise BadAsset(f"joint {joint.name!r} is {joint.type}: only revolute, continuous "
-                           f"and fixed joints are taken (a hand's joints turn; prismatic ones "
-                           f"are not supported yet)")
+            raise BadAsset(f"joint {joint.name!r} is {joint.type}: only revolute, continuous, "
+                           f"prismatic and fixed joints are taken (a hand's joints turn or slide)")
         if joint.child in held:
             raise BadAsset(f"link {joint.child!r} is held by two joints: a robot is a tree")
         held.add(joint.child)
@@ -135,7 +135,7 @@ def _joint(joint: Any) -> JointDescription:
         raise BadAsset(f"joint {joint.name!r} has no usable axis: {axis.tolist()}")
     limit = joint.limit
     lower, upper = -math.inf, math.inf
-    if joint.type == "revolute" and limit is not None:
+    if joint.type in ("revolute", "prismatic") and limit is not None:
         lower = _float(limit.lower, joint.name, 0.0)
         upper = _float(limit.upper, joint.name, 0.0)
     effort = None if limit is None or limit.effort is None else _float(limit.effort, joint.name)

@@ -170,6 +170,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
               # not in the manual: coupled joints (a linkage, a tendon; URDF <mimic>)
               Method("follow", (Param("leader", "motor", None), Param("ratio", "number", 1.0),
                                 Param("offset", "number", 0.0)), returns="self"))),
+    # not in the manual: a motor that slides along its axis (a linear actuator, an imported
+    # prismatic joint); its value and limits are lengths, its bound a force (N)
+    TypeSpec("Slider", "Motor", (Param("axis", "axis"), Param("min", "limit", -math.inf),
+                                 Param("max", "limit", math.inf), Param("def", "number", 0.0))),
     TypeSpec("MotorX", "Motor", _motor_params("MotorX"), slots=1),
     TypeSpec("MotorY", "Motor", _motor_params("MotorY"), slots=1),
     TypeSpec("MotorZ", "Motor", _motor_params("MotorZ"), slots=1),

@@ -9,7 +9,7 @@ from ..kit.numbers import encode_numbers
 from ..model.hands import AnthroHand, EdgedHand, RoundHand
 from ..model.imported import ImportedRobot
 from ..model.gltf_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
-from ..model.motor import Motor, MotorX, MotorY, MotorZ
+from ..model.motor import Motor, MotorX, MotorY, MotorZ, Slider
 from ..model.node import Node, Slot
 from ..model.page_meshes import SceneMesh
 from ..model.parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
@@ -21,7 +21,7 @@ from .arguments import bind
 from .ownership import Ownership
 
 NODE_CLASSES: dict[str, type[Node]] = {cls.type_name: cls for cls in (
-    Slot, Part, Motor, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,
+    Slot, Part, Motor, Slider, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,
     Sensor, Robot, EdgedHand, GLTFPart, RoundFinger, RoundPalm, AnthroPalm, AnthroThumb,
     RoundHand, AnthroHand, SceneMesh, ImportedRobot)}
 SCENE_ID = "scene"

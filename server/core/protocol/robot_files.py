@@ -20,7 +20,7 @@ from typing import Any
 
 from ...errors import UnknownObject
 from ..kit.ids import owner_of
-from ..kit.math3d import ORIGIN, Pose, Quat, Vec3, axis_angle, compose
+from ..kit.math3d import Pose, Quat, Vec3, compose
 from ..model.imported import ImportedRobot
 from ..model.robot import Robot
 from ..model.structure import base_pose, structure_of
@@ -93,11 +93,25 @@ def urdf_job(scene: Scene, robot_id: str) -> UrdfJob:
     robot, tree = _compiled(scene, robot_id)
     motors = robot.get_motors()
     torques = {motor.id: motor.get_max_torque() for motor in motors}
-    follows = {m.id: m.following for m in motors if m.following is not None and m.leader() is not None}
+    follows = {m.id: _following_in_metres(scene, m) for m in motors
+               if m.following is not None and m.leader() is not None}
     unit = scene.physics.unit
     masses = tree_masses(tree, scene.physics.density, unit=unit)
     return UrdfJob(tree.in_metres(unit), robot.id, masses, torques, file_names(robot),
                    follows)  # type: ignore[arg-type]
+
+
+def in_metres(scene: Scene, motor: Any) -> float:
+    """A motor's value as files give it: an angle, or a slider's length in metres."""
+    return motor.angle * (scene.physics.unit if motor.slides else 1.0)
+
+
+def _following_in_metres(scene: Scene, motor: Any) -> tuple[str, float, float]:
+    """A follower's (leader, ratio, offset) between values as files give them."""
+    leader, ratio, offset = motor.following
+    into = scene.physics.unit if motor.slides else 1.0
+    out_of = scene.physics.unit if motor.leader().slides else 1.0
+    return leader, ratio * into / out_of, offset * into
 
 
 def file_names(robot: Robot) -> dict[str, str]:
@@ -144,7 +158,7 @@ def glb_job(scene: Scene, robot_id: str) -> GlbJob:
     first = len(links)
     for k, link in enumerate(tree.links):
         turn = NO_POSE if link.joint is None else \
-            (ORIGIN, axis_angle(link.joint.axis, scene.nodes[link.joint.motor].angle))  # type: ignore[attr-defined]
+            link.joint.motion(in_metres(scene, scene.nodes[link.joint.motor]))
         parent = link.parent + first if link.parent >= 0 else first - 1
         links.append(DrawnLink(titles[k + 1], parent, compose(link.origin, turn),
                                drawn(link.part, link.geometry, link.shape)))

@@ -61,9 +61,9 @@ def test_bad_robot_uploads_are_refused_naming_what_is_wrong_and_make_nothing(ser
         (zipped({"h.urdf": hand_urdf("../../../../etc/passwd")}), 403, "leaves the upload"),
         (zipped({"a.urdf": hand_urdf(), "b.urdf": hand_urdf()}), 400, "name one with ?file="),
         (hand_urdf().encode(), 400, "is not in the upload"),
-        (hand_urdf("tip.stl", '<link name="x"/><joint name="slider" type="prismatic"><parent link="palm"/>'
-                   '<child link="x"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>').encode(),
-         400, "joint 'slider' is prismatic"),
+        (hand_urdf("tip.stl", '<link name="x"/><joint name="loose" type="floating"><parent link="palm"/>'
+                   '<child link="x"/></joint>').encode(),
+         400, "joint 'loose' is floating"),
     ]
     for body, status, words in cases:
         answer, _, text = request(server, "POST", path, body)

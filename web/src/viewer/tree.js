@@ -4,10 +4,11 @@
 // server; nothing here recomputes physics.
 
 import * as THREE from 'three';
-import { shownRotation } from '/client/pose.js';
+import { scaleAbove, shownPosition, shownRotation } from '/client/pose.js';
 import { buildShape, dispose, paint } from './shapes.js';
 
 const ONE = [1, 1, 1];
+const SCALE = new THREE.Vector3();  // the scales above a slider, while it is posed
 
 export class SceneTree {
 	// drawnElsewhere(id): true for shapes the page draws itself (its own meshes)
@@ -40,6 +41,7 @@ export class SceneTree {
 		object.name = node.id;
 		object.userData.node = { ...node };
 		object.userData.base = new THREE.Quaternion(...node.quaternion);
+		object.userData.basePosition = new THREE.Vector3(...node.position);
 		object.position.set(...node.position);
 		object.scale.fromArray(node.scale ?? ONE);
 		const drawn = node.geometry && !(node.type === 'SceneMesh' && this.drawnElsewhere(node.id));
@@ -59,6 +61,7 @@ export class SceneTree {
 		const object = this.objects.get(id);
 		(this.objects.get(parentId) ?? this.root).add(object);
 		this.adopt(object, childIds);
+		this.reposeSliders(object);
 	}
 
 	adopt(object, childIds) {
@@ -66,6 +69,12 @@ export class SceneTree {
 			const child = this.objects.get(childId);
 			if (child) object.add(child);
 		}
+	}
+
+	// Sliders at and below `object` posed again: how far they move depends on the scales
+	// above them.
+	reposeSliders(object) {
+		object.traverse((o) => o.userData.node?.slides && this.setAngle(o, o.userData.shownAngle ?? 0));
 	}
 
 	remove(ids) {
@@ -92,14 +101,20 @@ export class SceneTree {
 		const object = this.objects.get(id);
 		if (!object) return;
 		object.position.set(pose[0], pose[1], pose[2]);
+		object.userData.basePosition.set(pose[0], pose[1], pose[2]);
 		object.userData.base.set(pose[3], pose[4], pose[5], pose[6]);
 		this.setAngle(object, object.userData.node.angle ?? 0);
 	}
 
-	// The pose a motor shows: its base pose, turned about its axis (the other way if flipped).
+	// The pose a motor shows: its base pose, turned about its axis (the other way if flipped);
+	// a slider's moved along it.
 	setAngle(object, angle) {
-		const { axis, flipped } = object.userData.node;
-		shownRotation(object.quaternion, object.userData.base, { axis, angle, flipped });
+		const { axis, flipped, slides } = object.userData.node;
+		shownRotation(object.quaternion, object.userData.base, { axis, angle, flipped, slides });
+		if (slides) {
+			shownPosition(object.position, object.userData.basePosition, object.userData.base,
+				{ axis, angle, flipped, slides }, scaleAbove(SCALE, object));
+		}
 		object.userData.shownAngle = angle;
 	}
 
@@ -109,9 +124,15 @@ export class SceneTree {
 		if (!object) return;
 		Object.assign(object.userData.node, fields);
 		if ('children' in fields) this.adopt(object, fields.children);
-		if ('parent' in fields) (this.objects.get(fields.parent) ?? this.root).add(object);
+		if ('parent' in fields) {
+			(this.objects.get(fields.parent) ?? this.root).add(object);
+			this.reposeSliders(object);
+		}
 		if ('visible' in fields) this.applyVisibility(object);
-		if ('scale' in fields) object.scale.fromArray(fields.scale);
+		if ('scale' in fields) {
+			object.scale.fromArray(fields.scale);
+			this.reposeSliders(object);
+		}
 		if ('color' in fields && object.userData.shape) paint(object.userData.shape, fields.color);
 		if ('flipped' in fields) this.setAngle(object, object.userData.shownAngle ?? 0);
 		if ('recolors' in fields) object.userData.shape?.userData.recolor?.(fields.recolors);

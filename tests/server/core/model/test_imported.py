@@ -40,9 +40,9 @@ def lab(library):
     scene.close()
 
 
-def file_poses(angles):
+def file_poses(angles, extra=""):
     """Each link's pose in the robot's frame as yourdfpy computes it from the URDF."""
-    urdf = yourdfpy.URDF.load(io.StringIO(hand_files.hand_urdf()), build_scene_graph=True,
+    urdf = yourdfpy.URDF.load(io.StringIO(hand_files.hand_urdf(extra=extra)), build_scene_graph=True,
                               load_meshes=False)
     urdf.update_cfg(angles)
     return {link: urdf.get_transform(link, urdf.base_link) for link in urdf.link_map}
@@ -148,3 +148,42 @@ def test_beside_a_1_0_hand_an_imported_hand_keeps_its_metres(lab, hand_file):
     palm = next(p for p in robot.get_parts() if isinstance(p, RobotLink) and p.name == "palm")
     assert extent([palm]) == pytest.approx(hand_files.PALM[1], abs=0.002)  # 10 cm, as its file says
     assert extent(edged.get_parts()) == pytest.approx(0.19, abs=0.01)  # a human hand's
+
+
+@pytest.fixture
+def jaws_file(library):
+    return hand_files.stored_hand(library, hand_files.JAWS)
+
+
+def test_prismatic_joints_become_sliders_in_scene_units_where_the_files_kinematics_put_them(lab, jaws_file):
+    robot = ImportedRobot(lab, "c1.1", jaws_file)
+    jaw_a, jaw_b = robot.get_motors()[-2:]
+    unit = lab.physics.unit
+    assert (jaw_a.type_name, jaw_a.name, jaw_b.name) == ("Slider", "jaw_a_slide", "jaw_b_slide")
+    # limits in scene units: the file's metres at the robot's size (it keeps its metres)
+    assert (jaw_a.min * unit, jaw_a.max * unit) == pytest.approx(hand_files.SLIDE_LIMITS)
+    assert jaw_a.get_max_torque() == hand_files.SLIDE_EFFORT  # newtons
+    jaw_a.set_angle(0.02 / unit)  # 2 cm; the mirrored jaw follows (mimic, offset 1 mm)
+    assert jaw_b.angle * unit == pytest.approx(0.021)
+    expected = file_poses({"jaw_a_slide": 0.02, "jaw_b_slide": 0.021}, hand_files.JAWS)
+    for part in robot.get_parts():
+        if isinstance(part, RobotLink) and part.name.startswith("jaw"):
+            position, quaternion = part.world_pose()
+            matrix = expected[part.name]
+            assert np.allclose(np.asarray(position) * unit, matrix[:3, 3], atol=1e-9), part.name
+            assert np.allclose(np.asarray(to_matrix(quaternion)), matrix[:3, :3], atol=1e-9), part.name
+
+
+def test_sliders_drive_their_jaws_in_dynamic_mode_and_the_palm_holds(lab, jaws_file):
+    robot = ImportedRobot(lab, "c1.1", jaws_file)
+    robot.set_position((0.0, 6.0, 0.0))
+    lab.set_physics("dynamic")
+    jaw_a, jaw_b = robot.get_motors()[-2:]
+    unit = lab.physics.unit
+    jaw_a.set_angle(0.025 / unit)
+    for _ in range(120):
+        lab.tick(1 / 60)
+    assert jaw_a.get_angle() * unit == pytest.approx(0.025, abs=5e-4)  # read from the physics
+    assert jaw_b.get_angle() * unit == pytest.approx(0.026, abs=5e-4)  # its follower with it
+    palm = robot.get_parts()[0]
+    assert palm.world_pose()[0] == pytest.approx((0.0, 6.0, 0.0), abs=1e-3)

@@ -50,7 +50,7 @@ def test_files_the_model_names_must_be_inside_the_upload():
                 "<worldbody>", '<worldbody><include file="/etc/hostname"/>')}), Forbidden, "relative paths"),
             (lambda f: f.update({"hand/scene.xml": f["hand/scene.xml"].replace('meshdir="meshes"', 'meshdir="../../x"')}),
              Forbidden, "leaves the upload"),
-            (lambda f: f.pop("hand/meshes/tip.stl"), BadAsset, "'meshes/tip.stl' is not in the upload"),
+            (lambda f: f.pop("hand/meshes/tip.stl"), BadAsset, "'hand/meshes/tip.stl' is not in the upload"),
             (lambda f: f.update({"hand/parts/hand.xml": f["hand/parts/hand.xml"].replace(
                 '<joint name="index_knuckle"/>', '<joint name="index_knuckle" type="ball"/>')}),
              BadAsset, "joint 'index_knuckle' is ball: only hinge"),
@@ -60,6 +60,37 @@ def test_files_the_model_names_must_be_inside_the_upload():
         change(files)
         with pytest.raises(refusal, match=words):
             read(zipped(files))
+
+
+def test_a_slide_joint_is_read_as_a_prismatic_one_in_metres():
+    files = mjcf_files()
+    pad = ('<body name="pad" pos="0 -0.05 0.02"><joint name="pad_slide" type="slide" axis="0 0 2" '
+           'range="0 0.02"/><geom type="box" size=".01 .01 .01" mass="0.01"/></body>')
+    files["hand/parts/hand.xml"] = files["hand/parts/hand.xml"].replace("</body></worldbody>", pad + "</body></worldbody>")
+    robot = read(zipped(files))
+    slide = next(joint for joint in robot.motors() if joint.name == "pad_slide")
+    assert (slide.kind, slide.axis) == ("prismatic", (0.0, 0.0, 1.0))
+    assert (slide.lower, slide.upper) == pytest.approx((0.0, 0.02))  # metres, not turned to radians
+
+
+def test_a_folder_named_from_above_the_models_is_read_while_it_stays_in_the_upload():
+    # Adroit's model names its meshes "../Adroit/resources/meshes/…" from its own folder
+    files = mjcf_files()
+    files["shared/meshes/tip.stl"] = files.pop("hand/meshes/tip.stl")
+    files["hand/scene.xml"] = files["hand/scene.xml"].replace('meshdir="meshes"', 'meshdir="../shared/meshes"')
+    robot, model = read(zipped(files)), compiled()
+    tip = next(link for link in robot.links if link.name == "index_distal")
+    assert tip.hull is not None and len(robot.motors()) == model.njnt
+
+
+def test_two_different_files_of_one_name_are_refused_naming_both():
+    # MuJoCo finds a model's files by their names alone: it would give one for the other
+    files = mjcf_files()
+    files["hand/parts/tip.stl"] = hand_files.tip_stl() + b" "
+    files["hand/scene.xml"] = files["hand/scene.xml"].replace(
+        '<mesh name="tip" file="tip.stl"/>', '<mesh name="tip" file="tip.stl"/><mesh name="tip2" file="../parts/tip.stl"/>')
+    with pytest.raises(BadAsset, match="'hand/meshes/tip.stl' and 'hand/parts/tip.stl' are different files of one name"):
+        read(zipped(files))
 
 
 def test_two_bodies_under_the_world_are_refused_naming_them():

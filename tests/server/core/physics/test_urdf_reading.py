@@ -56,7 +56,7 @@ def test_a_links_glb_carries_its_colour_and_its_elements_placed():
     assert drawn.bounds[1][2] == pytest.approx(hand_files.SEGMENT, abs=1e-6)  # the STL's own frame
 
 
-@pytest.mark.parametrize("joint_type", ["floating", "planar", "prismatic"])
+@pytest.mark.parametrize("joint_type", ["floating", "planar"])
 def test_joints_a_hand_cannot_have_here_are_refused_by_name(joint_type):
     extra = f"""<link name="loose"/><joint name="free_one" type="{joint_type}">
       <parent link="palm"/><child link="loose"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>"""

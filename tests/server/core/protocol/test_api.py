@@ -47,7 +47,7 @@ def test_error_codes_match_the_schema():
 
 REQUIRED_ARGS = {"GLTFPart": ["round-finger-8.glb"], "RoundFinger": ["round-finger-8.glb"],
              "RoundPalm": [True, "round-palm.glb"], "AnthroPalm": [True, "anthro-palm.glb"],
-             "AnthroThumb": [True, "anthro-thumb.glb"], "Motor": ["x"],
+             "AnthroThumb": [True, "anthro-thumb.glb"], "Motor": ["x"], "Slider": ["y"],
              "SceneMesh": [{"kind": "box", "size": [1, 1, 1]}]}
 
 

@@ -218,15 +218,18 @@ def _reimported(scene, robot, library, form):
 
 
 @pytest.mark.parametrize("form", ["urdf", "mjcf"])
-@pytest.mark.parametrize("kind", ["imported", EdgedHand, AnthroHand])
+@pytest.mark.parametrize("kind", ["imported", "jaws", EdgedHand, AnthroHand])
 def test_a_robot_made_again_from_its_urdf_or_mjcf_is_the_same_robot(kind, form, tmp_path):
     from server.core.physics.assets import AssetLibrary
     from server.core.scene.scene import Scene
-    from tests.hand_files import stored_hand
+    from tests.hand_files import JAWS, stored_hand
     from server.core.model.imported import ImportedRobot
     library = AssetLibrary(uploads=tmp_path)
     scene = Scene("round-trip", assets=library)
-    robot = ImportedRobot(scene, "h", stored_hand(library)) if kind == "imported" else kind(scene, "h", True)
+    if isinstance(kind, str):  # the test hand, with sliding jaws (prismatic joints) or without
+        robot = ImportedRobot(scene, "h", stored_hand(library, JAWS if kind == "jaws" else ""))
+    else:
+        robot = kind(scene, "h", True)
     robot.set_position((0.1, 0.2, 0.3))
     robot.set_rotation(0.3, -0.5, 1.1)
     draw = random.Random(3)
@@ -246,6 +249,7 @@ def test_a_robot_made_again_from_its_urdf_or_mjcf_is_the_same_robot(kind, form, 
         assert (twin.min, twin.max) == pytest.approx((motor.min, motor.max), abs=1e-6)
         assert twin.angle == pytest.approx(motor.angle, abs=1e-6)
         assert (twin.following is None) == (motor.following is None)
+        assert twin.type_name == ("Slider" if motor.slides else "Motor")
     scene.close()
 
 

@@ -59,7 +59,8 @@ def busy(library):
             ("c1.20", "AnthroPalm", [False, "anthro-palm.glb"]),
             ("c1.21", "AnthroThumb", [True, "anthro-thumb.glb"]),
             ("c1.arm", "SceneMesh", [{"kind": "sphere", "radius": 0.2}, "blue"]),
-            ("c1.22", "MotorY", [-1, 1]), ("c1.23", "ImportedRobot", [stored_hand(library)])]:
+            ("c1.22", "MotorY", [-1, 1]), ("c1.23", "ImportedRobot", [stored_hand(library)]),
+            ("c1.24", "Slider", [[0, 0, 1], 0, 0.5, 0.1])]:
         ops.create(object_id, type_name, args)
     ops.call("c1.1", "setAngles", [0.1, 0.4, 0.5])
     ops.call("c1.1", "setPosition", [1, 0, 2])
@@ -77,6 +78,8 @@ def busy(library):
     ops.call("c1.23/3", "setMass", [0.05])
     ops.call("c1.6", "flip", [])
     ops.call("c1.6", "setAngle", [2.5])
+    ops.call("c1.24", "setMaxTorque", [12])
+    ops.call("c1.24", "setAngle", [0.4])
     ops.call("c1.11", "addSlot", [[0, 0.3, 0.1]])
     ops.call("c1.14", "attachToSlot", [ref("c1.11"), 1])
     ops.call("c1.9", "attachToSlot", [ref("c1.3"), ref("c1.16")])  # a loose slot, moved
@@ -169,7 +172,7 @@ def test_slot_numbers_and_ids_go_on_where_they_were(busy, library):
     assert "c1.3/5" not in copy_.nodes and "c1.3/9" in copy_.nodes
     with pytest.raises(DuplicateId):
         ops.create("c1.8", "Ball", [])  # deleted before the export: never used again
-    ops.create("c1.24", "Ball", [])
+    ops.create("c1.25", "Ball", [])
     copy_.close()
 
 
