@@ -182,12 +182,14 @@ export class Prediction {
 }
 
 // A new motor's axis, limits and angle, as server/core/model/motor.py sets them: limits given
-// in reverse are swapped, the default angle is clamped into them.
+// in reverse are swapped, the default angle is clamped into them (a Motor and a Slider take
+// their axis first; MotorX and its kin have it in their names).
 export function motorFields(type, args) {
-	const [axis, ...rest] = type === 'Motor' ? args : [type.at(-1).toLowerCase(), ...args];
+	const [axis, ...rest] = type === 'Motor' || type === 'Slider' ? args : [type.at(-1).toLowerCase(), ...args];
 	const [low = -Infinity, high = Infinity, start = 0] = rest.slice(0, 3).map((v) => (typeof v === 'number' ? v : undefined));
 	const [min, max] = low <= high ? [low, high] : [high, low];
-	return { axis, min: wireNumber(min), max: wireNumber(max), angle: Math.min(max, Math.max(min, start)), flipped: false, name: null };
+	return { axis, min: wireNumber(min), max: wireNumber(max), angle: Math.min(max, Math.max(min, start)), flipped: false,
+		name: null, ...(type === 'Slider' ? { slides: true } : {}) };
 }
 
 // An argument as this module reads it: a reference as its id, a number that travels as

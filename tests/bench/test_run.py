@@ -16,7 +16,7 @@ from tests.conftest import ROOT
 pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 
 
-# The whole bench on tiny scenes (its measures through servers side by side): 50 s alone on
+# The whole bench on tiny scenes (its measures through servers three at a time): 62 s alone on
 # a 2-core machine; its own hang guard leaves room for a machine several times slower.
 @pytest.mark.timeout(900)
 def test_bench_quick_writes_every_figure(tmp_path):

@@ -8,7 +8,7 @@ import * as Prosthetic from '../virtual-prosthetics.js';
 const URL_ = process.env.VP_URL;
 // what a skeleton leaves out (server/core/protocol/skeletons.py)
 const DEFAULTS = { position: [0, 0, 0], quaternion: [0, 0, 0, 1], flipped: false };
-const FIELDS = ['type', 'parent', 'children', 'motors', 'position', 'quaternion', 'axis', 'min', 'max', 'angle', 'flipped', 'name'];
+const FIELDS = ['type', 'parent', 'children', 'motors', 'position', 'quaternion', 'axis', 'min', 'max', 'angle', 'flipped', 'name', 'slides'];
 
 // The nodes of a robot's tree as the session's mirror has them now.
 function tree(session, id) {
@@ -40,6 +40,26 @@ test('every hand, left and right, is in the mirror at once as the server then ma
 			}
 			assert.equal(made.length, nodes.length);
 		}
+	} finally {
+		Prosthetic.close();
+	}
+});
+
+test('motors and sliders made by hand are in the mirror at once as the server then makes them', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-predicted-motors-${process.pid}` });
+	try {
+		const made = [new Prosthetic.Slider([0, 0.6, 0.8], 0.5, -0.25, 9), new Prosthetic.Slider('x'),
+			new Prosthetic.Motor('y', 1, -1), new Prosthetic.MotorX(-0.5, 0.5, 0.2)];
+		const predicted = made.map((motor) => tree(session, motor.vp.id));
+		await Prosthetic.sync();
+		made.forEach((motor, k) => {
+			const [node] = tree(session, motor.vp.id), [guess] = predicted[k];
+			for (const field of FIELDS) {
+				assert.deepEqual(guess[field] ?? DEFAULTS[field], node[field] ?? DEFAULTS[field], `${motor.vp.type}.${field}`);
+			}
+		});
+		assert.equal(predicted[0][0].slides, true);
+		assert.equal(predicted[0][0].max, 0.5);   // limits swapped, the default clamped
 	} finally {
 		Prosthetic.close();
 	}

@@ -14,7 +14,7 @@ from scipy.spatial.transform import Rotation
 
 from server.core.physics.dynamics import DEFAULT_MAX_TORQUE
 from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
-from server.core.model.motor import MotorZ
+from server.core.model.motor import MotorZ, Slider
 from server.core.model.parts import Ball, Box
 from server.core.model.robot import Robot
 from server.core.physics.assets import BUNDLED_DIR
@@ -301,3 +301,14 @@ def test_a_1_0_hands_mjcf_holds_its_aim_in_mujoco(scene, kind, tmp_path):
     aims = np.clip(0.8, model.jnt_range[joints, 0], model.jnt_range[joints, 1])
     reached = data.qpos[[model.jnt_qposadr[j] for j in joints]]
     assert np.all(np.isfinite(data.qpos)) and np.abs(reached - aims).max() < 0.06  # not flung
+
+
+def test_a_sliders_glb_node_sits_where_it_slid(scene):
+    robot, slider = Robot(scene, "r"), Slider(scene, "s", [0.0, 0.6, 0.8], 0, 2, 0)
+    Box(scene, "b", 0.5, 0.5, 0.5).attach_to_slot(slider)
+    robot.attach_chain(slider)
+    robot.set_position((1.0, 2.0, 0.0))
+    slider.set_angle(1.5)
+    opened = trimesh.load(io.BytesIO(robot_glb(scene, "r")), file_type="glb")
+    world, _ = opened.graph.get("b")
+    assert world[:3, 3] == pytest.approx(np.asarray((1.0, 2.9, 1.2)) * scene.physics.unit, abs=1e-9)
