@@ -231,7 +231,7 @@ class Dynamics:
         if tree.base_geometry is None and any(tree.sliding):
             # a sliding motor's load reaches a base only through the solver (a turning one's
             # through the tree itself): on a base of MOUNT_MASS, 155 times lighter than the
-            # block it held up, the mount sank 6 % of the block's size; as heavy as what
+            # block it held up, the mount sank by 12 % of the block's size; as heavy as what
             # hangs on it, the base holds still
             base = max(base, sum(links))
         per = self.units.mass

@@ -8,8 +8,8 @@ MuJoCo sees it (MuJoCo looks on the disk for a file it is not given). Then each 
 the world becomes a link in the frame of its first joint; hinge joints become motors and
 slide joints sliders (a body with several gets a link for each), fixed bodies hold their
 link; ``<equality><joint>`` and fixed tendons of two joints (held by an equality or driven
-by an actuator) become couplings; ball and free joints are refused by name. Visual elements are geoms of
-groups 0-2, collision elements geoms that collide (``contype``/``conaffinity``).
+by an actuator) become couplings; ball and free joints are refused by name. Visual elements
+are geoms of groups 0-2, collision elements geoms that collide (``contype``/``conaffinity``).
 """
 
 from __future__ import annotations
@@ -80,7 +80,7 @@ def _model_files(archive: RobotArchive) -> dict[str, bytes]:
                 named.append((element.tag, _relative(name, "file")))
                 if element.tag == "include":
                     pending.append(_named_path(archive, "include", name, dirs))
-    return _by_name({_named_path(archive, tag, name, dirs): tag for tag, name in named}, archive)
+    return _by_name((_named_path(archive, tag, name, dirs) for tag, name in named), archive)
 
 
 def _named_path(archive: RobotArchive, tag: str, name: str, dirs: dict[str, str]) -> str:

@@ -101,7 +101,7 @@ def urdf_job(scene: Scene, robot_id: str) -> UrdfJob:
                    follows)  # type: ignore[arg-type]
 
 
-def in_metres(scene: Scene, motor: Any) -> float:
+def _file_value(scene: Scene, motor: Any) -> float:
     """A motor's value as files give it: an angle, or a slider's length in metres."""
     return motor.angle * (scene.physics.unit if motor.slides else 1.0)
 
@@ -158,7 +158,7 @@ def glb_job(scene: Scene, robot_id: str) -> GlbJob:
     first = len(links)
     for k, link in enumerate(tree.links):
         turn = NO_POSE if link.joint is None else \
-            link.joint.motion(in_metres(scene, scene.nodes[link.joint.motor]))
+            link.joint.motion(_file_value(scene, scene.nodes[link.joint.motor]))
         parent = link.parent + first if link.parent >= 0 else first - 1
         links.append(DrawnLink(titles[k + 1], parent, compose(link.origin, turn),
                                drawn(link.part, link.geometry, link.shape)))

@@ -166,8 +166,8 @@ def test_a_flipped_slider_moves_the_other_way(scene):
 
 
 def test_a_slider_lifts_its_load_in_dynamic_mode_and_its_partless_robot_stays_put(scene):
-    # on a base of the least mass a robot without parts gets, the mount sank 6 % of the
-    # block's size under it: the load reaches the base through the solver alone
+    # on the least mass a robot without parts gets, its mount sank by half the block's size
+    # under it: the load reaches the base through the solver alone
     robot, slider, box = _lifted_box(scene, 2.0)
     scene.set_physics("dynamic")
     slider.set_angle(0.5)
