@@ -76,13 +76,11 @@ def hand_urdf(mesh_ref: str = "package://handpkg/meshes/tip.stl", extra: str = "
 # a gripper's jaws on the palm: sliding (prismatic) along x, the second mirroring the first
 SLIDE_LIMITS = (0.0, 0.03)  # m
 SLIDE_EFFORT = 15.0         # N
-JAWS = f"""
-  <link name="jaw_a"><visual><geometry><box size="0.01 0.02 0.02"/></geometry></visual>
+JAW = """
+  <link name="{0}"><visual><geometry><box size="0.01 0.02 0.02"/></geometry></visual>
     <collision><geometry><box size="0.01 0.02 0.02"/></geometry></collision>
-    <inertial><mass value="0.01"/><inertia ixx="1e-6" iyy="1e-6" izz="1e-6" ixy="0" ixz="0" iyz="0"/></inertial></link>
-  <link name="jaw_b"><visual><geometry><box size="0.01 0.02 0.02"/></geometry></visual>
-    <collision><geometry><box size="0.01 0.02 0.02"/></geometry></collision>
-    <inertial><mass value="0.01"/><inertia ixx="1e-6" iyy="1e-6" izz="1e-6" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    <inertial><mass value="0.01"/><inertia ixx="1e-6" iyy="1e-6" izz="1e-6" ixy="0" ixz="0" iyz="0"/></inertial></link>"""
+JAWS = JAW.format("jaw_a") + JAW.format("jaw_b") + f"""
   <joint name="jaw_a_slide" type="prismatic"><parent link="palm"/><child link="jaw_a"/>
     <origin xyz="-0.04 -0.06 0.02" rpy="0 0 0.3"/><axis xyz="1 0 0"/>
     <limit lower="{SLIDE_LIMITS[0]}" upper="{SLIDE_LIMITS[1]}" effort="{SLIDE_EFFORT}" velocity="0.1"/></joint>

@@ -76,8 +76,8 @@ def test_a_slide_joint_is_read_as_a_prismatic_one_in_metres():
 def test_a_folder_named_from_above_the_models_is_read_while_it_stays_in_the_upload():
     # Adroit's model names its meshes "../Adroit/resources/meshes/…" from its own folder
     files = mjcf_files()
-    files["shared/meshes/tip.stl"] = files.pop("hand/meshes/tip.stl")
-    files["hand/scene.xml"] = files["hand/scene.xml"].replace('meshdir="meshes"', 'meshdir="../shared/meshes"')
+    files["common/meshes/tip.stl"] = files.pop("hand/meshes/tip.stl")
+    files["hand/scene.xml"] = files["hand/scene.xml"].replace('meshdir="meshes"', 'meshdir="../common/meshes"')
     robot, model = read(zipped(files)), compiled()
     tip = next(link for link in robot.links if link.name == "index_distal")
     assert tip.hull is not None and len(robot.motors()) == model.njnt
