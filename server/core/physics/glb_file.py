@@ -15,17 +15,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
-import trimesh
-from trimesh.exchange.gltf import export_glb
-from trimesh.visual.material import PBRMaterial
 
 from ..kit.math3d import Pose, to_matrix
 from .assets import AssetLibrary, placed
 from .geometry import solid_points, triangle_arrays
 from .urdf_file import rgba
+
+if TYPE_CHECKING:  # imported where used: the web process imports this module for its
+    import trimesh  # routes, and trimesh with scipy is half a second of every server's start
 
 SPHERE_SEGMENTS = 32  # around and from pole to pole: a multiple of 4 puts corners on the axes
 ROUGHNESS = 0.8  # a matte surface, as the viewer's Phong material draws parts
@@ -44,6 +44,9 @@ class DrawnPart:
 def glb_bytes(parts: Sequence[DrawnPart], assets: AssetLibrary) -> bytes:
     """The binary glTF of ``parts``, each a mesh at its pose (none: a valid file that
     draws nothing)."""
+    import trimesh
+    from trimesh.exchange.gltf import export_glb
+
     scene = trimesh.Scene()
     for part in parts:
         scene.add_geometry(part_mesh(part, assets), node_name=part.id, geom_name=part.id,
@@ -67,6 +70,9 @@ class DrawnLink:
 
 def robot_glb_bytes(name: str, pose: Pose, links: Sequence[DrawnLink], assets: AssetLibrary) -> bytes:
     """The binary glTF of a robot: a root node ``name`` at ``pose`` and its links below it."""
+    import trimesh
+    from trimesh.exchange.gltf import export_glb
+
     scene = trimesh.Scene()
     scene.graph.update(frame_from=scene.graph.base_frame, frame_to=name, matrix=_matrix(pose))
     for link in links:
@@ -83,6 +89,9 @@ def robot_glb_bytes(name: str, pose: Pose, links: Sequence[DrawnLink], assets: A
 
 def part_mesh(part: DrawnPart, assets: AssetLibrary) -> trimesh.Trimesh:
     """The coloured mesh of one part, in its own frame."""
+    import trimesh
+    from trimesh.visual.material import PBRMaterial
+
     geometry = part.geometry
     kind = geometry["kind"]
     if kind == "mesh":
@@ -105,6 +114,8 @@ def part_mesh(part: DrawnPart, assets: AssetLibrary) -> trimesh.Trimesh:
 def _file_mesh(geometry: dict[str, Any], recolors: Sequence[Sequence[Any]],
                assets: AssetLibrary) -> trimesh.Trimesh:
     """A mesh file's triangles and vertex colours, placed as the part places them."""
+    import trimesh
+
     assets.mesh(geometry["url"])  # the file checked (and refused) as a part's file is
     path, _ = assets.locate(geometry["url"])
     vertices, faces, colors = _coloured(str(path), path.stat().st_mtime_ns)
@@ -119,6 +130,8 @@ def _coloured(path: str, version: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
     """A mesh file's vertices, triangles and vertex colours (0…1, None: it has none), read
     once per version of the file: a recording's scene update draws a hand's fifteen
     segments from three files."""
+    import trimesh
+
     mesh = trimesh.load(path, force="mesh", process=False)
     colors = np.asarray(mesh.visual.vertex_colors, float)[:, :4] / 255 \
         if mesh.visual.kind == "vertex" else None

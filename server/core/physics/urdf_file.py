@@ -33,17 +33,18 @@ import math
 import warnings
 import xml.etree.ElementTree as ET
 import zipfile
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
-import trimesh
 import webcolors
-from scipy.spatial.transform import Rotation
 
 from ..kit.math3d import IDENTITY, Pose, compose
 from .articulation import NO_POSE, Articulation
 from .assets import AssetLibrary, placed
 from .geometry import centroid, solid_points, triangle_arrays
+
+if TYPE_CHECKING:  # trimesh and scipy are imported where used: the web process imports
+    import trimesh  # this module for its routes (half a second of every server's start)
 
 Masses = tuple[float, list[float]]  # the base's and each link's (kg), as tree_masses weighs them
 SHAPELESS_RADIUS = 0.01  # m: a link without a part is a ball of its mass this big
@@ -178,12 +179,16 @@ def inertia_of(geometry: dict[str, Any], mass: float) -> np.ndarray:
 
 def hull_mesh(geometry: dict[str, Any]) -> trimesh.Trimesh:
     """The convex hull Bullet collides with, as a mesh."""
+    import trimesh
+
     return trimesh.convex.convex_hull(np.asarray(solid_points(geometry), float))
 
 
 def drawn_mesh(geometry: dict[str, Any], assets: AssetLibrary) -> trimesh.Trimesh | None:
     """The triangles a viewer draws for a part, when they are not its hull: a mesh file's
     (placed as the part places it: mirrored, offset, scaled) or a page's triangles."""
+    import trimesh
+
     if geometry["kind"] == "triangles":
         vertices, faces = triangle_arrays(geometry)
         return trimesh.Trimesh(vertices, faces, process=False)
@@ -195,6 +200,8 @@ def drawn_mesh(geometry: dict[str, Any], assets: AssetLibrary) -> trimesh.Trimes
 
 def obj_bytes(mesh: trimesh.Trimesh) -> bytes:
     """A mesh as an OBJ file's bytes (no normals, no textures)."""
+    import trimesh
+
     return trimesh.exchange.obj.export_obj(mesh, include_normals=False, include_texture=False,
                                            header=None).encode()
 
@@ -229,6 +236,8 @@ def _joint(k: int, tree: Articulation, names: list[str], torques: Mapping[str, f
 
 def _origin(pose: Pose) -> ET.Element:
     """URDF's ``<origin>``: its rpy turns about the fixed X, then Y, then Z axes."""
+    from scipy.spatial.transform import Rotation
+
     with warnings.catch_warnings():  # a quarter turn in pitch: scipy warns, the angles hold
         warnings.simplefilter("ignore", UserWarning)
         roll_pitch_yaw = Rotation.from_quat(pose[1]).as_euler("xyz")
