@@ -9,7 +9,7 @@ export const READS = Object.freeze({
 	getParts: 'refs', getMotors: 'refs', getSensors: 'refs',
 	senseDistance: 'number', senseTouch: 'number', sensePosition: 'point',
 	senseCollision: 'bool', senseObjects: 'ids', senseObject: 'bool',
-	senseForce: 'number', getMaxTorque: 'number', getMass: 'number', getPhysics: 'physics',
+	senseForce: 'number', senseContacts: 'contacts', getMaxTorque: 'number', getMass: 'number', getPhysics: 'physics',
 });
 
 const DECODE = {
@@ -17,6 +17,7 @@ const DECODE = {
 	numbers: (values) => values.map(fromWire),
 	refs: (refs, session) => refs.map((ref) => session.object(ref.ref)),
 	ids: (refs, session) => refs.map((ref) => session.resolve(ref.ref)),
+	contacts: (forces, session) => forces.map((force) => ({ ...force, other: session.resolve(force.other) })),
 };
 
 // Give every class that has a read its exact form.

@@ -6,7 +6,7 @@
 import * as THREE from 'three';
 import { Part, forward } from './objects.js';
 
-const NOTHING = Object.freeze({ distance: Infinity, touch: 0, objects: [], force: 0 });
+const NOTHING = Object.freeze({ distance: Infinity, touch: 0, objects: [], force: 0, contacts: [] });
 const where = new THREE.Vector3();
 
 export class Sensor extends Part {
@@ -40,9 +40,21 @@ export class Sensor extends Part {
 		return this.getWorldPosition(where).toArray();
 	}
 
-	// Not in 1.0: newtons pressing on the sensor's part (dynamic mode; else 0).
-	senseForce() {
-		return this.reading().force ?? 0;
+	// Not in 1.0: newtons pressing on the sensor's part, from everything or from one other
+	// object (a part or 'ground'): a fingertip's force on what it holds, not on the table
+	// beside it (dynamic mode; else 0).
+	senseForce(otherObject) {
+		const reading = this.reading();
+		if (otherObject === undefined || otherObject === null) return reading.force ?? 0;
+		const id = typeof otherObject === 'string' ? otherObject : otherObject?.vp?.id;
+		return (reading.contacts ?? []).find((force) => force.other === id)?.normal ?? 0;
+	}
+
+	// Not in 1.0: what presses on the sensor's part, body by body: [{other, normal,
+	// friction}] with `other` the object itself (or its id, or 'ground'), forces in N.
+	senseContacts() {
+		return (this.reading().contacts ?? []).map((force) => ({
+			...force, other: this.vp.session.resolve(force.other) }));
 	}
 
 	senseObjects() {

@@ -140,7 +140,7 @@ test('an animation whose pause another client ended runs on with the wall clock'
 	}
 });
 
-test('a page switches its scene to dynamic: objects fall, forces are felt, motors read where they are', { skip: !URL_ && 'needs VP_URL' }, async () => {
+test('a page switches its scene to dynamic: objects fall, forces are felt (body by body), motors read where they are', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	const session = await Prosthetic.connect({ url: URL_, scene: `js-dynamic-${process.pid}` });
 	try {
 		const pad = new Prosthetic.Box(2, 0.2, 2).setStatic();
@@ -159,6 +159,13 @@ test('a page switches its scene to dynamic: objects fall, forces are felt, motor
 		assert.ok(Math.abs(sensor.senseForce() - 98.1) <= 5, `force ${sensor.senseForce()}`);
 		assert.ok(load.node.position[1] < 0.5, 'the ball fell onto the pad');
 		assert.ok(Math.abs(session.mirror.forces.get(load.vp.id) - 98.1) <= 5);
+		// who presses how: the ball alone, from the frames and asked of the server
+		assert.ok(Math.abs(sensor.senseForce(load) - 98.1) <= 5 && sensor.senseForce('ground') === 0);
+		const [pressing] = sensor.senseContacts();
+		assert.equal(pressing.other, load);
+		assert.ok(pressing.friction < 1, `friction ${pressing.friction}`);
+		assert.equal((await sensor.senseContactsExact())[0].other, load);
+		assert.ok(Math.abs(await sensor.senseForceExact(load) - 98.1) <= 5);
 		await assert.rejects(async () => { Prosthetic.setPhysics('dynamic', { substeps: 0 }); await Prosthetic.sync(); },
 			(error) => error.code === 'out_of_range' && /substeps/.test(error.message));
 	} finally {

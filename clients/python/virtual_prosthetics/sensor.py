@@ -63,10 +63,27 @@ class Sensor(Part):
         reading = self._framed(exact)
         return list(reading["position"] if reading else self._ask("sensePosition"))
 
-    def sense_force(self, exact: bool = False) -> float:
-        """Newtons pressing on the sensor's part (dynamic mode; 0 in kinematic mode)."""
+    def sense_force(self, other: Node | str | None = None, exact: bool = False) -> float:
+        """Newtons pressing on the sensor's part (dynamic mode; 0 in kinematic mode), from
+        everything, or from ``other`` alone (a part or "ground"): a fingertip's force on
+        what it holds, not on the table beside it."""
         reading = self._framed(exact)
-        return float(reading["force"] if reading else self._ask("senseForce"))
+        if not reading:
+            return float(self._ask("senseForce", *(() if other is None else (other,))))
+        if other is None:
+            return float(reading["force"])
+        other_id = other if isinstance(other, str) else other.id
+        return next((float(force["normal"]) for force in reading["contacts"]
+                     if force["other"] == other_id), 0.0)
+
+    def sense_contacts(self, exact: bool = False) -> list[dict[str, Any]]:
+        """What presses on the sensor's part, body by body (dynamic mode; none in kinematic
+        mode): ``{"other", "normal", "friction"}`` with ``other`` this client's object
+        itself (other objects and the ground as ids), forces in newtons, the largest
+        normal force first."""
+        reading = self._framed(exact)
+        forces = reading["contacts"] if reading else self._ask("senseContacts")
+        return [{**force, "other": self._scene.resolve(force["other"])} for force in forces]
 
     def _objects(self, exact: bool) -> list[str]:
         reading = self._framed(exact)

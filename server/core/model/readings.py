@@ -15,6 +15,7 @@ import numpy as np
 
 from ..kit.math3d import Vec3
 from ..kit.numbers import wire_number
+from ..physics.contact_forces import ContactForce
 from . import part_figures
 
 if TYPE_CHECKING:
@@ -24,26 +25,35 @@ if TYPE_CHECKING:
 
 class Reading(NamedTuple):
     """What one sensor senses: the manual's six readings follow from the first four, and
-    ``force`` is what presses on its part (dynamic mode). A named tuple: a tick makes one
-    per watched sensor."""
+    ``force`` is what presses on its part and ``contacts`` who presses how (dynamic mode).
+    A named tuple: a tick makes one per watched sensor."""
 
     distance: float
     touch: float
     position: Vec3
     objects: tuple[str, ...]
     force: float = 0.0
+    contacts: tuple[ContactForce, ...] = ()
 
     def wire(self) -> dict[str, Any]:
         """The reading as frames carry it."""
         return {"distance": wire_number(self.distance), "touch": self.touch,
                 "position": list(self.position), "objects": list(self.objects),
-                "force": self.force}
+                "force": self.force, "contacts": [force.wire() for force in self.contacts]}
+
+    def force_from(self, other: str) -> float:
+        """Newtons pressing on the part from ``other`` (a part's id or "ground")."""
+        return next((force.normal for force in self.contacts if force.other == other), 0.0)
 
 
 def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequence[Sequence[str]],
-                 forces: Sequence[float], origins: np.ndarray, quats: np.ndarray) -> dict[str, Reading]:
+                 forces: Sequence[tuple[ContactForce, ...]], origins: np.ndarray,
+                 quats: np.ndarray) -> dict[str, Reading]:
     """Readings of ``sensors`` (shapes already placed), given what each one's part touches
-    and how hard, and their world positions and quaternions (n×3 and n×4 arrays)."""
+    and what presses on it, and their world positions and quaternions (n×3 and n×4 arrays).
+    A part something presses on touches it (1), whatever the pad's ray sees: a fingertip
+    pressed on an object from the pad's side, or through the thin gap Bullet keeps between
+    surfaces in contact."""
     if not sensors:
         return {}
     # each sensor's +Y axis in the world: the second column of its rotation matrix
@@ -51,6 +61,7 @@ def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequenc
     directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
     _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
-    return {sensor.id: Reading(distance, touch, tuple(position), tuple(touching), force)
-            for sensor, distance, touch, position, touching, force in zip(
+    return {sensor.id: Reading(distance, 1.0 if pressing else touch, tuple(position), tuple(touching),
+                               sum(force.normal for force in pressing), pressing)
+            for sensor, distance, touch, position, touching, pressing in zip(
                 sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts, forces)}

@@ -67,10 +67,19 @@ class Sensor(Part):
         """Manual ``senseObjects()``: ids of what the sensor's part touches ("ground" too)."""
         return self.scene.bodies.touching(self.host())
 
-    def sense_force(self) -> float:
-        """Newtons pressing on the sensor's part at the last tick, summed over its contacts
-        (dynamic mode; 0 in kinematic mode, where nothing pushes)."""
-        return self.scene.bodies.force_on(self.host())
+    def sense_force(self, other: Part | str | None = None) -> float:
+        """Newtons pressing on the sensor's part at the last tick, summed over its contacts,
+        or from ``other`` alone (a part or "ground"): a fingertip's force on what it holds,
+        not on the table beside it (dynamic mode; 0 in kinematic mode, where nothing pushes)."""
+        if other is None:
+            return self.scene.bodies.force_on(self.host())
+        return self.reading().force_from(other if isinstance(other, str) else other.id)
+
+    def sense_contacts(self) -> list[dict[str, Any]]:
+        """What presses on the sensor's part at the last tick, body by body: each one's id
+        ("ground" for the ground), normal force and friction force (N; dynamic mode,
+        largest normal force first; none in kinematic mode)."""
+        return [force.wire() for force in self.reading().contacts]
 
     def sense_collision(self) -> bool:
         """Manual ``senseCollision()``: whether the sensor's part touches anything."""

@@ -459,17 +459,3 @@ def tree_masses(tree: Articulation, density: float,
         return least if geometry is None else max(least, per_volume * volume_of(geometry))
     base = MOUNT_MASS * per_mass if tree.base_geometry is None else of(tree.base_mass, tree.base_geometry)
     return base, [of(link.mass, link.geometry) for link in tree.links]
-
-
-def forces_by_part(points: Sequence[Sequence[Any]], keys_of: Mapping[int, list[str | None]],
-                   newtons: float = 1.0) -> dict[str, float]:
-    """Newtons pressing on each part: the normal forces of its contact points, summed
-    (``newtons`` in one of Bullet's units of force)."""
-    found: dict[str, float] = {}
-    for point in points:
-        force = point[9] * newtons
-        if force > 0.0:
-            for key in (keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]):
-                if key is not None:
-                    found[key] = found.get(key, 0.0) + force
-    return found

@@ -18,13 +18,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Iterator, Mapping, Sequence
+from typing import Any, Collection, Iterator, Mapping, Sequence
 
 from ..kit.math3d import Pose, Vec3, rotate
 from .articulation import NO_POSE, Articulation, check_links, multibody_arguments
 from .bullet import pybullet, shape_arguments
 from .clearance import Clearance
-from .dynamics import Dynamics, Physics, forces_by_part
+from .contact_forces import ContactForce, contacts_by_part, forces_by_part
+from .dynamics import Dynamics, Physics
 from .self_contacts import dynamic_body
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
@@ -77,6 +78,7 @@ class PhysicsWorld:
         self.physics = physics
         self.dynamics: Dynamics | None = None  # in dynamic mode
         self.forces: dict[str, float] = {}  # dynamic mode: newtons on each part, last step
+        self._points: list[Any] = []  # dynamic mode: Bullet's contact points of the last step
         self._client: int | None = None
         self._trees: dict[str, _Built] = {}
         self._where: dict[str, tuple[int, int]] = {}  # part id -> (body, link); -1: the base
@@ -209,6 +211,8 @@ class PhysicsWorld:
         for key in built.tree.parts():
             del self._where[key], self._padding[key]
         del self._keys_of[built.body]
+        # Bullet may give its id to the next body: its contacts of the last step go with it
+        self._points = [p for p in self._points if built.body not in (p[1], p[2])]
         pybullet.removeBody(built.body, physicsClientId=self._client)
         self.removals += 1
 
@@ -342,7 +346,7 @@ class PhysicsWorld:
         given) and release the old one; trees start at rest where they are."""
         trees = list(self._trees.values())
         self.physics = physics or self.physics
-        self.forces = {}
+        self.forces, self._points = {}, []
         self.close()
         self._trees, self._where, self._padding = {}, {}, {}  # every part crowded again
         self._connect()
@@ -387,6 +391,7 @@ class PhysicsWorld:
         points = pybullet.getContactPoints(physicsClientId=client)
         if self.dynamics is not None:
             self.forces = forces_by_part(points, keys_of, self.dynamics.units.force)
+            self._points = points
         for point in points:
             a, b = keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]
             pair = (a, b) if a < b else (b, a)
@@ -394,6 +399,13 @@ class PhysicsWorld:
             if excess < nearest(pair, inf):  # type: ignore[arg-type]
                 found[pair] = excess  # type: ignore[index]
         return found
+
+    def contacts(self, keys: Collection[str]) -> dict[str, tuple[ContactForce, ...]]:
+        """Dynamic mode: what presses on each part of ``keys`` at the last step, body by
+        body (parts nothing presses on are left out; kinematic mode: none)."""
+        if self.dynamics is None or not self._points:
+            return {}
+        return contacts_by_part(self._points, self._keys_of, keys, self.dynamics.units.force)
 
     def touching(self, key_a: str, key_b: str) -> bool:
         """True when the exact shapes of two parts (or a part and the ground) touch.

@@ -23,7 +23,8 @@ above 0, at most 1e9 · ``friction`` 0 to 10 · ``torque`` N·m, 0 to 1e12 · ``
 
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
 or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z] ·
-``physics`` the scene's physics (``{"mode", "gravity", …}``).
+``physics`` the scene's physics (``{"mode", "gravity", …}``) · ``contacts`` what presses
+on a part, ``[{"other", "normal", "friction"}, …]`` (N).
 A method marked ``client`` is handed the calling client's id (``watch`` is per client).
 """
 
@@ -194,8 +195,11 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("senseObjects", returns="ids", mutates=False),
         Method("senseObject", (Param("otherObject", "contact"),), returns="bool",
                mutates=False),
-        # not in the manual: newtons pressing on the sensor's part (dynamic mode; else 0)
-        Method("senseForce", returns="number", mutates=False),
+        # not in the manual: newtons pressing on the sensor's part, from all or from one
+        # other body, and each body's normal and friction forces (dynamic mode; else 0)
+        Method("senseForce", (Param("otherObject", "contact", None),), returns="number",
+               mutates=False),
+        Method("senseContacts", returns="contacts", mutates=False),
         Method("watch", (Param("on", "bool", True),), mutates=False, client=True),
     )),
     TypeSpec("Robot", None, methods=(

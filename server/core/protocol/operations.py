@@ -42,6 +42,7 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
     "numbers": lambda target, value: encode_numbers([float(v) for v in value]),
     "point": lambda target, value: list(value),
     "physics": lambda target, value: value,  # already its wire form (Physics.wire)
+    "contacts": lambda target, value: value,  # already its wire form (ContactForce.wire)
     "string": lambda target, value: str(value),
     "recording": lambda target, value: value,  # what a recording holds (mcap_recorder)
 }

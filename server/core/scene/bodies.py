@@ -444,7 +444,7 @@ class SceneBodies:
         else:
             of = self.tracker.overlaps().of
             contacts = [() if host is None else of(host.id) for host in hosts]
-        forces = self.physics.forces
+        pressing = self.physics.contacts({host.id for host in hosts if host is not None})
         return read_sensors(self._rays, sensors, contacts,
-                            [0.0 if host is None else forces.get(host.id, 0.0) for host in hosts],
+                            [() if host is None else pressing.get(host.id, ()) for host in hosts],
                             *self.world_poses(sensors))

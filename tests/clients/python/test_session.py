@@ -95,6 +95,13 @@ def test_a_script_switches_the_scene_to_dynamic_and_things_fall_and_are_felt(sce
     _eventually(lambda: load._state()["position"][1] < 0.5)  # fallen onto the pad
     _eventually(lambda: sensor.sense_force() == pytest.approx(98.1, rel=0.05))
     assert scene.mirror.forces[load.id] == pytest.approx(98.1, rel=0.05)
+    # who presses how: the ball alone, from the frames and asked of the server
+    assert sensor.sense_force(load) == pytest.approx(98.1, rel=0.05)
+    assert sensor.sense_force("ground") == 0.0 == sensor.sense_force("ground", exact=True)
+    assert sensor.sense_force(load, exact=True) == pytest.approx(98.1, rel=0.05)
+    for exact in (False, True):
+        [pressing] = sensor.sense_contacts(exact=exact)
+        assert pressing["other"] is load and pressing["friction"] < 1
 
 
 def test_in_dynamic_mode_a_motor_reads_where_it_is_not_where_it_was_sent(scene):

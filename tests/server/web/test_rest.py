@@ -114,6 +114,7 @@ def test_sensor_readings_and_contacts(server, scene_name):
         assert reading == {"id": sensor, "type": "Sensor", "part": finger, "watched": False,
                            "laserColor": None, "distance": pytest.approx(0.45),
                            "touch": 0.0, "position": [0, 1.5, 0], "objects": [], "force": 0.0,
+                           "contacts": [],
                            "collision": False, "object": False}
         request_all(ws, [{"op": "call", "object": box, "method": "setPosition",
                           "args": [0, 1.5, 0]}])

@@ -54,7 +54,8 @@ def test_frames_carry_readings_of_watched_and_laser_sensors(scene):
     frame = frame_of(scene.tick(0.1))
     assert set(frame["sensors"]) == {"w", "l"}
     assert frame["sensors"]["w"] == {"distance": pytest.approx(2.0), "touch": 0.0,
-                                     "position": [0, 2, 0], "objects": [], "force": 0.0}
+                                     "position": [0, 2, 0], "objects": [], "force": 0.0,
+                                     "contacts": []}
     watched.set_rotation(0, 0, 0)
     assert frame_of(scene.tick(0.1))["sensors"]["w"]["distance"] == "Infinity"
     scene.delete(laser)
