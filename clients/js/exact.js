@@ -9,7 +9,8 @@ export const READS = Object.freeze({
 	getParts: 'refs', getMotors: 'refs', getSensors: 'refs',
 	senseDistance: 'number', senseTouch: 'number', sensePosition: 'point',
 	senseCollision: 'bool', senseObjects: 'ids', senseObject: 'bool',
-	senseForce: 'number', senseContacts: 'contacts', getMaxTorque: 'number', getMass: 'number', getPhysics: 'physics',
+	senseForce: 'number', senseContacts: 'contacts', getMaxTorque: 'number', getMaxSpeed: 'number',
+	getTorque: 'number', getMass: 'number', getPhysics: 'physics',
 });
 
 const DECODE = {

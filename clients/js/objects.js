@@ -5,6 +5,7 @@
 // form, `await x.<read>Exact(…)`, answered by the server after every earlier request.
 
 import * as THREE from 'three';
+import { fromWire } from './codec.js';
 import { filled } from './lenient.js';
 import { deleteMessage } from './messages.js';
 import { currentSession } from './session.js';
@@ -187,6 +188,23 @@ export class Motor extends Part {
 
 	getMaxTorque() {
 		return this.node?.maxTorque;
+	}
+
+	// Not in 1.0, dynamic mode: the fastest the motor moves (rad/s; a slider's scene
+	// units/s), as a servo's rated speed (Infinity, the default: no limit).
+	setMaxSpeed(speed) {
+		this.call('setMaxSpeed', speed);
+		return this;
+	}
+
+	getMaxSpeed() {
+		return fromWire(this.node?.maxSpeed ?? Infinity);
+	}
+
+	// Not in 1.0, dynamic mode: the torque (N·m; a slider's force, N) the motor drove
+	// with in the last step, positive pushing its angle up (0 in kinematic mode).
+	async getTorque() {
+		return this.vp.session.call(this.vp.id, 'getTorque', [], { wait: true });
 	}
 
 	// Not in the manual: turn with the motor `leader` at ratio·leader +

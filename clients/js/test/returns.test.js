@@ -20,7 +20,7 @@ const ARGUMENTS = {
 	string: () => 'named', slot: () => 0, color: () => 0x336699, rgb: () => [1, 0, 0],
 	node: () => new Prosthetic.MotorZ(), part: () => new Prosthetic.Box(), motor: () => new Prosthetic.MotorZ(), axis: () => 'z',
 	asset: () => MESH, geometry: () => ({ kind: 'box', size: [1, 1, 1] }),
-	mass: () => 2, friction: () => 0.5, torque: () => 100, robotFile: () => robotFile,
+	mass: () => 2, friction: () => 0.5, torque: () => 100, speed: () => 3, robotFile: () => robotFile,
 };
 let robotFile;   // an uploaded robot's file (robot_files.js), once connected
 

@@ -166,6 +166,13 @@ test('a page switches its scene to dynamic: objects fall, forces are felt (body 
 		assert.ok(pressing.friction < 1, `friction ${pressing.friction}`);
 		assert.equal((await sensor.senseContactsExact())[0].other, load);
 		assert.ok(Math.abs(await sensor.senseForceExact(load) - 98.1) <= 5);
+		// a motor's speed bound and its effort (a lone motor drives nothing: none)
+		const motor = new Prosthetic.MotorZ();
+		assert.equal(motor.getMaxSpeed(), Infinity);
+		motor.setMaxSpeed(0.5);
+		await Prosthetic.sync();
+		assert.equal(motor.getMaxSpeed(), 0.5);
+		assert.equal(await motor.getTorque(), 0);
 		await assert.rejects(async () => { Prosthetic.setPhysics('dynamic', { substeps: 0 }); await Prosthetic.sync(); },
 			(error) => error.code === 'out_of_range' && /substeps/.test(error.message));
 	} finally {

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any, Callable, ClassVar
 
+from .codec import from_wire
 from .errors import VPError
 from .session import Session, current_session
 
@@ -179,6 +180,22 @@ class Motor(Part):
     def get_max_torque(self) -> float:
         """Its torque bound in dynamic mode (N·m)."""
         return float(self._state()["maxTorque"])
+
+    def set_max_speed(self, speed: float) -> Motor:
+        """The fastest it moves in dynamic mode (rad/s; a slider's scene units/s), as a
+        servo's rated speed (``math.inf``, the default: no limit); returns the motor."""
+        self._call("setMaxSpeed", speed)
+        return self
+
+    def get_max_speed(self) -> float:
+        """Its speed bound in dynamic mode (``math.inf``: none)."""
+        return float(from_wire(self._state().get("maxSpeed", "Infinity")))
+
+    def get_torque(self) -> float:
+        """The torque it drove with in the last step (N·m; a slider's force, N), positive
+        pushing its angle up: what a servo's current tells (dynamic mode; 0 in kinematic
+        mode). Asks the server."""
+        return float(from_wire(self._scene.call(self.id, "getTorque", (), wait=True)))
 
     def follow(self, leader: Motor | None = None, ratio: float = 1.0,
                offset: float = 0.0) -> Motor:

@@ -8,6 +8,7 @@ from typing import Any
 from ...errors import Cycle, OutOfRange, WrongType
 from ..kit import math3d
 from ..kit.math3d import Pose, Vec3
+from ..kit.numbers import encode_numbers
 from ..physics.dynamics import DEFAULT_MAX_FORCE, DEFAULT_MAX_TORQUE
 from . import part_figures
 from .node import World
@@ -45,6 +46,7 @@ class Motor(Part):
         self.angle = self.default
         self.target = self.angle  # dynamic mode: what the motor drives toward (angle: where it is)
         self.max_torque: float | None = None  # N·m in dynamic mode (None: DEFAULT_MAX_TORQUE)
+        self.max_speed: float | None = None  # rad/s in dynamic mode (None: no limit)
         self.flipped = False
         self.name: str | None = None
         self.following: tuple[str, float, float] | None = None  # (leader id, ratio, offset)
@@ -71,6 +73,23 @@ class Motor(Part):
     def get_max_torque(self) -> float:
         """The motor's torque bound in dynamic mode (N·m)."""
         return DEFAULT_MAX_TORQUE if self.max_torque is None else self.max_torque
+
+    def set_max_speed(self, speed: float) -> Motor:
+        """The fastest the motor moves in dynamic mode (rad/s; a slider's: scene units/s), as
+        a servo's rated speed: it drives toward its angle no faster (Infinity, the default:
+        as fast as its torque allows); returns the motor."""
+        self._assign("max_speed", None if math.isinf(speed) else float(speed))
+        return self
+
+    def get_max_speed(self) -> float:
+        """The motor's speed bound in dynamic mode (Infinity: none)."""
+        return math.inf if self.max_speed is None else self.max_speed
+
+    def get_torque(self) -> float:
+        """The torque the motor drove with in the last step (N·m; a slider's force, N),
+        positive pushing its angle up: the effort a servo's current tells (dynamic mode;
+        0 in kinematic mode, where motors jump to their angles)."""
+        return self.scene.bodies.effort(self)
 
     def set_angle(self, angle: float | None) -> None:
         """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""
@@ -145,7 +164,7 @@ class Motor(Part):
     def properties(self) -> dict[str, Any]:
         return {**super().properties(), "axis": self.axis, "min": self.min, "max": self.max,
                 "angle": self.angle, "flipped": self.flipped, "name": self.name,
-                "maxTorque": self.get_max_torque(),
+                "maxTorque": self.get_max_torque(), "maxSpeed": encode_numbers(self.get_max_speed()),
                 "follows": None if self.following is None else list(self.following)}
 
 

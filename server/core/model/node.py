@@ -26,6 +26,8 @@ class Bodies(Protocol):
 
     def force_on(self, part: Node | None) -> float: ...
 
+    def effort(self, motor: Node) -> float: ...
+
 
 class World(Protocol):
     """What a node needs of the scene it lives in. :class:`~server.core.scene.scene.Scene` is the

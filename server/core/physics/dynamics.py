@@ -57,8 +57,8 @@ from dataclasses import asdict, dataclass, replace
 from typing import Any, Callable, Mapping, Sequence
 
 from ...errors import BadArguments, OutOfRange, WrongType, show
-from ..kit.math3d import ORIGIN, Pose, Vec3, between
-from .articulation import Articulation
+from ..kit.math3d import ORIGIN, Pose, Vec3, between, compose
+from .articulation import NO_POSE, Articulation
 from .geometry import centroid, volume
 
 KINEMATIC, DYNAMIC = "kinematic", "dynamic"
@@ -81,6 +81,7 @@ BETWEEN_MASS = 0.1  # a link that carries no part (where two joints meet), the l
 # robot at any unit from 1.5 cm up (8.7 kN at the default unit)
 MOUNT_FORCE = 1e9
 MOUNT_MASS = 1.0  # a robot base without a part of its own
+UNBOUNDED_SPEED = 1e30  # Bullet's motor speed bound for none (it keeps the last one set)
 SHAPELESS_INERTIA = 1e-3  # of a base or link without a part (× unit⁵: kg·m²)
 SPINNING, ROLLING = 0.2, 0.002  # of a free body's lateral friction (robots and static
 # bodies carry none: Bullet adds both bodies' shares, so a free body's contact with a finger
@@ -209,6 +210,7 @@ class Dynamics:
         self._mounts: dict[int, Pose] = {}  # mount constraint -> where it is
         self._glides: dict[int, Pose] = {}  # mount constraint -> where it goes over the next steps
         self._moving: set[int] = set()  # bodies with parts that move (the solver's tolerance)
+        self._speed_bound: set[int] = set()  # bodies with a motor whose speed is bounded
         self.iterations = physics.solverIterations  # what steps use now (STEP_BUDGET)
         self.held_back = 0  # steps the last advance left out (STEP_BUDGET)
         self.clock: Callable[[], float] = time.thread_time  # the CPU-seconds steps cost
@@ -228,11 +230,10 @@ class Dynamics:
         """The base's mass and every link's in Bullet's units, as :func:`tree_masses` weighs
         them; 0 for the base of a static tree (Bullet: fixed)."""
         base, links = tree_masses(tree, self.physics.density, self._volume, self.units.unit)
-        if tree.base_geometry is None and any(tree.sliding):
-            # a sliding motor's load reaches a base only through the solver (a turning one's
-            # through the tree itself): on a base of MOUNT_MASS, 155 times lighter than the
-            # block it held up, the mount sank by 12 % of the block's size; as heavy as what
-            # hangs on it, the base holds still
+        if tree.base_geometry is None and tree.links:
+            # what hangs on a base reaches its mount only through the solver: on a base of
+            # MOUNT_MASS, 155 times lighter than the block a slider held up, the mount sank
+            # by 12 % of the block's size; as heavy as what hangs on it, the base holds still
             base = max(base, sum(links))
         per = self.units.mass
         return (0.0 if tree.static else base / per), [mass / per for mass in links]
@@ -246,6 +247,18 @@ class Dynamics:
         if key not in self._masses:
             self._masses[key] = (volume(geometry), centroid(geometry))
         return self._masses[key]
+
+    def _load_inertia(self, tree: Articulation) -> float:
+        """A part-less base's inertia, in Bullet's units: that of its links' masses about
+        it at rest. The mount holds the base's turn only through the solver, and a base of
+        a small ball's inertia let a motor's 0.1 kg arm turn it 0.7 rad (the motor reading
+        no torque); as hard to turn as its load, it holds to 1e-3 rad."""
+        _, masses = self.masses(tree)
+        poses: list[Pose] = []
+        for link in tree.links:
+            poses.append(compose(NO_POSE if link.parent < 0 else poses[link.parent], link.origin))
+        reach = [math.dist(ORIGIN, compose(pose, link.shape)[0]) for pose, link in zip(poses, tree.links)]
+        return max(SHAPELESS_INERTIA, sum(m * r * r for m, r in zip(masses, reach)))
 
     def centres(self, tree: Articulation) -> tuple[Vec3, list[Vec3]]:
         """Where the base's and each link's centre of mass lies in its part's frame (a
@@ -269,6 +282,9 @@ class Dynamics:
             [k for k, link in enumerate(tree.links) if link.geometry is None]
         for link in shapeless:
             p.changeDynamics(body, link, localInertiaDiagonal=(SHAPELESS_INERTIA,) * 3,
+                             physicsClientId=client)
+        if shapeless[:1] == [-1] and tree.links:  # (the base's, turned by what hangs on it)
+            p.changeDynamics(body, -1, localInertiaDiagonal=(self._load_inertia(tree),) * 3,
                              physicsClientId=client)
         for k, link in enumerate(tree.links):  # a robot file's own inertia (else the shape's)
             if link.inertia is not None:  # (kg·scene unit²)
@@ -324,15 +340,23 @@ class Dynamics:
     # --- driving -----------------------------------------------------------------------
 
     def drive(self, body: int, joint_links: Sequence[int], targets: list[float],
-              torques: list[float], sliding: Sequence[bool]) -> None:
+              torques: list[float], speeds: list[float], sliding: Sequence[bool]) -> None:
         """Every motor of a tree toward its target, with at most its torque (N·m; a
-        sliding joint's: its force, N)."""
-        torque, force = self.units.torque, self.units.force
-        self.p.setJointMotorControlArray(body, list(joint_links), self.p.POSITION_CONTROL,
-                                         targetPositions=targets,
-                                         forces=[bound / (force if slides else torque)
-                                                 for bound, slides in zip(torques, sliding)],
-                                         physicsClientId=self.client)
+        sliding joint's: its force, N) and no faster than its speed (rad/s, a sliding
+        joint's scene units/s, which are Bullet's; inf: no limit)."""
+        p, torque, force = self.p, self.units.torque, self.units.force
+        bounds = [bound / (force if slides else torque) for bound, slides in zip(torques, sliding)]
+        p.setJointMotorControlArray(body, list(joint_links), p.POSITION_CONTROL,
+                                    targetPositions=targets, forces=bounds, physicsClientId=self.client)
+        bounded = any(math.isfinite(speed) for speed in speeds)
+        if not bounded and body not in self._speed_bound:
+            return
+        # the array call sets no speed bound, and keeps one set before: each joint's own call
+        for link, target, bound, speed in zip(joint_links, targets, bounds, speeds):
+            p.setJointMotorControl2(body, link, p.POSITION_CONTROL, targetPosition=target, force=bound,
+                                    maxVelocity=speed if math.isfinite(speed) else UNBOUNDED_SPEED,
+                                    physicsClientId=self.client)
+        (self._speed_bound.add if bounded else self._speed_bound.discard)(body)
 
     def mount(self, constraint: int, pose: Pose) -> None:
         """Move a robot's mount: it glides there over the steps of the next advance (a
@@ -343,6 +367,7 @@ class Dynamics:
 
     def removed(self, body: int, mount: int | None) -> None:
         """A tree gone, with its mount (Bullet gives their ids to the next ones made)."""
+        self._speed_bound.discard(body)
         if body in self._free:
             self._free.discard(body)
             self._wake_all = self.sleeping
@@ -438,10 +463,14 @@ class Dynamics:
         position, orientation = self.p.getBasePositionAndOrientation(body, physicsClientId=self.client)
         return tuple(position), tuple(orientation)
 
-    def angles(self, body: int, joint_links: Sequence[int]) -> list[float]:
-        """The joints' real angles (radians)."""
-        return [state[0] for state in self.p.getJointStates(body, list(joint_links),
-                                                            physicsClientId=self.client)]
+    def joint_states(self, body: int, joint_links: Sequence[int],
+                     sliding: Sequence[bool]) -> tuple[list[float], list[float]]:
+        """The joints' real angles (radians; a sliding joint's length) and the torques their
+        motors applied in the last step (N·m; a sliding joint's force, N)."""
+        states = self.p.getJointStates(body, list(joint_links), physicsClientId=self.client)
+        torque, force = self.units.torque, self.units.force
+        return ([state[0] for state in states],
+                [state[3] * (force if slides else torque) for state, slides in zip(states, sliding)])
 
 
 def tree_masses(tree: Articulation, density: float,

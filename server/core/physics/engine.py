@@ -65,6 +65,7 @@ class _Built:
     base_centre: Vec3 = (0.0, 0.0, 0.0)
     part_centres: list[Vec3] | None = None  # of the parts on links, in part_links order
     bullet_pose: Any = None  # dynamic mode: the base's pose as Bullet gave it when last read
+    efforts: list[float] | None = None  # dynamic mode: each joint's torque (force), last read
 
 
 class PhysicsWorld:
@@ -289,12 +290,15 @@ class PhysicsWorld:
 
     # --- dynamic mode --------------------------------------------------------------------
 
-    def drive(self, root: str, targets: list[float], torques: list[float]) -> None:
+    def drive(self, root: str, targets: list[float], torques: list[float],
+              speeds: list[float]) -> None:
         """Dynamic mode: the joints of the tree of ``root`` toward ``targets`` (in the order
-        of its joints), each with at most its torque (a sliding joint's: its force)."""
+        of its joints), each with at most its torque (a sliding joint's: its force) and no
+        faster than its speed (inf: no limit)."""
         built = self._trees[root]
         if built.joints and self.dynamics is not None:
-            self.dynamics.drive(built.body, built.joint_links, targets, torques, built.tree.sliding)
+            self.dynamics.drive(built.body, built.joint_links, targets, torques, speeds,
+                                built.tree.sliding)
 
     def motion(self, root: str, bullet_pose: Any = None) -> tuple[Pose | None, list[float]]:
         """Dynamic mode: where the base of the tree of ``root`` is (None: static) and its
@@ -306,11 +310,18 @@ class PhysicsWorld:
             bullet_pose = (tuple(bullet_pose[0]), tuple(bullet_pose[1]))
         pose = None if built.tree.static else \
             _shifted(bullet_pose or dynamics.base_pose(built.body), built.base_centre, -1)
-        angles = dynamics.angles(built.body, built.joint_links) if built.joints else []
+        angles, built.efforts = dynamics.joint_states(built.body, built.joint_links, built.tree.sliding) \
+            if built.joints else ([], [])
         if pose is not None:
             built.base_pose = pose
         built.angles = angles
         return pose, angles
+
+    def efforts(self, root: str) -> list[float]:
+        """Dynamic mode: the torque (N·m; a sliding joint's force, N) each joint of the tree
+        of ``root`` was driven with in the last step, in the order of its joints."""
+        built = self._trees[root]
+        return list(built.efforts) if built.efforts else [0.0] * len(built.joints)
 
     def motions(self) -> Iterator[tuple[str, Pose | None, list[float]]]:
         """Dynamic mode: :meth:`motion` of each tree Bullet may have moved since the last

@@ -19,7 +19,8 @@ Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) �
 (:mod:`server.core.physics.geometry`) · ``transforms`` {id: [px, py, pz, qx, qy, qz, qw] with
 sx, sy, sz optionally after} · ``mode`` 'kinematic' or 'dynamic' · ``options`` an object of
 physics options (checked by :class:`server.core.physics.dynamics.Physics`) · ``mass`` kg,
-above 0, at most 1e9 · ``friction`` 0 to 10 · ``torque`` N·m, 0 to 1e12 · ``ticks`` a whole number of ticks, 1 to 60.
+above 0, at most 1e9 · ``friction`` 0 to 10 · ``torque`` N·m, 0 to 1e12 · ``speed`` above 0 (rad/s; a slider's scene units/s) or
+Infinity (no limit) · ``ticks`` a whole number of ticks, 1 to 60.
 
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
 or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z] ·
@@ -168,6 +169,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
               # not in the manual: what the motor drives with in dynamic mode
               Method("setMaxTorque", (Param("torque", "torque"),), returns="self"),
               Method("getMaxTorque", returns="number", mutates=False),
+              Method("setMaxSpeed", (Param("speed", "speed"),), returns="self"),
+              Method("getMaxSpeed", returns="number", mutates=False),
+              # the torque it drove with in the last step, as a servo's current tells
+              Method("getTorque", returns="number", mutates=False),
               # not in the manual: coupled joints (a linkage, a tendon; URDF <mimic>)
               Method("follow", (Param("leader", "motor", None), Param("ratio", "number", 1.0),
                                 Param("offset", "number", 0.0)), returns="self"))),

@@ -284,6 +284,13 @@ def _ranged(low: float, high: float, what: str, low_open: bool = False) -> Calla
     return check
 
 
+def _speed(value: Any, resolve: Resolver, label: str) -> float:
+    number = _number(value, label, ("Infinity",))
+    if not number > 0:
+        raise OutOfRange(f"{label}: a speed lies above 0 (Infinity: no limit), got {number:g}")
+    return number
+
+
 def _options(value: Any, resolve: Resolver, label: str) -> dict[str, Any]:
     if not isinstance(value, dict):  # the scene checks each option (server.core.physics.dynamics)
         raise WrongType(f"{label}: expected an object of options, got {show(value)}")
@@ -322,6 +329,7 @@ _KINDS: dict[str, Callable[[Any, Resolver, str], Any]] = {
     "mass": _ranged(0.0, 1e9, "a mass (kg)", low_open=True),
     "friction": _ranged(0.0, 10.0, "a friction coefficient"),
     "torque": _ranged(0.0, 1e12, "a torque (N·m)"),
+    "speed": _speed,
     "ticks": _ticks,
 }
 

@@ -89,6 +89,7 @@ STATE: dict[type[Node], tuple[Saved, ...]] = {
             Saved("flipped", (Param("flipped", "bool"),), Motor.flip),
             Saved("angle", (Param("angle", "number"),), Motor.set_angle),
             Saved("max_torque", (Param("torque", "torque"),), Motor.set_max_torque, key="maxTorque"),
+            Saved("max_speed", (Param("speed", "speed"),), Motor.set_max_speed, key="maxSpeed"),
             Saved("saved_target", (Param("target", "number"),), _target, key="target"),
             Saved("following", (Param("leader", "string"), Param("ratio", "number"),
                                 Param("offset", "number")), _follow, key="follows", spread=True)),

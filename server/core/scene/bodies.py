@@ -179,7 +179,8 @@ class SceneBodies:
         if self._targets_due:
             for root_id, motors in self._joint_motors.items():
                 physics.drive(root_id, [m.target for m in motors],  # type: ignore[attr-defined]
-                              [m.get_max_torque() for m in motors])  # type: ignore[attr-defined]
+                              [m.get_max_torque() for m in motors],  # type: ignore[attr-defined]
+                              [m.get_max_speed() for m in motors])  # type: ignore[attr-defined]
             self._targets_due, self._stirred = False, True
         dynamics = physics.dynamics
         at_rest = self._still and not self._stirred
@@ -225,6 +226,16 @@ class SceneBodies:
     def force_on(self, part: Node | None) -> float:
         """Newtons pressing on ``part`` at the last tick (0 in kinematic mode)."""
         return 0.0 if part is None else self.physics.forces.get(part.id, 0.0)
+
+    def effort(self, motor: Node) -> float:
+        """The torque (a slider's force) ``motor`` drove with in the last step, N·m (N);
+        0 in kinematic mode, and for a motor not yet built into its tree."""
+        self.sync()
+        root_id = motor.root().id
+        motors = self._joint_motors.get(root_id, [])
+        if self.physics.dynamics is None or motor not in motors:
+            return 0.0
+        return self.physics.efforts(root_id)[motors.index(motor)]
 
     def _read_poses(self) -> None:
         """Read the parts' poses of the trees moved since they were last read (Bullet's

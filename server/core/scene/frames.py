@@ -79,12 +79,14 @@ def _angles(nodes: Mapping[str, Node], changes: ChangeSet) -> dict[str, Any]:
 
 
 # the node attributes whose wire name (describe()'s) is not their own
-WIRE_NAMES = {"max_torque": "maxTorque"}
+WIRE_NAMES = {"max_torque": "maxTorque", "max_speed": "maxSpeed"}
 
 
 def _field(node: Node, field: str) -> Any:
     if field == "max_torque":
         return node.get_max_torque()  # type: ignore[attr-defined]
+    if field == "max_speed":
+        return encode_numbers(node.get_max_speed())  # type: ignore[attr-defined]
     if field == "parent":
         return node.parent.id if node.parent is not None else None
     if field == "children":

@@ -155,7 +155,7 @@ class Scene:
             self.bodies.restructure((node.root().id,))
             if field == "following":  # followers are kept with their trees (bodies._follow)
                 self.couplings.changed()
-        elif field == "max_torque":
+        elif field in ("max_torque", "max_speed"):
             self.bodies.retargeted()
 
     def turn(self, turns: list[tuple[Motor, float | None]], coupled: bool = True) -> None:

@@ -64,7 +64,7 @@ ARGUMENTS = {
     "slot": lambda: 0, "color": lambda: 0x336699, "rgb": lambda: [1, 0, 0],
     "node": lambda: vp.MotorZ(), "part": lambda: vp.Box(), "motor": lambda: vp.MotorZ(), "axis": lambda: "z",
     "asset": lambda: "round-tip.glb", "geometry": lambda: {"kind": "box", "size": [1, 1, 1]},
-    "mass": lambda: 2.0, "friction": lambda: 0.5, "torque": lambda: 100.0,
+    "mass": lambda: 2.0, "friction": lambda: 0.5, "torque": lambda: 100.0, "speed": lambda: 3.0,
     "robotFile": lambda: uploaded_hand(),
 }
 

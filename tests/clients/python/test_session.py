@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 
 import pytest
@@ -118,6 +119,15 @@ def test_in_dynamic_mode_a_motor_reads_where_it_is_not_where_it_was_sent(scene):
     time.sleep(1.0)
     scene.sync()
     assert motor.get_angle() != pytest.approx(-1.5, abs=0.2)  # the finger hangs down instead
+    assert abs(motor.get_torque()) == pytest.approx(2e-5, rel=0.05)  # straining at its bound
+    assert motor.get_max_speed() == math.inf
+    motor.set_max_speed(0.5)
+    scene.sync()
+    assert motor.get_max_speed() == 0.5
+    with pytest.raises(vp.ServerError) as refused:
+        motor.set_max_speed(0)
+        scene.sync()
+    assert refused.value.code == "out_of_range" and "speed" in str(refused.value)
     with pytest.raises(vp.ServerError) as refused:
         vp.set_physics("dynamic", substeps=0)
         scene.sync()

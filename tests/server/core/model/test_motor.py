@@ -176,3 +176,43 @@ def test_a_slider_lifts_its_load_in_dynamic_mode_and_its_partless_robot_stays_pu
     assert slider.get_angle() == pytest.approx(0.5, abs=2e-3)
     assert box.world_pose()[0] == pytest.approx((1.0, 3.5, 0.0), abs=2e-3)
     assert slider.get_max_torque() == DEFAULT_MAX_FORCE  # newtons
+
+
+def _arm(scene, reach):
+    """A robot whose MotorZ carries a 0.1 kg box ``reach`` along x from the joint."""
+    robot, motor = Robot(scene, "r"), MotorZ(scene, "m")
+    arm = Box(scene, "arm", 0.5, 0.2, 0.2)
+    robot.attach_chain(motor, arm)
+    arm.set_position((reach, 0.0, 0.0))
+    robot.set_position((0.0, 3.0, 0.0))
+    scene.set_physics("dynamic")
+    arm.set_mass(0.1)
+    return motor
+
+
+@pytest.mark.parametrize("flipped", [False, True])
+def test_a_motor_tells_the_torque_it_holds_its_arm_level_with(scene, flipped):
+    motor = _arm(scene, 1.0)
+    motor.flip(flipped)
+    assert motor.get_torque() == 0.0  # not driven yet
+    for _ in range(60):
+        scene.tick(1 / 60)
+    assert motor.get_angle() == pytest.approx(0.0, abs=0.02)
+    # gravity turns the arm about -z with m·g·r: the motor holds it with as much about +z
+    holding = 0.1 * 9.81 * 1.0 * scene.physics.unit  # N·m (the reach in metres)
+    assert motor.get_torque() == pytest.approx(-holding if flipped else holding, rel=0.05)
+    scene.set_physics("kinematic")
+    assert motor.get_torque() == 0.0  # motors jump to their angles: no effort
+
+
+def test_a_motor_moves_no_faster_than_its_speed_bound(scene):
+    motor = _arm(scene, 0.0)  # balanced: gravity turns it neither way
+    assert motor.get_max_speed() == math.inf
+    motor.set_max_speed(0.5).set_angle(1.0)
+    for _ in range(30):  # half a second
+        scene.tick(1 / 60)
+    assert motor.get_angle() == pytest.approx(0.25, abs=0.02)  # 0.5 rad/s
+    motor.set_max_speed(math.inf)
+    for _ in range(30):
+        scene.tick(1 / 60)
+    assert motor.get_angle() == pytest.approx(1.0, abs=0.02)  # as fast as its torque allows
