@@ -83,6 +83,13 @@ export class Robot extends SceneObject {
 		return this.listed((mirror) => mirror.parts(this.vp.id).filter((n) => n.type === 'Sensor'));
 	}
 
+	// Not in 1.0: the hand's digits, derived by the server from its kinematics (the
+	// schema's gripMap): each digit's tip, the motors that close it ({motor, index, open,
+	// closed}, palm first), whether it opposes the others and its preshape if it does.
+	async getGripMap() {
+		return this.vp.session.call(this.vp.id, 'getGripMap', [], { wait: true });
+	}
+
 	getPosition() {
 		return this.position.toArray();
 	}

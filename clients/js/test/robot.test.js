@@ -28,6 +28,11 @@ test('lists taken right after building are the robot at once', { skip: !URL_ && 
 		assert.equal(parts[3], sensor);
 		assert.deepEqual(robot.getMotors().map((m) => m.constructor.name), ['MotorY', 'MotorZ']);
 		assert.deepEqual(robot.getSensors(), [sensor]);
+		const grip = await hand.getGripMap();           // the server's, from the hand's kinematics
+		assert.deepEqual(grip.digits.map((digit) => digit.motors.map((m) => m.index)),
+			[[1, 2, 3], [5, 6, 7], [9, 10, 11], [13, 14, 15], [17, 18, 19]]);
+		assert.equal(grip.digits[0].opposes, true);
+		assert.equal((await hand.getGripMapExact()).digits.length, 5);
 		new Prosthetic.MotorX().attachToSlot(sensor);
 		assert.equal(robot.getMotors().length, 3);
 		await Prosthetic.sync();

@@ -98,6 +98,15 @@ class Robot(Shown):
         """Manual ``getSensors()``."""
         return self._listing("sensors")
 
+    def get_grip_map(self) -> dict[str, Any]:
+        """Not in 1.0: the hand's digits, derived by the server from its kinematics with
+        its motors at their defaults: each digit's tip, the motors that close it (``motor``
+        id, ``index``, ``open`` and ``closed`` values, palm first), whether it opposes the
+        others and, if it does, the motors that turn it to face them first (``preshape``);
+        ``centre``, ``approach`` (the way the hand faces) and ``forward`` (palm to tips) in
+        the robot's own frame. The schema's ``gripMap``. Asks the server."""
+        return dict(self._scene.call(self.id, "getGripMap", (), wait=True))
+
     def get_position(self) -> list[float]:
         """Manual ``getPosition()``: [x, y, z]."""
         return list(self._state()["position"])

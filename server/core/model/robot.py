@@ -7,9 +7,11 @@ from typing import Any
 from ...errors import WrongType
 from ..kit.ids import owner_of
 from ..kit.math3d import Vec3
+from ..physics.grip_map import grip_map
 from .motor import Motor
 from .node import Node, World
 from .parts import Part
+from .structure import structure_of
 
 
 class Robot(Node):
@@ -71,6 +73,20 @@ class Robot(Node):
             parts = [n for n in self.walk() if isinstance(n, Part) and n.listed]
             self._listing = (version, parts, [p for p in parts if isinstance(p, Motor)])
         return self._listing[1], self._listing[2]
+
+    def get_grip_map(self) -> dict[str, Any]:
+        """Its digits, the motors that close each and how far, the digit that opposes the
+        others and which way the hand faces, derived from its kinematics with its motors
+        at their defaults (:mod:`server.core.physics.grip_map`); vectors in the robot's own
+        frame (its position and rotation taken away), motors also by their index."""
+        motors = self.get_motors()
+        found = grip_map(structure_of(self), {motor.id: motor.default for motor in motors})
+        index = {motor.id: i for i, motor in enumerate(motors)}
+        wire = found.wire()
+        for digit in wire["digits"]:
+            for entry in (*digit["motors"], *digit["preshape"]):
+                entry["index"] = index[entry["motor"]]
+        return wire
 
     def get_sensors(self) -> list[Part]:
         """Manual ``getSensors()``: the sensors below the robot."""

@@ -18,10 +18,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 from ...errors import LimitExceeded
-from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3, axis_angle
+from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3, axis_angle, compose
 from .geometry import scaled
 
 NO_POSE: Pose = (ORIGIN, IDENTITY)
@@ -143,6 +143,17 @@ class Articulation:
     def joints(self) -> list[tuple[int, Joint]]:
         """(link index, joint) of every joint, in link order."""
         return [(k, link.joint) for k, link in enumerate(self.links) if link.joint is not None]
+
+    def link_poses(self, values: Mapping[str, float]) -> list[Pose]:
+        """Every link's frame in the base's frame with each joint at its motor's value in
+        ``values`` (a motor left out: at 0), as Bullet's forward kinematics places them."""
+        poses: list[Pose] = []
+        for link in self.links:
+            frame = compose(NO_POSE if link.parent < 0 else poses[link.parent], link.origin)
+            if link.joint is not None:
+                frame = compose(frame, link.joint.motion(values.get(link.joint.motor, 0.0)))
+            poses.append(frame)
+        return poses
 
     @cached_property
     def sliding(self) -> tuple[bool, ...]:

@@ -25,7 +25,8 @@ Infinity (no limit) · ``ticks`` a whole number of ticks, 1 to 60.
 Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``ids`` objects
 or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z] ·
 ``physics`` the scene's physics (``{"mode", "gravity", …}``) · ``contacts`` what presses
-on a part, ``[{"other", "normal", "friction"}, …]`` (N).
+on a part, ``[{"other", "normal", "friction"}, …]`` (N) · ``gripMap`` a hand's digits
+(the schema's ``gripMap``).
 A method marked ``client`` is handed the calling client's id (``watch`` is per client).
 """
 
@@ -216,6 +217,9 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("getParts", returns="refs", mutates=False),
         Method("getMotors", returns="refs", mutates=False),
         Method("getSensors", returns="refs", mutates=False),
+        # not in the manual: the hand's digits and their motors, from its kinematics
+        # (the hand-function tasks' baseline closes any hand by it)
+        Method("getGripMap", returns="gripMap", mutates=False),
         Method("getPosition", returns="point", mutates=False),
         # 1.0 returns the robot from these two (pages chain them), not from a part's
         Method("setPosition", (Param("position", "point", None),), returns="self"),

@@ -43,6 +43,7 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
     "point": lambda target, value: list(value),
     "physics": lambda target, value: value,  # already its wire form (Physics.wire)
     "contacts": lambda target, value: value,  # already its wire form (ContactForce.wire)
+    "gripMap": lambda target, value: value,  # already its wire form (GripMap.wire)
     "string": lambda target, value: str(value),
     "recording": lambda target, value: value,  # what a recording holds (mcap_recorder)
 }

@@ -23,6 +23,17 @@ def test_hand_parts_come_back_as_typed_objects(scene):
     assert ball in hand.get_parts()
 
 
+def test_a_hands_grip_map_names_its_motors_by_id_and_index(scene):
+    hand = vp.EdgedHand(True)
+    found = hand.get_grip_map()
+    motors = hand.get_motors()
+    thumb, *fingers = found["digits"]
+    assert thumb["opposes"] and not any(finger["opposes"] for finger in fingers)
+    assert [m["index"] for m in thumb["motors"]] == [1, 2, 3]  # flexFinger(0, a)'s motors
+    assert [m["motor"] for m in thumb["motors"]] == [motors[i].id for i in (1, 2, 3)]
+    assert [(m["index"], m["closed"]) for m in thumb["preshape"]] == [(0, -1.0)]
+
+
 def test_a_hand_is_built_by_chained_calls_as_in_1_0(scene):
     hand = vp.EdgedHand(True).set_position(-2, 0.5, 0).set_rotation(-1, -1, 0)
     assert isinstance(hand, vp.EdgedHand)
