@@ -190,6 +190,11 @@ export class Motor extends Part {
 		return this.node?.maxTorque;
 	}
 
+	// Not in 1.0: the name setName gave it (an imported joint's: the file's), or null.
+	getName() {
+		return this.node?.name ?? null;
+	}
+
 	// Not in 1.0, dynamic mode: the fastest the motor moves (rad/s; a slider's scene
 	// units/s), as a servo's rated speed (Infinity, the default: no limit).
 	setMaxSpeed(speed) {

@@ -33,6 +33,10 @@ test('lists taken right after building are the robot at once', { skip: !URL_ && 
 			[[1, 2, 3], [5, 6, 7], [9, 10, 11], [13, 14, 15], [17, 18, 19]]);
 		assert.equal(grip.digits[0].opposes, true);
 		assert.equal((await hand.getGripMapExact()).digits.length, 5);
+		assert.equal(base.getName(), null);
+		base.setName('wrist');
+		await Prosthetic.sync();
+		assert.equal(base.getName(), 'wrist');
 		new Prosthetic.MotorX().attachToSlot(sensor);
 		assert.equal(robot.getMotors().length, 3);
 		await Prosthetic.sync();

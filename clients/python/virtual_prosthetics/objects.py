@@ -167,6 +167,10 @@ class Motor(Part):
         """Manual ``getAngle()``."""
         return self._state()["angle"]
 
+    def get_name(self) -> str | None:
+        """The name ``set_name`` gave it (an imported joint's: the file's), or None."""
+        return self._state().get("name")
+
     def set_angle(self, angle: float | None) -> None:
         """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped. In
         dynamic mode the motor drives there; ``get_angle`` reads where it is."""

@@ -35,14 +35,22 @@ def load_robot(source: str | Path | bytes, position: Any = None, rotation: Any =
     zip or folder that holds several. The server reads it (meshes resolve inside the
     upload only); a file it cannot take raises :class:`ServerError` naming what is wrong."""
     session = scene or current_session()
-    query = "" if file is None else "?" + urlencode({"file": file})
-    stored = json.loads(request(session, "/api/robots" + query, "load_robot", _bytes(source)))
-    robot = ImportedRobot(stored["file"], scene=session)
+    robot = ImportedRobot(upload_robot(source, file=file, scene=session), scene=session)
     if position is not None:
         robot.set_position(*position)
     if rotation is not None:
         robot.set_rotation(*rotation)
     return robot
+
+
+def upload_robot(source: str | Path | bytes, *, file: str | None = None,
+                 scene: Session | None = None) -> str:
+    """Upload a robot description (as :func:`load_robot` takes it) to the server of
+    ``scene``; the name ``ImportedRobot`` makes robots of, as many as wanted."""
+    query = "" if file is None else "?" + urlencode({"file": file})
+    stored = json.loads(request(scene or current_session(), "/api/robots" + query, "load_robot",
+                                _bytes(source)))
+    return str(stored["file"])
 
 
 def _bytes(source: str | Path | bytes) -> bytes:

@@ -107,6 +107,10 @@ class Motor(Part):
                              f"limits [{self.min}, {self.max}]", object=self.id)
         return value
 
+    def get_name(self) -> str | None:
+        """The name ``setName`` gave it (an imported joint's: the file's), or None."""
+        return self.name
+
     def set_name(self, name: str) -> Motor:
         """Manual ``setName(name)``; returns the motor for chaining."""
         self._assign("name", name)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 from ...errors import WrongType
@@ -30,6 +31,7 @@ class Robot(Node):
         self.gui: str | None = None
         self.shared = False  # others may steer it and attach their parts (ownership.py)
         self._listing: tuple[int, list[Part], list[Motor]] | None = None
+        self._grip_map: tuple[Any, dict[str, Any]] | None = None  # (its tree as of, the map)
 
     # --- chains ------------------------------------------------------------------------
 
@@ -79,14 +81,16 @@ class Robot(Node):
         others and which way the hand faces, derived from its kinematics with its motors
         at their defaults (:mod:`server.core.physics.grip_map`); vectors in the robot's own
         frame (its position and rotation taken away), motors also by their index."""
-        motors = self.get_motors()
-        found = grip_map(structure_of(self), {motor.id: motor.default for motor in motors})
-        index = {motor.id: i for i, motor in enumerate(motors)}
-        wire = found.wire()
-        for digit in wire["digits"]:
-            for entry in (*digit["motors"], *digit["preshape"]):
-                entry["index"] = index[entry["motor"]]
-        return wire
+        key = (self.scene.tree_version, self.scale)
+        if self._grip_map is None or self._grip_map[0] != key:  # (a search: 0.3 s for some)
+            motors = self.get_motors()
+            wire = grip_map(structure_of(self), {motor.id: motor.default for motor in motors}).wire()
+            index = {motor.id: i for i, motor in enumerate(motors)}
+            for digit in wire["digits"]:
+                for entry in (*digit["motors"], *digit["preshape"]):
+                    entry["index"] = index[entry["motor"]]
+            self._grip_map = (key, wire)
+        return copy.deepcopy(self._grip_map[1])
 
     def get_sensors(self) -> list[Part]:
         """Manual ``getSensors()``: the sensors below the robot."""

@@ -407,13 +407,15 @@ class Dynamics:
         if self.sleeping and body in self._free:
             self._activate(body, self.p.ACTIVATION_STATE_WAKE_UP)
 
-    def advance(self, seconds: float, still: bool = False) -> int:
+    def advance(self, seconds: float, still: bool = False, exact: bool = False) -> int:
         """Step the world through ``seconds`` (what is left over waits for the next call;
         a late tick catches up at most MAX_STEPS_PER_TICK ticks, and takes no more steps
         than STEP_BUDGET allows); the steps taken. ``still``: nothing moved in the last
         steps and nothing was changed since, so steps would change nothing either: they
         are counted, not taken (a settled heap of 2 000 sleeping balls still cost Bullet
-        2.5 ms a step for its broadphase and islands)."""
+        2.5 ms a step for its broadphase and islands). ``exact``: a script steps the
+        scene and waits for it: every step, with every iteration, whatever they cost (a
+        budget of CPU time made the same seeded grasp end differently on a busy machine)."""
         step = self.physics.step
         limit = MAX_STEPS_PER_TICK * self.physics.substeps
         self._debt = min(self._debt + seconds, limit * step)
@@ -431,7 +433,9 @@ class Dynamics:
                 self._activate(body, self.p.ACTIVATION_STATE_WAKE_UP)
             self._wake_all = False
         spent, taken = 0.0, 0
-        while taken < count and (not taken or spent * (taken + 1) / taken <= STEP_BUDGET):
+        if exact:
+            self._tune(0.0)  # the scene's own iterations again
+        while taken < count and (exact or not taken or spent * (taken + 1) / taken <= STEP_BUDGET):
             taken += 1
             for constraint, start, end in glides:
                 self._put(constraint, between(start, end, taken / count))
@@ -440,7 +444,8 @@ class Dynamics:
             spent += self.clock() - started
         for constraint, _, end in glides if taken < count else ():
             self._put(constraint, end)
-        self._tune(spent / taken)
+        if not exact:
+            self._tune(spent / taken)
         self.held_back = count - taken
         self.steps += taken
         return taken
@@ -451,6 +456,8 @@ class Dynamics:
         wanted = self.iterations
         if per_step > STEP_BUDGET:
             wanted = max(1, int(self.iterations * STEP_BUDGET / per_step * 0.8))
+        elif per_step == 0.0:
+            wanted = self.physics.solverIterations
         elif per_step < STEP_BUDGET / 4:
             wanted = min(self.physics.solverIterations, 2 * self.iterations)
         if wanted != self.iterations:

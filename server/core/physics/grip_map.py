@@ -9,13 +9,14 @@ on the tree with its motors at rest (their defaults):
   part below it and a joint above it; the palm is the deepest part all digits hang from.
 - A digit **closes** with the run of motors at its end whose axes are parallel (a
   finger's flexion joints; a jaw's one joint). Each closes towards the limit (without
-  limits: a turn of :data:`SPAN`) that brings its tip nearer both the palm's centre and
-  what it opposes; it opens to the other limit (without limits: its rest).
-- **The opposing digit** is the one whose root lies furthest from the line through the
-  others' roots (a thumb beside a row of fingers; the first of two jaws). Its motors
+  limits: a turn of :data:`SPAN`) that brings its tip nearer the palm's centre, and
+  opens to where its tip is furthest from it (the digit straight).
+- **The opposing digit** is the one that closes most against the others, and of those
+  alike, the one whose root lies furthest from the line through the others' roots (a
+  thumb beside a row of fingers; the first of two jaws: :func:`_opposing`). Its motors
   before its closing run (a thumb's rotation and abduction) are set, before a grasp, to
-  where its tip best meets the others' tips as all close (``preshape``); the others'
-  stay at rest.
+  where closing brings its tip furthest towards the others' (``preshape``, see
+  :func:`_preshape`); the others' stay at rest.
 - **The hand faces** (``approach``) along its palm's thinnest axis, towards the side the
   tips close on; ``forward`` runs from the palm's centre towards the open tips, across it.
 """
@@ -24,7 +25,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -37,8 +38,10 @@ SPAN = 1.5        # rad: how far a motor without limits is tried each way from r
 REACH = 0.5       # × the digit's length: how far a sliding motor without limits is tried
 PARALLEL = 0.98   # |cos| between two joint axes that turn in one plane
 OPEN_STEPS = 13   # values tried for a closing motor's open value
-PRESHAPE_STEPS = 5  # values tried for each preshape motor, across its range
-PRESHAPE_TRIES = 125  # at most this many preshapes tried together (three motors' grid)
+PRESHAPE_STEPS = 7  # values tried for each preshape motor, across its range
+TIE = 0.05        # mean cosines this close count as closing against the others alike
+DEPTH = 2.0       # what a preshape's tip depth differing from the others' by one unit costs
+PRESHAPE_TRIES = 343  # at most this many preshapes tried together (three motors' grid)
 
 
 @dataclass(frozen=True)
@@ -63,28 +66,41 @@ class Digit:
     motors: tuple[DigitMotor, ...]
     opposes: bool = False
     preshape: tuple[DigitMotor, ...] = ()
+    tip_at: Vec3 = (0.0, 0.0, 0.0)  # its far point, open and preshaped (the robot's frame)
+    parts: tuple[str, ...] = ()     # the parts it moves (what it touches an object with)
 
 
 @dataclass(frozen=True)
 class GripMap:
     """A hand's digits and its palm (None: digits that hang from no part), and in the
-    robot's own frame with the digits open: the palm's centre, the way the hand faces
-    (``approach``, towards what it grasps) and the way from the palm to the tips."""
+    robot's own frame with the digits open and preshaped: the palm's centre, the way the
+    hand faces (``approach``, towards what it grasps), the way from the palm to the tips
+    (``forward``), where the tips meet half closed (``grasp``), and how far the palm and
+    the whole hand reach from the centre along ``approach``, ``forward`` and ``side``
+    (their cross product): ``palm`` and ``hand`` bounds, (low, high) each."""
 
     palm: str | None
     digits: tuple[Digit, ...]
     centre: Vec3
     approach: Vec3
     forward: Vec3
+    grasp: Vec3
+    palm_bounds: tuple[tuple[float, float], ...]
+    hand_bounds: tuple[tuple[float, float], ...]
 
     def wire(self) -> dict[str, Any]:
         """As ``getGripMap`` answers it."""
         def motors(items: Sequence[DigitMotor]) -> list[dict[str, Any]]:
             return [{"motor": m.motor, "open": m.open, "closed": m.closed} for m in items]
+        def bounds(of: Sequence[tuple[float, float]]) -> dict[str, list[float]]:
+            return {axis: list(pair) for axis, pair in zip(("approach", "forward", "side"), of)}
         return {"palm": self.palm, "centre": list(self.centre), "approach": list(self.approach),
-                "forward": list(self.forward),
+                "forward": list(self.forward), "grasp": list(self.grasp),
+                "palmBounds": bounds(self.palm_bounds), "handBounds": bounds(self.hand_bounds),
                 "digits": [{"tip": d.tip, "opposes": d.opposes, "motors": motors(d.motors),
-                            "preshape": motors(d.preshape)} for d in self.digits]}
+                            "preshape": motors(d.preshape), "tipAt": list(d.tip_at),
+                            "parts": list(d.parts)}
+                           for d in self.digits]}
 
 
 @dataclass
@@ -114,32 +130,56 @@ class _Hand:
         return np.array([np.array(rotate(poses[c.tip][1], c.point)) + np.array(poses[c.tip][0])
                          for c in chains])
 
-    def motor(self, link: int) -> str:
-        return self.tree.links[link].joint.motor  # type: ignore[union-attr]
-
 
 def grip_map(tree: Articulation, rest: Mapping[str, float]) -> GripMap:
     """The grip map of ``tree`` with its motors at ``rest`` (see the module's rules)."""
     hand, poses = _Hand(tree, rest), tree.link_poses(rest)
-    tips = _tips(tree)
-    palm = _palm(tree, tips)
-    chains = [chain for chain in (_chain(tree, poses, tip, palm) for tip in tips) if chain.closing]
-    opposing = _opposing(poses, chains)
+    palm = _palm(tree, _tips(tree))
+    chains = [chain for chain in (_chain(tree, poses, tip, palm) for tip in _tips(tree)) if chain.closing]
     centre = _centre(tree, poses, palm, chains)
-    closing = _closing(hand, chains, opposing, centre)
-    preshape = _preshape(hand, chains, closing, opposing)
+    closing = _closing(hand, chains, centre)
+    opposing = _opposing(hand, poses, chains, closing)
+    opened = {m.motor: m.open for motors in closing for m in motors}
+    half = {m.motor: m.at(0.5) for motors in closing for m in motors}
+    approach, _ = _facing(tree, hand, poses, palm, chains, opened, half, opposing)
+    preshape = _preshape(hand, chains, closing, opposing, approach)
     if preshape:  # the opposing digit closes the other way once it faces the others
         turned = _Hand(tree, {**rest, **{m.motor: m.closed for m in preshape}})
-        closing[opposing] = _closing(turned, chains, opposing, centre)[opposing]
-        preshape = _preshape(hand, chains, closing, opposing)
-    opened = {m.motor: m.open for motors in closing for m in motors}
-    open_poses = tree.link_poses({**rest, **opened})
-    approach, forward = _facing(tree, hand, open_poses, palm, chains, closing, opened, opposing)
+        closing[opposing] = _closing(turned, [chains[opposing]], centre)[0]
+        preshape = _preshape(hand, chains, closing, opposing, approach)
     digits = tuple(Digit(tree.links[chain.tip].part or "", tuple(closing[i]), i == opposing,
-                         preshape if i == opposing else ()) for i, chain in enumerate(chains))
-    base = tree.base_part if palm < 0 else tree.links[palm].part
-    return GripMap(base, digits, _vec(_centre(tree, open_poses, palm, chains)), _vec(approach),
-                   _vec(forward))
+                         preshape if i == opposing else (), parts=_moved(tree, chain))
+                   for i, chain in enumerate(chains))
+    return _laid_out(hand, palm, chains, digits)
+
+
+def _laid_out(hand: _Hand, palm: int, chains: list[_Chain], digits: tuple[Digit, ...]) -> GripMap:
+    """The map of ``digits``, measured with them open and preshaped."""
+    tree = hand.tree
+    ready = {**{m.motor: m.open for d in digits for m in d.motors},
+             **{m.motor: m.closed for d in digits for m in d.preshape}}
+    poses = tree.link_poses({**hand.rest, **ready})
+    centre = _centre(tree, poses, palm, chains)
+    opposing = next((i for i, d in enumerate(digits) if d.opposes), -1)
+    half = {m.motor: m.at(0.5) for d in digits for m in d.motors}
+    approach, forward = _facing(tree, hand, poses, palm, chains, ready, half, opposing)
+    axes = np.array([approach, forward, np.cross(approach, forward)])
+    palm_points = _palm_points(tree, poses, palm)
+    base = [] if tree.base_geometry is None else [_palm_points(tree, poses, -1)]
+    every = np.concatenate([_placed(pose, _shape_points(link)) for pose, link in zip(poses, tree.links)]
+                           + base)
+    grasp = hand.tips(chains, {**ready, **half}).mean(axis=0) if chains else centre
+    at = hand.tips(chains, ready) if chains else np.zeros((0, 3))
+    digits = tuple(replace(digit, tip_at=_vec(tip)) for digit, tip in zip(digits, at))
+    return GripMap(tree.base_part if palm < 0 else tree.links[palm].part, digits, _vec(centre), _vec(approach), _vec(forward), _vec(grasp),
+                   _bounds(palm_points if palm_points is not None else centre[None], centre, axes),
+                   _bounds(every, centre, axes))
+
+
+def _bounds(points: np.ndarray, centre: np.ndarray, axes: np.ndarray) -> tuple[tuple[float, float], ...]:
+    """How far ``points`` reach from ``centre`` along each of ``axes`` (low, high)."""
+    along = (points - centre) @ axes.T
+    return tuple((float(low), float(high)) for low, high in zip(along.min(axis=0), along.max(axis=0)))
 
 
 def _path(tree: Articulation, link: int) -> list[int]:
@@ -189,6 +229,14 @@ def _chain(tree: Articulation, poses: list[Pose], tip: int, palm: int) -> _Chain
     return _Chain(tip, joints[run:], joints[:run], local[far], float(np.linalg.norm(world[far] - root)))
 
 
+def _moved(tree: Articulation, chain: _Chain) -> tuple[str, ...]:
+    """The parts on a digit's way from its first joint to its tip."""
+    first = (chain.before or chain.closing)[0]
+    path = _path(tree, chain.tip)
+    return tuple(tree.links[k].part for k in path[path.index(first):]  # type: ignore[misc]
+                 if tree.links[k].part is not None)
+
+
 def _shape_points(link: Link) -> np.ndarray:
     """The corners of a link's part, in the link's frame."""
     geometry = link.geometry
@@ -215,19 +263,28 @@ def _palm_points(tree: Articulation, poses: list[Pose], palm: int) -> np.ndarray
 
 
 def _centre(tree: Articulation, poses: list[Pose], palm: int, chains: list[_Chain]) -> np.ndarray:
-    """The palm's middle: its part's corners', else the digits' roots'."""
+    """The palm's middle: its part's box's (a mesh's points crowd where it is curved),
+    else the digits' roots'."""
     points = _palm_points(tree, poses, palm)
     if points is not None:
-        return points.mean(axis=0)
+        return (points.min(axis=0) + points.max(axis=0)) / 2
     roots = [poses[(chain.before or chain.closing)[0]][0] for chain in chains]
     return np.mean(roots, axis=0) if roots else np.zeros(3)
 
 
-def _opposing(poses: list[Pose], chains: list[_Chain]) -> int:
-    """The digit whose root lies furthest from the line through the others' roots (−1:
-    fewer than two digits)."""
+def _opposing(hand: _Hand, poses: list[Pose], chains: list[_Chain],
+              closing: list[list[DigitMotor]]) -> int:
+    """The digit whose tip closes most against the others' (the least mean cosine of its
+    closing motion with theirs: a thumb's curls across the fingers'); of digits within
+    :data:`TIE` of that, the one whose root lies furthest from the line through the
+    others' roots (a thumb beside a row of fingers). −1: fewer than two digits."""
     if len(chains) < 2:
         return -1
+    ends = [{m.motor: getattr(m, end) for motors in closing for m in motors} for end in ("open", "closed")]
+    moves = hand.tips(chains, ends[1]) - hand.tips(chains, ends[0])
+    moves = moves / np.maximum(np.linalg.norm(moves, axis=1, keepdims=True), 1e-12)
+    against = [float(np.mean(np.delete(moves, i, axis=0) @ move)) for i, move in enumerate(moves)]
+    candidates = [i for i, value in enumerate(against) if value <= min(against) + TIE]
     roots = np.array([poses[(chain.before or chain.closing)[0]][0] for chain in chains])
     apart = []
     for index, root in enumerate(roots):
@@ -237,29 +294,20 @@ def _opposing(poses: list[Pose], chains: list[_Chain]) -> int:
             direction = np.linalg.svd(others - others.mean(axis=0))[2][0]
             offset = offset - direction * float(np.dot(offset, direction))
         apart.append(float(np.linalg.norm(offset)))
-    return int(np.argmax(apart))
+    return max(candidates, key=lambda i: apart[i])
 
 
-def _closing(hand: _Hand, chains: list[_Chain], opposing: int,
-             centre: np.ndarray) -> list[list[DigitMotor]]:
+def _closing(hand: _Hand, chains: list[_Chain], centre: np.ndarray) -> list[list[DigitMotor]]:
     """Each digit's closing motors, open and closed."""
-    tips = list(hand.tips(chains, {}))
-    out = []
-    for index, chain in enumerate(chains):
-        others = [tip for i, tip in enumerate(tips) if i != index]
-        aim = tips[opposing] if 0 <= opposing != index else \
-            (np.mean(others, axis=0) if others else centre)
-        out.append([_ends(hand, chain, link, centre, aim) for link in chain.closing])
-    return out
+    return [[_ends(hand, chain, link, centre) for link in chain.closing] for chain in chains]
 
 
-def _ends(hand: _Hand, chain: _Chain, link: int, centre: np.ndarray, aim: np.ndarray) -> DigitMotor:
+def _ends(hand: _Hand, chain: _Chain, link: int, centre: np.ndarray) -> DigitMotor:
     """A closing motor's open and closed values (see the module's rules)."""
     joint = hand.tree.links[link].joint
     assert joint is not None
     ends = _range(joint, hand.rest.get(joint.motor, 0.0), chain.length)
-    scores = [float(np.linalg.norm(tip - centre) + np.linalg.norm(tip - aim))
-              for tip in (hand.tip(chain, {joint.motor: value}) for value in ends)]
+    scores = [float(np.linalg.norm(hand.tip(chain, {joint.motor: value}) - centre)) for value in ends]
     closed = 0 if scores[0] < scores[1] else 1
     # open: straightest, where the tip is furthest from the palm's centre
     values = np.linspace(ends[1 - closed], ends[closed], OPEN_STEPS)
@@ -280,14 +328,13 @@ def _range(joint: Joint, rest: float, length: float) -> tuple[float, float]:
 
 
 def _facing(tree: Articulation, hand: _Hand, poses: list[Pose], palm: int, chains: list[_Chain],
-            closing: list[list[DigitMotor]], opened: Mapping[str, float],
+            opened: Mapping[str, float], half: Mapping[str, float],
             opposing: int) -> tuple[np.ndarray, np.ndarray]:
     """``approach`` and ``forward`` with the digits open (see the module's rules)."""
     centre = _centre(tree, poses, palm, chains)
     ahead = [chain for i, chain in enumerate(chains) if i != opposing] or chains
     open_tips = hand.tips(ahead, opened) if ahead else np.zeros((1, 3))
     # half closed: curled fully, a long digit's tip comes back up past its palm
-    half = {m.motor: m.at(0.5) for motors in closing for m in motors}
     half_tips = hand.tips(chains, {**opened, **half}) if chains else open_tips
     side = half_tips.mean(axis=0) - centre
     points = _palm_points(tree, poses, palm)
@@ -299,28 +346,48 @@ def _facing(tree: Articulation, hand: _Hand, poses: list[Pose], palm: int, chain
     ahead = open_tips.mean(axis=0) - centre
     forward = ahead - approach * float(np.dot(ahead, approach))
     if np.linalg.norm(forward) < 0.3 * np.linalg.norm(ahead):  # tips ahead of the palm: a gripper
-        forward = np.cross(approach, [1.0, 0.0, 0.0] if abs(approach[0]) < 0.9 else [0.0, 1.0, 0.0])
+        forward = _gripper_forward(hand, chains, opened, opposing, approach)
     return _unit(approach), _unit(forward)
 
 
-def _preshape(hand: _Hand, chains: list[_Chain], closing: list[list[DigitMotor]],
-              opposing: int) -> tuple[DigitMotor, ...]:
-    """The opposing digit's motors before its closing run, where closing brings its tip
-    furthest towards the others' tips (open: their rest)."""
+def _gripper_forward(hand: _Hand, chains: list[_Chain], opened: Mapping[str, float], opposing: int,
+                     approach: np.ndarray) -> np.ndarray:
+    """A gripper's ``forward``: from its opposing digit towards the others (as a hand's
+    thumb wraps from the wrist's side), across ``approach``; any such way without one."""
+    way = np.zeros(3)
+    if opposing >= 0 and len(chains) > 1:
+        tips = hand.tips(chains, opened)
+        way = np.delete(tips, opposing, axis=0).mean(axis=0) - tips[opposing]
+    way = way - approach * float(np.dot(way, approach))
+    if np.linalg.norm(way) < 1e-9:
+        way = np.cross(approach, [1.0, 0.0, 0.0] if abs(approach[0]) < 0.9 else [0.0, 1.0, 0.0])
+    return way
+
+
+def _preshape(hand: _Hand, chains: list[_Chain], closing: list[list[DigitMotor]], opposing: int,
+              approach: np.ndarray) -> tuple[DigitMotor, ...]:
+    """The opposing digit's motors before its closing run, where closing half way (round
+    an object of some size) brings its tip furthest towards the others' tips, and as deep
+    below the palm as theirs (a thumb that curls beside the palm, not round the object,
+    has its tip high), and open, hanging no deeper than theirs (it would meet the table
+    first): :data:`DEPTH` weighs both (open: their rest)."""
     if opposing < 0 or not chains[opposing].before:
         return ()
-    ends = [{m.motor: getattr(m, end) for motors in closing for m in motors} for end in ("open", "closed")]
+    ends = [{m.motor: m.at(share) for motors in closing for m in motors} for share in (0.0, 0.5)]
     chain, choices = chains[opposing], []
     for link in chain.before:
         joint = hand.tree.links[link].joint
         assert joint is not None
         low, high = _range(joint, hand.rest.get(joint.motor, 0.0), chain.length)
         choices.append([(joint.motor, v) for v in np.linspace(low, high, PRESHAPE_STEPS)])
-    def gap(values: Mapping[str, float], end: Mapping[str, float]) -> float:
+    def apart(values: Mapping[str, float], end: Mapping[str, float]) -> np.ndarray:
         tips = hand.tips(chains, {**end, **values})
-        return float(np.linalg.norm(tips[opposing] - np.delete(tips, opposing, axis=0).mean(axis=0)))
+        return np.asarray(tips[opposing] - np.delete(tips, opposing, axis=0).mean(axis=0))
+
     def sweep(values: Mapping[str, float]) -> float:
-        return gap(values, ends[0]) - gap(values, ends[1])
+        opened, half = apart(values, ends[0]), apart(values, ends[1])
+        return float(np.linalg.norm(opened) - np.linalg.norm(half)
+                     - DEPTH * (abs(float(np.dot(half, approach))) + max(0.0, float(np.dot(opened, approach)))))
     if PRESHAPE_STEPS ** len(choices) <= PRESHAPE_TRIES:
         best = max(itertools.product(*choices), key=lambda values: sweep(dict(values)))
     else:  # each motor in turn, twice over: the whole grid would be too long a stall

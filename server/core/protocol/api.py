@@ -26,7 +26,7 @@ Return kinds: ``none`` · ``self`` the object · ``ref``/``refs`` objects · ``i
 or "ground" as references · ``number``/``numbers`` · ``bool`` · ``point`` [x, y, z] ·
 ``physics`` the scene's physics (``{"mode", "gravity", …}``) · ``contacts`` what presses
 on a part, ``[{"other", "normal", "friction"}, …]`` (N) · ``gripMap`` a hand's digits
-(the schema's ``gripMap``).
+(the schema's ``gripMap``) · ``name`` a string or null.
 A method marked ``client`` is handed the calling client's id (``watch`` is per client).
 """
 
@@ -164,6 +164,8 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
     TypeSpec("Motor", "Part", (Param("axis", "axis"), Param("min", "limit", -math.inf),
                                Param("max", "limit", math.inf), Param("def", "number", 0.0)),
              (Method("setName", (Param("name", "string"),), returns="self"),
+              # not in the manual: the name setName gave (an imported joint's), or null
+              Method("getName", returns="name", mutates=False),
               Method("getAngle", returns="number", mutates=False),
               Method("setAngle", (Param("angle", "angle"),), access="steer"),
               Method("flip", (Param("bool", "bool", True),), returns="self"),

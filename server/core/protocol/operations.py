@@ -44,6 +44,7 @@ RESULTS: dict[str, Callable[[Any, Any], Any]] = {
     "physics": lambda target, value: value,  # already its wire form (Physics.wire)
     "contacts": lambda target, value: value,  # already its wire form (ContactForce.wire)
     "gripMap": lambda target, value: value,  # already its wire form (GripMap.wire)
+    "name": lambda target, value: value,  # a string, or None
     "string": lambda target, value: str(value),
     "recording": lambda target, value: value,  # what a recording holds (mcap_recorder)
 }

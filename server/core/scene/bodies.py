@@ -168,10 +168,11 @@ class SceneBodies:
         self._targets_due = physics.dynamic
         self._stirred = True
 
-    def advance(self, dt: float) -> tuple[float, dict[str, float], dict[str, Pose]]:
+    def advance(self, dt: float, exact: bool = False) -> tuple[float, dict[str, float], dict[str, Pose]]:
         """Dynamic mode: drive the motors, step the world through ``dt``; the seconds the
         world went through (less than ``dt`` when it is behind), the motors' new angles and
-        the free roots' new poses (what moved more than a hair)."""
+        the free roots' new poses (what moved more than a hair). ``exact``: every step,
+        whatever it costs (a script steps the scene: Dynamics.advance)."""
         self.sync()
         physics = self.physics
         if self._followers:
@@ -184,7 +185,7 @@ class SceneBodies:
             self._targets_due, self._stirred = False, True
         dynamics = physics.dynamics
         at_rest = self._still and not self._stirred
-        steps = dynamics.advance(dt, still=at_rest)  # type: ignore[union-attr]
+        steps = dynamics.advance(dt, still=at_rest, exact=exact)  # type: ignore[union-attr]
         if not steps or at_rest:
             return steps * dynamics.physics.step, {}, {}  # type: ignore[union-attr]
         angles: dict[str, float] = {}

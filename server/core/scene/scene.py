@@ -288,7 +288,8 @@ class Scene:
         """Dynamic mode: advance the physics through ``dt`` and take where it put every
         motor and free body (not journaled: it is the world's doing, not a request's); the
         seconds it went through."""
-        seconds, angles, poses = self.bodies.advance(dt)
+        # a paused scene ticks when its script steps it: exactly, whatever the machine's load
+        seconds, angles, poses = self.bodies.advance(dt, exact=self.clock.paused_by is not None)
         for motor_id, angle in angles.items():
             self.nodes[motor_id].angle = angle  # type: ignore[attr-defined]
         for root_id, (position, quaternion) in poses.items():

@@ -4,8 +4,10 @@
 - ``box-and-blocks``: blocks moved over the partition in 60 s (:mod:`.box_and_blocks`);
 - ``hold``: a ball held while the hand moves along a path; drops (:mod:`.hold`).
 
-Sizes are a human hand's, scaled to the 1.0 hand (:mod:`.scale`). Each task has a scripted
-baseline controller; pass your own as ``controller=`` (or ``--controller module:function``).
+Any hand (:mod:`.hands`): a 1.0 hand, a robot file, a function that builds one, or a robot
+in the scene, closed by its grip map (:mod:`.grip`). Objects are real sizes in the scene's
+units (:mod:`.scale`). Each task has a scripted baseline controller; pass your own as
+``controller=`` (or ``--controller module:function``).
 """
 
 from __future__ import annotations
@@ -15,30 +17,30 @@ from typing import Any, Callable
 
 from ..session import Session
 from . import box_and_blocks, grasp, hold
+from .trial import TaskHand
 
 
-def _grasp(session: Session, args: argparse.Namespace) -> dict[str, Any]:
+def _grasp(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
     patterns = args.grips.split(",") if args.grips else grasp.PATTERN_NAMES
     unknown = sorted(set(patterns) - set(grasp.PATTERN_NAMES))
     if unknown:
         raise SystemExit(f"unknown grip {', '.join(unknown)}; the grips are {', '.join(grasp.PATTERN_NAMES)}")
     extra = {"controller": args.controller} if args.controller else {}
-    return grasp.grasp(session, args.hand, args.trials, args.seed, side_by_side=args.side_by_side,
-                 patterns=patterns, **extra)
+    return grasp.grasp(session, hands, args.trials, args.seed, side_by_side=args.side_by_side,
+                       patterns=patterns, **extra)
 
 
-def _box_and_blocks(session: Session, args: argparse.Namespace) -> dict[str, Any]:
+def _box_and_blocks(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
     extra = {"controller": args.controller} if args.controller else {}
-    return box_and_blocks.box_and_blocks(session, args.hand, args.seed, **extra)
+    return box_and_blocks.box_and_blocks(session, hands, args.seed, **extra)
 
 
-def _hold(session: Session, args: argparse.Namespace) -> dict[str, Any]:
+def _hold(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
     extra = {"controller": args.controller} if args.controller else {}
-    return hold.hold(session, args.hand, args.trials, args.seed,
-                     side_by_side=args.side_by_side, **extra)
+    return hold.hold(session, hands, args.trials, args.seed, side_by_side=args.side_by_side, **extra)
 
 
-TASKS: dict[str, Callable[[Session, argparse.Namespace], dict[str, Any]]] = {
+TASKS: dict[str, Callable[[Session, TaskHand, argparse.Namespace], dict[str, Any]]] = {
     "grasp": _grasp, "box-and-blocks": _box_and_blocks, "hold": _hold}
 
-__all__ = ["TASKS"]
+__all__ = ["TASKS", "TaskHand"]

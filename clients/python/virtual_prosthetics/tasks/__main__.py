@@ -1,11 +1,11 @@
-"""``python -m virtual_prosthetics.tasks NAME --url ws://… --hand edged|round|anthro
-[--trials N] [--seed S]``: run a hand-function task in a scene of a server (any viewer of
-that scene watches it) and print its results as JSON."""
+"""``python -m virtual_prosthetics.tasks NAME --url ws://… --hand edged|round|anthro|FILE|
+module:function [--robot ID] [--grip-map FILE] [--trials N] [--seed S]``: run a
+hand-function task in a scene of a server (any viewer of that scene watches it) and print
+its results as JSON."""
 
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
 import sys
 from typing import Any, Callable, Sequence
@@ -14,21 +14,17 @@ from ..errors import ConnectionLost, ServerError, Timeout, VPError
 from ..runtime import connect
 from ..waiting import DEFAULT_SECONDS, ENVIRONMENT, wait_seconds
 from . import TASKS
-from .scale import FIGURES
+from .grip import read_grip_map
+from .hands import BUILT_IN, hand_source, imported, robot_source
+from .trial import TaskHand
 
 
 def _function(spec: str) -> Callable[..., Any]:
     """``module:function`` (a user's controller)."""
-    module, _, name = spec.partition(":")
-    if not name:
-        raise argparse.ArgumentTypeError(f"expected module:function, got {spec!r}")
     try:
-        return getattr(importlib.import_module(module), name)  # type: ignore[no-any-return]
-    except ImportError as error:
-        raise argparse.ArgumentTypeError(f"cannot import {module!r} ({error}); run from the "
-                                         f"folder that holds it, or set PYTHONPATH") from None
-    except AttributeError:
-        raise argparse.ArgumentTypeError(f"module {module!r} has no {name!r}") from None
+        return imported(spec)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
 
 
 def parser() -> argparse.ArgumentParser:
@@ -37,7 +33,14 @@ def parser() -> argparse.ArgumentParser:
     parse.add_argument("task", choices=sorted(TASKS))
     parse.add_argument("--url", default="ws://127.0.0.1:8000")
     parse.add_argument("--scene", default="tasks", help="the scene to run in (default: tasks)")
-    parse.add_argument("--hand", choices=sorted(FIGURES), default="edged")
+    parse.add_argument("--hand", default="edged",
+                       help=f"{'|'.join(sorted(BUILT_IN))}, a robot file (URDF, MJCF, a zip or folder "
+                            f"of one with its meshes), or module:function building one in the "
+                            f"session it is given (default: edged)")
+    parse.add_argument("--robot", metavar="ID", help="evaluate this robot of the scene instead")
+    parse.add_argument("--grip-map", type=_grip_map, metavar="FILE",
+                       help="the hand's digits and motors, instead of those derived from its "
+                            "kinematics (JSON; see virtual_prosthetics.tasks.grip)")
     parse.add_argument("--trials", type=int, default=20, help="trials of each object (grasp, hold)")
     parse.add_argument("--seed", type=int, default=0)
     parse.add_argument("--side-by-side", type=int, default=10,
@@ -50,6 +53,13 @@ def parser() -> argparse.ArgumentParser:
                        help="seconds to wait for the scene and for each answer (default: "
                             f"${ENVIRONMENT}, else {DEFAULT_SECONDS:g})")
     return parse
+
+
+def _grip_map(path: str) -> dict[str, Any]:
+    try:
+        return read_grip_map(path)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
 
 
 def _seconds(text: str) -> float:
@@ -66,7 +76,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         session = connect(args.url, scene=args.scene, token=args.token, timeout=args.timeout)
         try:
-            result = TASKS[args.task](session, args)
+            source = robot_source(args.robot, session) if args.robot else hand_source(args.hand, session)
+            result = TASKS[args.task](session, TaskHand(source, args.grip_map), args)
         finally:
             session.close()
     except (VPError, ValueError) as error:

@@ -12,9 +12,10 @@ from typing import Any, Callable
 from ..objects import Box, Part
 from ..robots import Robot
 from ..session import Session
-from .controller import OPPOSED_THUMB, Grip, smooth
-from .scale import FIGURES, Scale
-from .trial import HANDS, PALM_DOWN, drive, under_hand
+from .controller import Grip, smooth
+from .grip import HandGrip
+from .scale import Scale
+from .trial import TaskHand, drive, under_hand
 
 INSIDE = (0.537, 0.254)  # metres: the box inside, x (both compartments) by z
 WALL_HEIGHT = 0.085
@@ -26,23 +27,25 @@ SECONDS = 60.0
 BLOCK_MASS = 0.0105  # kilograms: a 2.5 cm pine cube
 # the tripod grip of the grasp task: the block where thumb and fingers meet, the hand high
 # enough that curling fingers clear what lies around it
-GRIP = Grip(flex=1.2, torque=0.3, reach=0.0, side=0.015, gap=0.035)
+GRIP = Grip(close=0.76, torque=0.3, side=0.015, gap=0.035)
 # PyBullet's default: 150 blocks at the grasps' 150 iterations run at a tenth of real time
 SOLVER_ITERATIONS = 50
 
 
 @dataclass
 class Stage:
-    """The box in a scene, its blocks and the hand; sizes in scene metres."""
+    """The box in a scene, its blocks and the hand (made by the task: ``owned``); sizes
+    in scene units."""
 
     session: Session
     scale: Scale
     hand: Robot
+    grip: HandGrip
     blocks: list[Part]
     walls: list[Part]
     partition_x: float
     floor: float
-    kind: str
+    owned: bool = True
 
     def block_positions(self) -> list[list[float]]:
         return self.session.read(lambda mirror: [list(mirror.nodes[b.id]["position"])
@@ -54,7 +57,7 @@ class Stage:
                    for p in self.block_positions())
 
     def remove(self) -> None:
-        for node in (self.hand, *self.blocks, *self.walls):
+        for node in ((self.hand,) if self.owned else ()) + (*self.blocks, *self.walls):
             node.delete()
 
 
@@ -65,10 +68,10 @@ def _wall(session: Session, size: tuple[float, float, float], at: tuple[float, f
     return wall
 
 
-def build(session: Session, kind: str, rng: random.Random, count: int = BLOCKS) -> Stage:
+def build(session: Session, hands: TaskHand, rng: random.Random, count: int = BLOCKS) -> Stage:
     """The box (floor, walls, partition) at the origin, ``count`` blocks heaped in the -x
     compartment, the hand over it."""
-    scale = Scale.of(kind)
+    scale = Scale.of(session)
     sx, sz = (scale.length(v) for v in INSIDE)
     wall, height, block = scale.length(WALL), scale.length(WALL_HEIGHT), scale.length(BLOCK)
     with session.connection.gathering():
@@ -92,20 +95,14 @@ def build(session: Session, kind: str, rng: random.Random, count: int = BLOCKS) 
             cube.set_rotation(0, rng.uniform(-0.2, 0.2), 0)
             cube.set_mass(BLOCK_MASS)
         blocks.append(cube)
-    figures = FIGURES[kind]
-    with session.connection.gathering():
-        hand = HANDS[kind](True, scene=session)  # type: ignore[call-arg]
-        hand.set_rotation(*PALM_DOWN)
-        hand.set_position(-sx / 4, wall + scale.length(PARTITION_HEIGHT) * 1.6 + figures.palm_below,
-                          -under_hand(kind, GRIP)[1])
-        hand.flex_fingers(0)  # type: ignore[attr-defined]
+    hand, grip = hands.make(session)
+    hand.set_position(-sx / 4, wall + scale.length(PARTITION_HEIGHT) * 1.6 + grip.layout.palm_below,
+                      -under_hand(grip.layout, scale, GRIP)[1])
     session.sync()
-    motors = hand.get_motors()
-    for motor in motors:
-        motor.set_max_torque(GRIP.torque)
-    for index, angle in OPPOSED_THUMB[kind].items():
-        motors[index].set_angle(angle)
-    return Stage(session, scale, hand, blocks, walls, 0.0, wall, kind)
+    for motor in hand.get_motors():
+        if motor.get_max_torque() < GRIP.torque:
+            motor.set_max_torque(GRIP.torque)
+    return Stage(session, scale, hand, grip, blocks, walls, 0.0, wall, hands.source.owned)
 
 
 CYCLE = (("reach", 0.5), ("descend", 0.5), ("close", 0.7), ("lift", 0.5), ("carry", 0.6),
@@ -118,9 +115,9 @@ class Baseline:
 
     def __init__(self, stage: Stage) -> None:
         self.stage = stage
-        figures = FIGURES[stage.kind]
-        self.grasp_at = under_hand(stage.kind, GRIP)  # where the block lies from the hand
-        self.high = stage.floor + stage.scale.length(PARTITION_HEIGHT) * 1.5 + figures.palm_below
+        layout = stage.grip.layout
+        self.grasp_at = under_hand(layout, stage.scale, GRIP)  # where the block lies from the hand
+        self.high = stage.floor + stage.scale.length(PARTITION_HEIGHT) * 1.5 + layout.palm_below
         self.cycle_start = 0.0
         self.target: list[float] | None = None
 
@@ -139,7 +136,9 @@ class Baseline:
         name, into = _phase(phase_t)
         bx, by, bz = self.target
         hx, hz = bx - self.grasp_at[0], bz - self.grasp_at[1]
-        down = by + scale.length(BLOCK) / 2 + scale.length(GRIP.gap) + FIGURES[self.stage.kind].palm_below
+        layout, block = self.stage.grip.layout, scale.length(BLOCK)
+        # the palm just over the block; higher when the digits hang further (a gripper)
+        down = by - block / 2 + scale.length(GRIP.gap) + max(block + layout.palm_below, layout.lowest)
         across = -hx  # as far past the partition as the block was before it
         ease = smooth(into, 0.0, 1.0)
         x, y = {"reach": (hx, self.high), "descend": (hx, self.high + (down - self.high) * ease),
@@ -147,12 +146,13 @@ class Baseline:
                 "carry": (hx + (across - hx) * ease, self.high), "open": (across, self.high),
                 "back": (across, self.high)}[name]
         hand.set_position(x, y, hz)
-        # the thumb closes first, behind the block, then the fingers push it against it
+        # the opposing digit closes first, behind the block, then the others push it against it
         thumb = {"close": smooth(into, 0.0, 0.7), "lift": 1.0, "carry": 1.0, "open": 1 - into}
         fingers = {"close": smooth(into, 0.3, 0.7), "lift": 1.0, "carry": 1.0, "open": 1 - into}
-        hand.flex_finger(0, GRIP.flex * thumb.get(name, 0.0))  # type: ignore[attr-defined]
-        for finger in (1, 2, 3, 4):
-            hand.flex_finger(finger, GRIP.flex * fingers.get(name, 0.0))  # type: ignore[attr-defined]
+        grip = self.stage.grip
+        hand.set_angles(*grip.angles({
+            index: GRIP.close * (thumb if index == grip.opposing else fingers).get(name, 0.0)
+            for index in range(len(grip.digits))}))
 
 
 def _phase(t: float) -> tuple[str, float]:
@@ -163,21 +163,22 @@ def _phase(t: float) -> tuple[str, float]:
     return CYCLE[-1][0], 1.0
 
 
-def box_and_blocks(session: Session, hand: str, seed: int, *,
+def box_and_blocks(session: Session, hands: TaskHand, seed: int, *,
                    controller: Callable[[Stage], Callable[[float], None]] = Baseline,
                    seconds: float = SECONDS, blocks: int = BLOCKS) -> dict[str, Any]:
     """The test once: the blocks moved in ``seconds`` (the test's 60) of scene time."""
-    scale = Scale.of(hand)
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", unit=scale.unit, solver_iterations=SOLVER_ITERATIONS)
-        stage = build(session, hand, random.Random(seed), blocks)
+        session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
+        session.sync()
+        scale = Scale.of(session)
+        stage = build(session, hands, random.Random(seed), blocks)
         drive(session, 1.0, lambda t: None)  # the heap settles
         before = stage.moved()
         drive(session, seconds, controller(stage))
         drive(session, 1.0, lambda t: None)  # what was let go lands
         moved = stage.moved() - before
         stage.remove()
-        return {"task": "box-and-blocks", "hand": hand, "seed": seed, "seconds": seconds,
+        return {"task": "box-and-blocks", "hand": hands.source.name, "seed": seed, "seconds": seconds,
                 "scale": scale.factor, "unit": scale.unit, "blocks": moved,
                 "humanNorm": [55, 89]}

@@ -1,7 +1,7 @@
 """The baseline grasp controller: a scripted approach, closure, lift and hold, the same for
-every trial of a grip; no learning. A user's controller is any function ``(trial, t)`` that
-moves ``trial.hand`` at ``t`` seconds into the trial (see :class:`Phases` for when the task
-observes)."""
+every trial of a grip and for every hand (it closes a hand by its grip map); no learning.
+A user's controller is any function ``(trial, t)`` that moves ``trial.hand`` at ``t``
+seconds into the trial (see :class:`Phases` for when the task observes)."""
 
 from __future__ import annotations
 
@@ -48,34 +48,25 @@ class Phases:
 PHASES = Phases()
 
 
-# The thumb's motors and angles that turn it to face the fingers, per hand (palm down, a
-# thumb left as 1.0 builds it curls beside the palm, parallel to the fingers, and pushes
-# what it should hold towards the wrist). Motor numbers are the hand's own (getMotors).
-OPPOSED_THUMB: dict[str, dict[int, float]] = {
-    "edged": {0: -1.0},   # the spread motor, turned back towards the wrist
-    "round": {0: 0.4},    # the thumb's spread (MotorY)
-    "anthro": {0: 0.5},   # the thumb's 'Palm' motor
-}
-
-
 @dataclass(frozen=True)
 class Grip:
-    """How the baseline closes on one object: finger angle when closed (radians), motor
-    torque (a human hand's N·m), where the object lies under the hand (``reach`` hand
-    lengths past the palm's end, ``side`` metres towards the thumb), and the gap
-    between palm and object when the hand comes down (human metres). ``thumb``: the
-    thumb's own flex when closed (None: as the fingers); ``lead``: how many seconds
-    before the fingers the thumb starts closing (it must be behind the object before the
-    fingers push it); ``fingers``: which fingers close (the others stay straight)."""
+    """How the baseline closes on one object, for any hand: how far its digits close
+    (``close``: a share of each closing motor's way from open to closed; ``thumb``: the
+    opposing digit's, None: the same), the least torque its motors drive with (a human
+    hand's N·m; a stronger motor keeps its own), where the object lies under the hand
+    (:class:`~.trial.Placement`: ``reach``, ``side``, ``gap``), how many seconds before
+    the others the opposing digit starts closing (``lead``: it must be behind the object
+    before they push it), and how many digits close (``digits``: the opposing one and
+    those nearest it; None: all)."""
 
-    flex: float
+    close: float
     torque: float
-    reach: float
+    reach: float = 0.0
     side: float = 0.0
     gap: float = 0.0027
     thumb: float | None = None
     lead: float = 0.4
-    fingers: tuple[int, ...] = (0, 1, 2, 3, 4)
+    digits: int | None = None
 
 
 def smooth(t: float, start: float, span: float) -> float:
@@ -86,33 +77,34 @@ def smooth(t: float, start: float, span: float) -> float:
 
 
 def baseline(grip: Grip, phases: Phases = PHASES) -> Control:
-    """The scripted controller of ``grip``: the thumb turned to face the fingers while the
-    hand hovers, down, the thumb then the fingers closed, up."""
-    opposed: set[str] = set()  # the hands whose thumbs were turned
+    """The scripted controller of ``grip``: down (the opposing digit preshaped from the
+    start), the opposing digit then the others closed, up."""
 
     def control(trial: Trial, t: float) -> None:
-        if trial.hand.id not in opposed:
-            opposed.add(trial.hand.id)
-            motors = trial.hand.get_motors()
-            for index, angle in OPPOSED_THUMB[trial.kind].items():
-                motors[index].set_angle(angle)
         x, y, z = trial.home
         down = smooth(t, phases.hover, phases.descend)
         up = smooth(t, phases.lifting, phases.lift)
         trial.hand.set_position(x, y + trial.lift * (1 - down) + trial.lift * up, z)
-        for finger in grip.fingers:
-            if finger == 0:
-                angle = grip.flex if grip.thumb is None else grip.thumb
-                closed = smooth(t, phases.closing - grip.lead, phases.close)
-            else:
-                angle, closed = grip.flex, smooth(t, phases.closing, phases.close)
-            trial.hand.flex_finger(finger, angle * closed)  # type: ignore[attr-defined]
+        trial.hand.set_angles(*trial.grip.angles(shares(trial, grip, t, phases)))
 
     return control
 
 
+def shares(trial: Trial, grip: Grip, t: float, phases: Phases = PHASES) -> dict[int, float]:
+    """How far the baseline has closed each digit of ``grip`` at ``t``."""
+    closing = trial.grip.nearest(grip.digits)
+    out = {}
+    for index in range(len(trial.grip.digits)):
+        if index == trial.grip.opposing:
+            share = grip.close if grip.thumb is None else grip.thumb
+            out[index] = share * smooth(t, phases.closing - grip.lead, phases.close)
+        else:
+            out[index] = grip.close * smooth(t, phases.closing, phases.close) if index in closing else 0.0
+    return out
+
+
 def prepare(trial: Trial, grip: Grip) -> None:
-    """The hand's motors as strong as the grip says (scaled to the hand)."""
-    torque = grip.torque
+    """The hand's motors at least as strong as the grip says."""
     for motor in trial.hand.get_motors():
-        motor.set_max_torque(torque)
+        if motor.get_max_torque() < grip.torque:
+            motor.set_max_torque(grip.torque)

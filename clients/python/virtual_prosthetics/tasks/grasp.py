@@ -12,8 +12,8 @@ from typing import Any, Callable, Iterator, Sequence
 from ..session import Session
 from .controller import PHASES, Control, Grip, baseline, prepare
 from .objects import CARD, CUBE, CYLINDER, PLATE, SPHERE, TIP, TestObject
-from .scale import FIGURES, Scale
-from .trial import Trial, drive, lay_out
+from .scale import Scale
+from .trial import TaskHand, Trial, drive, lay_out
 
 LIFTED = 0.2      # × the hand's length: how high above the table the object must stay
 SLIP = 0.05       # × the object's size: how far it may move in the hand
@@ -24,47 +24,31 @@ SOLVER_ITERATIONS = 150  # PyBullet's grasp examples hold with 50-150; 50 lets g
 
 @dataclass(frozen=True)
 class Pattern:
-    """A SHAP grip pattern: its object and how the baseline takes it, per hand."""
+    """A SHAP grip pattern: its object and how the baseline takes it, with any hand."""
 
     name: str
     item: TestObject
-    grips: dict[str, Grip]
+    grip: Grip
 
 
-def _same(grip: Grip) -> dict[str, Grip]:
-    return {kind: grip for kind in FIGURES}
-
-
+# Closing shares and places found with the 1.0 hands (158 of 160 trials held at seeds 7
+# and 1234 when each hand had its own table), given once for every hand: ``reach`` is
+# from where the hand holds (its layout's ``grasp``: a hand's palm's front edge).
 PATTERNS = [
-    # the ball under the palm, wrapped: thumb behind it, fingers in front
-    # (the round hand's light ball slipped out of the same grip in 4 of 20: nearer the
-    # palm's end, with the thumb pressing harder, it stays; the anthro hand's light ball
-    # rolled 3-7 mm in 3 of 20 and its heaviest fell once: coming down closer, with the
-    # thumb behind the ball longer before the fingers close, 20 of 20 for seeds 1-3 but one)
-    Pattern("spherical", SPHERE, {**_same(Grip(flex=1.2, torque=0.3, reach=-0.1)),
-                                  "round": Grip(flex=1.2, thumb=1.4, torque=0.3, reach=-0.05),
-                                  "anthro": Grip(flex=1.2, torque=0.3, reach=-0.1, gap=0.006,
-                                                 lead=0.6)}),
+    # the ball under the palm, wrapped: the opposing digit behind it, the others in front
+    Pattern("spherical", SPHERE, Grip(close=0.76, torque=0.3, reach=0.1)),
     # the cube is smaller than a curled finger: the hand stays higher and the cube lies a
-    # little towards the thumb, where the thumb's tip and the fingers' meet (the anthro
-    # hand's fingertips squeezed the cube 2-4 mm along over the hold in 3-5 of 20, light
-    # cubes more than heavy ones: taken lower, thumb first for longer and squeezed less
-    # hard, 20 of 20 light and heavy for seeds 1-3)
-    Pattern("tripod", CUBE, {**_same(Grip(flex=1.2, torque=0.3, reach=0.0, side=0.015, gap=0.03)),
-                             "anthro": Grip(flex=1.2, torque=0.2, reach=0.0, side=0.015,
-                                            gap=0.025, lead=0.6)}),
-    Pattern("power", CYLINDER, _same(Grip(flex=1.5, torque=0.3, reach=-0.1))),
-    Pattern("lateral", PLATE, _same(Grip(flex=1.3, torque=0.3, reach=-0.05))),
-    # the 1.6 cm cube: with every finger curling, the edged and round hands' fingertips
-    # passed beside it (0 of 20); thumb, index and middle only, the cube towards the
-    # thumb, the hand right down on it: 13 and 10 of 20 (edged), 8 and 10 (round) at
-    # seed 1. The anthro hand's tips still miss it
-    Pattern("tip", TIP, {**_same(Grip(flex=1.3, torque=0.2, reach=0.0)),
-                         **{kind: Grip(flex=1.5, thumb=1.4, torque=0.3, reach=0.0, side=0.03,
-                                       gap=0.005, fingers=(0, 1, 2)) for kind in ("edged", "round")}}),
-    Pattern("extension", CARD, _same(Grip(flex=1.2, torque=0.3, reach=-0.05))),
+    # little towards the opposing digit, where its tip and the others' meet
+    Pattern("tripod", CUBE, Grip(close=0.76, torque=0.3, side=0.015, gap=0.03)),
+    Pattern("power", CYLINDER, Grip(close=0.95, torque=0.3, reach=0.1)),
+    Pattern("lateral", PLATE, Grip(close=0.83, torque=0.3, reach=0.05)),
+    # the 1.6 cm cube: with every digit curling, fingertips passed beside it; the opposing
+    # digit and the two nearest it only, the cube towards it, the hand right down on it
+    Pattern("tip", TIP, Grip(close=0.95, thumb=0.89, torque=0.3, side=0.03, gap=0.005, digits=3)),
+    Pattern("extension", CARD, Grip(close=0.76, torque=0.3, reach=0.05)),
 ]
 PATTERN_NAMES = [pattern.name for pattern in PATTERNS]
+
 
 def draws(rng: random.Random, count: int) -> list[tuple[float, float]]:
     """Each trial's mass and friction factors, from the seed's generator."""
@@ -79,7 +63,7 @@ def _batches(items: Sequence[Any], size: int) -> Iterator[Sequence[Any]]:
 
 def succeeded(trial: Trial) -> bool:
     """Above the table by 20 % of the hand's length all through the hold, slip under 5 %."""
-    high = min(trial.heights, default=0.0) >= LIFTED * trial.figures.length
+    high = min(trial.heights, default=0.0) >= LIFTED * trial.layout.length
     return high and trial.slip() < SLIP * trial.item.extent
 
 
@@ -99,14 +83,14 @@ def run_batch(trials: list[Trial], grip: Grip, control: Control,
     drive(session, seconds, step)
 
 
-def run_trials(session: Session, hand: str, item: TestObject, every: Sequence[tuple[float, float]],
+def run_trials(session: Session, hands: TaskHand, item: TestObject, every: Sequence[tuple[float, float]],
                mass: float, grip: Grip, control: Control, side_by_side: int,
                seconds: float = PHASES.end) -> list[Trial]:
-    """A trial per draw of ``every``, ``side_by_side`` at a time in a row, each row cleared
-    away when it is done; the trials, observed."""
+    """A trial per draw of ``every``, ``side_by_side`` at a time in a row (one: a robot
+    already in the scene), each row cleared away when it is done; the trials, observed."""
     done: list[Trial] = []
-    for batch in _batches(every, side_by_side):
-        row = lay_out(session, hand, item, batch, mass, grip)
+    for batch in _batches(every, side_by_side if hands.source.owned else 1):
+        row = lay_out(session, hands, item, batch, mass, grip)
         run_batch(row, grip, control, seconds)
         done += row
         for trial in row:
@@ -114,23 +98,23 @@ def run_trials(session: Session, hand: str, item: TestObject, every: Sequence[tu
     return done
 
 
-def grasp(session: Session, hand: str, trials: int, seed: int, *, side_by_side: int = 10,
+def grasp(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_side: int = 10,
           patterns: Sequence[str] = tuple(PATTERN_NAMES),
           controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
     """Every pattern's light and heavy object, ``trials`` times each; the results."""
-    scale = Scale.of(hand)
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", unit=scale.unit, solver_iterations=SOLVER_ITERATIONS)
+        session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
+        session.sync()
+        scale = Scale.of(session)
         rng = random.Random(seed)
         results = []
         for pattern in (p for p in PATTERNS if p.name in patterns):
-            grip = pattern.grips[hand]
             for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
-                done = run_trials(session, hand, pattern.item, draws(rng, trials), mass, grip,
-                                  controller(grip), side_by_side)
+                done = run_trials(session, hands, pattern.item, draws(rng, trials), mass, pattern.grip,
+                                  controller(pattern.grip), side_by_side)
                 results.append(summary(pattern, weight, done))
-        return {"task": "grasp", "hand": hand, "seed": seed, "scale": scale.factor,
+        return {"task": "grasp", "hand": hands.source.name, "seed": seed, "scale": scale.factor,
                 "unit": scale.unit, "results": results}
 
 

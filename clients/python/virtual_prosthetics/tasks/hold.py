@@ -11,7 +11,7 @@ from ..session import Session
 from .controller import PHASES, Control, Grip, baseline
 from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, draws, run_trials
 from .scale import Scale
-from .trial import Trial
+from .trial import TaskHand, Trial
 
 RADIUS = 0.1   # metres (human): the circle the wrist goes round
 PERIOD = 2.0   # seconds a round takes
@@ -42,26 +42,27 @@ def dropped(trial: Trial) -> bool:
     against before it. (Not during the path: the hand's place a client knows is the one
     it sent, the ball's is a frame old, and at the path's speed that alone looked like a
     drop: every ball "dropped" while the pictures showed them held.)"""
-    if len(trial.offsets) < 2 or min(trial.heights) < LIFTED * trial.figures.length:
+    if len(trial.offsets) < 2 or min(trial.heights) < LIFTED * trial.layout.length:
         return True  # never lifted, or down at the table at some time
-    moved = math.dist(trial.offsets[0], trial.offsets[-1]) / trial.scale.factor
+    moved = trial.scale.metres(math.dist(trial.offsets[0], trial.offsets[-1]))
     return moved > DROPPED * trial.item.extent
 
 
-def hold(session: Session, hand: str, trials: int, seed: int, *, side_by_side: int = 10,
+def hold(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_side: int = 10,
          controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
     """``trials`` balls (masses and frictions drawn from ``seed``), each carried round the
     path; the drops."""
-    scale = Scale.of(hand)
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", unit=scale.unit, solver_iterations=SOLVER_ITERATIONS)
+        session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
+        session.sync()
+        scale = Scale.of(session)
         pattern = PATTERNS[0]
-        grip = pattern.grips[hand]
-        done = run_trials(session, hand, pattern.item, draws(random.Random(seed), trials),
+        grip = pattern.grip
+        done = run_trials(session, hands, pattern.item, draws(random.Random(seed), trials),
                           pattern.item.light, grip, carry(scale, controller(grip)), side_by_side,
                           PHASES.holding + ROUNDS * PERIOD + SETTLE)
-        return {"task": "hold", "hand": hand, "seed": seed, "trials": trials,
+        return {"task": "hold", "hand": hands.source.name, "seed": seed, "trials": trials,
                 "object": pattern.item.name, "path": {"radiusM": RADIUS, "periodS": PERIOD,
                                                       "rounds": ROUNDS},
                 "drops": sum(dropped(trial) for trial in done)}

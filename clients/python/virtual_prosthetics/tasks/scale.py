@@ -1,57 +1,41 @@
-"""How a task's human-sized world is laid out around a 1.0 hand.
+"""A task's human-sized world in a scene's units.
 
-The 1.0 hands are about 18 scene units long; a task's scene is set to the unit
-(``setPhysics``' ``unit``, metres per scene unit) that makes its hand exactly a human
-hand's size: :data:`HUMAN_HAND` (0.19 m) over the hand's palm-to-tip length. Positions and
-sizes are then the human metres over that unit (``Scale.length``); masses, torques,
-gravity and the forces read back are SI as they are (the server converts).
+Test objects are made at their real size: their metres over the scene's unit
+(``setPhysics``' ``unit``, metres per scene unit; the default makes a 1.0 hand a human
+hand's 0.19 m). A hand is evaluated at the size it has: a 1.0 hand at the default unit, a
+robot file at its own metres. Masses, torques, gravity and the forces read back are SI as
+they are (the server converts).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..session import Session
+
 HUMAN_HAND = 0.19  # metres from the wrist crease to the tip of the middle finger
 
 
 @dataclass(frozen=True)
-class HandFigures:
-    """Where a hand is, palm down (``set_rotation(-π/2, 0, 0)``), fingers straight and
-    together, relative to its position: the server's geometry, predicted here so that a
-    task can lay out its set-up before the hand exists (tests check them against the
-    server's)."""
-
-    length: float        # wrist (palm's back edge) to the farthest fingertip, along -z
-    palm_x: float        # x of the palm's middle
-    fingers_z: float     # z where the palm ends and the fingers begin
-    palm_below: float    # how far the palm's underside is below the hand's position
-    thumb_side: float    # +1: the thumb is on the +x side
-
-
-FIGURES = {
-    "edged": HandFigures(length=3.5, palm_x=0.0, fingers_z=-1.4, palm_below=0.15, thumb_side=1),
-    "round": HandFigures(length=3.6, palm_x=-0.055, fingers_z=-1.5625, palm_below=0.15,
-                         thumb_side=1),
-    "anthro": HandFigures(length=3.6, palm_x=-0.025, fingers_z=-1.5625, palm_below=0.15,
-                          thumb_side=1),
-}
-
-
-@dataclass(frozen=True)
 class Scale:
-    """A human-sized world at a hand's size (see the module's docstring)."""
+    """A human-sized world in a scene of ``1 / factor`` metres per unit."""
 
     factor: float  # scene units per metre
 
     @classmethod
-    def of(cls, hand: str) -> Scale:
-        return cls(FIGURES[hand].length / HUMAN_HAND)
+    def of(cls, session: Session) -> Scale:
+        """The scale of ``session``'s scene as its physics say now."""
+        return cls(1.0 / session.get_physics()["unit"])
 
     def length(self, metres: float) -> float:
         """Scene units of ``metres``."""
         return metres * self.factor
 
+    def metres(self, length: float) -> float:
+        """Metres of ``length`` scene units."""
+        return length / self.factor
+
     @property
     def unit(self) -> float:
-        """The scene's unit (metres per scene unit) that makes the hand a human's size."""
+        """The scene's unit (metres per scene unit)."""
         return 1 / self.factor

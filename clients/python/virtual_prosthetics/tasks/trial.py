@@ -8,20 +8,21 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Protocol, Sequence
 
 from ..objects import Box, Part
-from ..robots import AnthroHand, EdgedHand, Robot, RoundHand
+from ..robots import Robot
 from ..session import Session
+from .grip import HandGrip, Layout, hand_grip
+from .hands import HandSource
 from .objects import TestObject
-from .scale import FIGURES, HandFigures, Scale
+from .scale import Scale
 
-HANDS: dict[str, type[Robot]] = {"edged": EdgedHand, "round": RoundHand, "anthro": AnthroHand}
-PALM_DOWN = (-math.pi / 2, 0.0, 0.0)
 TABLE_TOP = 0.4  # × the hand's length: the tables' height
 SPACING = 2.2    # × the hand's length: from one trial's hand to the next
 
 
 class Placement(Protocol):
-    """Where an object lies under the hand: ``reach`` hand lengths past the palm's end,
-    ``side`` metres (human) towards the thumb, ``gap`` metres (human) below the palm."""
+    """Where an object lies under the hand: at the hand's grasp point (where its tips meet
+    half closed), ``reach`` hand lengths further ahead, ``side`` metres (human) towards
+    the opposing digit, ``gap`` metres (human) below the palm."""
 
     reach: float
     side: float
@@ -29,14 +30,34 @@ class Placement(Protocol):
 
 
 @dataclass
+class TaskHand:
+    """Where a task's hands come from and how they grip: the grip is read from the first
+    hand made (every hand of a source is built alike) with the file's override, if any."""
+
+    source: HandSource
+    override: dict[str, Any] | None = None
+    grip: HandGrip | None = None
+
+    def make(self, session: Session) -> tuple[Robot, HandGrip]:
+        """A hand, turned palm down where it was made, its digits open and preshaped."""
+        robot = self.source.make(session)
+        if self.grip is None:
+            self.grip = hand_grip(robot, self.override)
+        with session.connection.gathering():
+            robot.set_quaternion(list(self.grip.layout.quaternion))
+            robot.set_angles(*self.grip.angles({i: 0.0 for i in range(len(self.grip.digits))}))
+        return robot, self.grip
+
+
+@dataclass
 class Trial:
     """One hand over one object on one table. ``home`` is the hand's position with the
-    object under its grasp; ``lift`` how far a controller lifts it (both scene metres)."""
+    object under its grasp; ``lift`` how far a controller lifts it (both scene units)."""
 
     session: Session
-    kind: str
     scale: Scale
     hand: Robot
+    grip: HandGrip
     obj: Part
     table: Part
     item: TestObject
@@ -45,13 +66,14 @@ class Trial:
     mass: float       # kilograms (human)
     friction: float
     lift: float
+    owned: bool = True  # the task made the hand (and removes it with the trial)
     heights: list[float] = field(default_factory=list)
     offsets: list[tuple[float, ...]] = field(default_factory=list)
     forces: list[float] = field(default_factory=list)
 
     @property
-    def figures(self) -> HandFigures:
-        return FIGURES[self.kind]
+    def layout(self) -> Layout:
+        return self.grip.layout
 
     def object_position(self) -> list[float]:
         return self.session.read(lambda mirror: list(mirror.nodes[self.obj.id]["position"]))
@@ -74,43 +96,42 @@ class Trial:
         if not self.offsets:
             return 0.0
         first = self.offsets[0]
-        return max(math.dist(first, o) for o in self.offsets) / self.scale.factor
+        return self.scale.metres(max(math.dist(first, o) for o in self.offsets))
 
     def remove(self) -> None:
-        for node in (self.hand, self.obj, self.table):
+        for node in (self.hand, self.obj, self.table) if self.owned else (self.obj, self.table):
             node.delete()
 
 
-def under_hand(kind: str, place: Placement) -> tuple[float, float]:
+def under_hand(layout: Layout, scale: Scale, place: Placement) -> tuple[float, float]:
     """Where an object placed by ``place`` lies relative to the hand's position, palm
-    down: its (x, z) offset in scene metres."""
-    figures, scale = FIGURES[kind], Scale.of(kind)
-    return (figures.palm_x + figures.thumb_side * scale.length(place.side),
-            figures.fingers_z + place.reach * figures.length)
+    down: its (x, z) offset in scene units."""
+    return (layout.grasp[0] + layout.thumb_side * scale.length(place.side),
+            layout.grasp[2] - place.reach * layout.length)
 
 
-def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple[float, float]],
+def lay_out(session: Session, hands: TaskHand, item: TestObject, draws: Sequence[tuple[float, float]],
             weight: float, place: Placement) -> list[Trial]:
     """A row of trials, one per ``(mass factor, friction factor)`` draw: each hand palm
     down and open ``lift`` above its object, the object where ``place`` says."""
-    scale, figures = Scale.of(kind), FIGURES[kind]
-    length = figures.length
-    top = TABLE_TOP * length
-    size = [scale.length(v) for v in item.size]
-    dx, dz = under_hand(kind, place)
+    scale = Scale.of(session)
     trials = []
     for index, (mass_factor, friction_factor) in enumerate(draws):
+        hand, grip = hands.make(session)
+        length = grip.layout.length
+        top = TABLE_TOP * length
+        size = [scale.length(v) for v in item.size]
+        dx, dz = under_hand(grip.layout, scale, place)
         x = index * SPACING * length
         at = (x + dx, top + size[1] / 2, dz)
-        home = (x, top + size[1] + scale.length(place.gap) + figures.palm_below, 0.0)
-        # made and placed in one message: in dynamic mode a robot placed a tick after it
-        # was made would be dragged there from where it was made
+        gap = scale.length(place.gap)
+        # the palm just over the object; higher when the digits hang further (a gripper)
+        home = (x, top + gap + max(size[1] + grip.layout.palm_below, grip.layout.lowest), 0.0)
+        # placed in the message that turned it: in dynamic mode a robot placed a tick
+        # after it was made would be dragged there from where it was made (the task
+        # holds the scene paused, so no tick comes between)
         with session.connection.gathering():
-            hand = HANDS[kind](True, scene=session)  # type: ignore[call-arg]
-            hand.set_rotation(*PALM_DOWN)
             hand.set_position(home[0], home[1] + 0.6 * length, home[2])
-            hand.flex_fingers(0)  # type: ignore[attr-defined]
-            hand.spread_fingers(0)  # type: ignore[attr-defined]
             table = Box(1.6 * length, top, 1.6 * length, "burlywood", scene=session)
             table.set_position(at[0], top / 2, at[2])
             table.set_static(True)
@@ -120,8 +141,8 @@ def lay_out(session: Session, kind: str, item: TestObject, draws: Sequence[tuple
                 obj.set_rotation(0, 0, math.pi / 2)
             obj.set_mass(weight * mass_factor)
             obj.set_friction(friction_factor)
-        trials.append(Trial(session, kind, scale, hand, obj, table, item, home, top,
-                            weight * mass_factor, friction_factor, 0.6 * length))
+        trials.append(Trial(session, scale, hand, grip, obj, table, item, home, top,
+                            weight * mass_factor, friction_factor, 0.6 * length, hands.source.owned))
     return trials
 
 

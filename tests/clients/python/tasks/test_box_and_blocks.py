@@ -5,11 +5,14 @@ import random
 import pytest
 
 from virtual_prosthetics.tasks import box_and_blocks as bb
+from virtual_prosthetics.tasks.hands import hand_source
+from virtual_prosthetics.tasks.trial import TaskHand
 
 
 def test_the_box_holds_150_blocks_on_one_side_and_counts_those_put_across(scene):
-    scene.set_physics("dynamic", unit=bb.Scale.of("edged").unit)
-    stage = bb.build(scene, "edged", random.Random(0))
+    scene.set_physics("dynamic")
+    scene.sync()
+    stage = bb.build(scene, TaskHand(hand_source("edged", scene)), random.Random(0))
     scene.sync()
     positions = stage.block_positions()
     assert len(positions) == bb.BLOCKS == 150
@@ -32,6 +35,7 @@ def test_box_and_blocks_scores_what_the_controller_moves(scene):
                 stage.blocks[0].set_position(stage.scale.length(0.1), stage.floor + 1, 0)
         return control
 
-    result = bb.box_and_blocks(scene, "edged", 0, controller=carries_one, seconds=1.0, blocks=20)
+    result = bb.box_and_blocks(scene, TaskHand(hand_source("edged", scene)), 0, controller=carries_one,
+                               seconds=1.0, blocks=20)
     assert result["task"] == "box-and-blocks" and result["blocks"] == 1
     assert result["seconds"] == 1.0

@@ -1,10 +1,12 @@
 """``hold`` against the real server: balls carried round a path, drops counted."""
 
 from virtual_prosthetics.tasks import hold
+from virtual_prosthetics.tasks.hands import hand_source
+from virtual_prosthetics.tasks.trial import TaskHand
 
 
 def test_the_baseline_carries_each_ball_round_the_path_without_a_drop(scene):
-    result = hold.hold(scene, "edged", 2, seed=1)
+    result = hold.hold(scene, TaskHand(hand_source("edged", scene)), 2, seed=1)
     assert result["task"] == "hold" and result["trials"] == 2
     assert result["drops"] == 0  # the baseline grasp holds through the path
 
@@ -19,4 +21,4 @@ def test_a_hand_that_lets_go_drops_every_ball(scene):
                 trial.hand.flex_fingers(0)
         return control
 
-    assert hold.hold(scene, "edged", 2, seed=1, controller=lets_go)["drops"] == 2
+    assert hold.hold(scene, TaskHand(hand_source("edged", scene)), 2, seed=1, controller=lets_go)["drops"] == 2

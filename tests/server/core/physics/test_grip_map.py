@@ -1,7 +1,11 @@
 """A hand's grip map from its kinematics: the 1.0 hands as their manual flexes them, and
 grippers designed here that no table knows."""
 
+import json
 import math
+from pathlib import Path
+
+import jsonschema
 
 import numpy as np
 import pytest
@@ -34,6 +38,16 @@ def test_a_10_hand_closes_each_finger_with_the_motors_its_manual_flexes(scene, k
     assert found["approach"] == pytest.approx([0, 0, -1], abs=0.02)  # the palm's side
     assert found["forward"] == pytest.approx([0, 1, 0], abs=0.06)    # the fingers' way
     assert found["palm"] == hand.get_parts()[0].id
+
+
+def test_a_grip_map_is_what_the_schema_says_and_names_each_digits_parts(scene):
+    hand = EdgedHand(scene, "h", True)
+    found = hand.get_grip_map()
+    schema = json.loads((Path(__file__).parents[4] / "protocol" / "schema" / "protocol.json").read_text())
+    jsonschema.validate(found, {"$defs": schema["$defs"], "$ref": "#/$defs/gripMap"})
+    thumb = found["digits"][0]
+    assert thumb["parts"][-1] == thumb["tip"] and len(thumb["parts"]) == 3  # its segments
+    assert hand.get_grip_map() == found  # (kept until the tree changes)
 
 
 def test_the_edged_thumb_is_turned_back_towards_the_wrist_before_a_grasp(scene):
