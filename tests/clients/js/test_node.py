@@ -40,7 +40,10 @@ def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
             time.sleep(0.1)
         assert len(server.robots(scene_name)) == robots
         first = _angles(server, scene_name)
-        time.sleep(0.5)
+        # moving: the animation starts after the robots are made, later on a busy machine
+        deadline = time.monotonic() + (WAIT_SECONDS if moving else 0.5)
+        while _angles(server, scene_name) == first and time.monotonic() < deadline:
+            time.sleep(0.1)
         assert (_angles(server, scene_name) != first) == moving
         node.send_signal(signal.SIGINT)
         out, err = node.communicate(timeout=WAIT_SECONDS)

@@ -101,6 +101,7 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
             "friction": numbers(0, 2),
             "density": numbers(1, 5000)}),
         "mass": numbers(0.01, 1000), "friction": numbers(0, 3), "torque": numbers(0, 1e5),
+        "speed": st.one_of(numbers(0.01, 10), st.just("Infinity")),
         "transforms": st.dictionaries(st.sampled_from(refs), st.lists(numbers(-1, 1), min_size=7, max_size=7)
                                       .filter(lambda t: sum(c * c for c in t[3:]) > 1e-6), max_size=4)
         if refs else st.just({}),
