@@ -12,7 +12,7 @@ from typing import Any, Callable
 from ..objects import Box, Part
 from ..robots import Robot
 from ..session import Session
-from .controller import Grip, smooth
+from .controller import Grip, prepare, smooth
 from .grip import HandGrip
 from .scale import Scale
 from .trial import TaskHand, drive, under_hand
@@ -99,9 +99,7 @@ def build(session: Session, hands: TaskHand, rng: random.Random, count: int = BL
     hand.set_position(-sx / 4, wall + scale.length(PARTITION_HEIGHT) * 1.6 + grip.layout.palm_below,
                       -under_hand(grip.layout, scale, GRIP)[1])
     session.sync()
-    for motor in hand.get_motors():
-        if motor.get_max_torque() < GRIP.torque:
-            motor.set_max_torque(GRIP.torque)
+    prepare(hand, GRIP)
     return Stage(session, scale, hand, grip, blocks, walls, 0.0, wall, hands.source.owned)
 
 

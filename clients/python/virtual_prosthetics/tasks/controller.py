@@ -8,6 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable
 
+from ..robots import Robot
 from .trial import Trial
 
 
@@ -103,8 +104,8 @@ def shares(trial: Trial, grip: Grip, t: float, phases: Phases = PHASES) -> dict[
     return out
 
 
-def prepare(trial: Trial, grip: Grip) -> None:
+def prepare(hand: Robot, grip: Grip) -> None:
     """The hand's motors at least as strong as the grip says."""
-    for motor in trial.hand.get_motors():
+    for motor in hand.get_motors():
         if motor.get_max_torque() < grip.torque:
             motor.set_max_torque(grip.torque)

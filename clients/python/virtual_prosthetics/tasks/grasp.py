@@ -72,7 +72,7 @@ def run_batch(trials: list[Trial], grip: Grip, control: Control,
     """Drive a row of trials together for ``seconds``, observing them from the hold on."""
     session = trials[0].session
     for trial in trials:
-        prepare(trial, grip)
+        prepare(trial.hand, grip)
 
     def step(t: float) -> None:
         for trial in trials:
