@@ -10,7 +10,7 @@ export const READS = Object.freeze({
 	senseDistance: 'number', senseTouch: 'number', sensePosition: 'point',
 	senseCollision: 'bool', senseObjects: 'ids', senseObject: 'bool',
 	senseForce: 'number', senseContacts: 'contacts', getMaxTorque: 'number', getMaxSpeed: 'number',
-	getTorque: 'number', getGripMap: 'gripMap', getName: 'name', getMass: 'number', getPhysics: 'physics',
+	getTorque: 'number', getSpeed: 'number', getSpeeds: 'numbers', getTorques: 'numbers', getGripMap: 'gripMap', getName: 'name', getMass: 'number', getPhysics: 'physics',
 });
 
 const DECODE = {

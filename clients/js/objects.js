@@ -212,6 +212,12 @@ export class Motor extends Part {
 		return this.vp.session.call(this.vp.id, 'getTorque', [], { wait: true });
 	}
 
+	// Not in 1.0, dynamic mode: how fast it turned at the last step (rad/s; a
+	// slider's units/s), positive turning its angle up (0 in kinematic mode).
+	async getSpeed() {
+		return this.vp.session.call(this.vp.id, 'getSpeed', [], { wait: true });
+	}
+
 	// Not in the manual: turn with the motor `leader` at ratio·leader +
 	// offset, as a linkage or tendon couples joints; follow() frees it.
 	follow(leader = null, ratio = 1, offset = 0) {

@@ -90,6 +90,16 @@ export class Robot extends SceneObject {
 		return this.vp.session.call(this.vp.id, 'getGripMap', [], { wait: true });
 	}
 
+	// Not in 1.0, dynamic mode: each motor's speed (rad/s) and the torque (N·m) it
+	// drove with at the last step, in motor order (0 in kinematic mode).
+	async getSpeeds() {
+		return this.vp.session.call(this.vp.id, 'getSpeeds', [], { wait: true });
+	}
+
+	async getTorques() {
+		return this.vp.session.call(this.vp.id, 'getTorques', [], { wait: true });
+	}
+
 	getPosition() {
 		return this.position.toArray();
 	}

@@ -173,6 +173,21 @@ test('a page switches its scene to dynamic: objects fall, forces are felt (body 
 		await Prosthetic.sync();
 		assert.equal(motor.getMaxSpeed(), 0.5);
 		assert.equal(await motor.getTorque(), 0);
+		assert.equal(await motor.getSpeed(), 0);
+		// a robot's, in motor order: the arm that hangs from its weak motor strains at its bound
+		const arm = new Prosthetic.Robot();
+		const weak = new Prosthetic.MotorZ().setMaxTorque(1e-5);
+		arm.attachChain(weak, new Prosthetic.EdgedFinger(2));
+		arm.setPosition(0, 3, 0);
+		weak.setAngle(-1.5);
+		await Prosthetic.sync();
+		let torque = 0;
+		for (let tries = 0; tries < 100 && torque === 0; tries += 1) {  // until a step drove it
+			await new Promise((resolve) => setTimeout(resolve, 50));
+			[torque] = await arm.getTorques();
+		}
+		assert.ok(Math.abs(Math.abs(torque) - 1e-5) < 1e-6, `torque ${torque}`);
+		assert.equal((await arm.getSpeeds()).length, 1);
 		await assert.rejects(async () => { Prosthetic.setPhysics('dynamic', { substeps: 0 }); await Prosthetic.sync(); },
 			(error) => error.code === 'out_of_range' && /substeps/.test(error.message));
 	} finally {

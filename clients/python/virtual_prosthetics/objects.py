@@ -201,6 +201,11 @@ class Motor(Part):
         mode). Asks the server."""
         return float(from_wire(self._scene.call(self.id, "getTorque", (), wait=True)))
 
+    def get_speed(self) -> float:
+        """How fast it turned at the last step (rad/s; a slider's scene units/s), positive
+        turning its angle up (dynamic mode; 0 in kinematic mode). Asks the server."""
+        return float(from_wire(self._scene.call(self.id, "getSpeed", (), wait=True)))
+
     def follow(self, leader: Motor | None = None, ratio: float = 1.0,
                offset: float = 0.0) -> Motor:
         """Turn with the motor ``leader``: whenever it is set to ``a``,

@@ -127,6 +127,16 @@ class Robot(Shown):
         """Manual ``getAngles()``."""
         return self._angles()
 
+    def get_speeds(self) -> list[float]:
+        """Not in 1.0: each motor's speed at the last step (rad/s; a slider's scene
+        units/s), in motor order (dynamic mode; 0 in kinematic mode). Asks the server."""
+        return [float(v) for v in self._scene.call(self.id, "getSpeeds", (), wait=True)]
+
+    def get_torques(self) -> list[float]:
+        """Not in 1.0: the torque each motor drove with in the last step (N·m; a slider's
+        force, N), in motor order (dynamic mode; 0 in kinematic mode). Asks the server."""
+        return [float(v) for v in self._scene.call(self.id, "getTorques", (), wait=True)]
+
     def set_angles(self, *angles: float | None) -> None:
         """Manual ``setAngles(a0, a1, …)``: None leaves that motor as it is."""
         self._call("setAngles", *angles)

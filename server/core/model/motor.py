@@ -89,7 +89,12 @@ class Motor(Part):
         """The torque the motor drove with in the last step (N·m; a slider's force, N),
         positive pushing its angle up: the effort a servo's current tells (dynamic mode;
         0 in kinematic mode, where motors jump to their angles)."""
-        return self.scene.bodies.effort(self)
+        return self.scene.bodies.motor_motion([self])[0][1]
+
+    def get_speed(self) -> float:
+        """How fast the motor turned at the last step (rad/s; a slider's speed), positive
+        turning its angle up (dynamic mode; 0 in kinematic mode)."""
+        return self.scene.bodies.motor_motion([self])[0][0]
 
     def set_angle(self, angle: float | None) -> None:
         """Manual ``setAngle(angle)``: None and NaN are ignored, the rest clamped."""

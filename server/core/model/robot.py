@@ -127,6 +127,14 @@ class Robot(Node):
         """Manual ``getAngles()``."""
         return [m.angle for m in self.get_motors()]
 
+    def get_speeds(self) -> list[float]:
+        """Each motor's :meth:`~.motor.Motor.get_speed`, in the order of ``getMotors()``."""
+        return [speed for speed, _ in self.scene.bodies.motor_motion(self.get_motors())]
+
+    def get_torques(self) -> list[float]:
+        """Each motor's :meth:`~.motor.Motor.get_torque`, in the order of ``getMotors()``."""
+        return [torque for _, torque in self.scene.bodies.motor_motion(self.get_motors())]
+
     def set_angles(self, *angles: float | None) -> None:
         """Manual ``setAngles(a0, a1, …)``: None leaves a motor as it is; extras are ignored."""
         self.scene.turn(list(zip(self.get_motors(), angles)))

@@ -470,13 +470,19 @@ class Dynamics:
         position, orientation = self.p.getBasePositionAndOrientation(body, physicsClientId=self.client)
         return tuple(position), tuple(orientation)
 
-    def joint_states(self, body: int, joint_links: Sequence[int],
+    def joint_angles(self, body: int, joint_links: Sequence[int]) -> list[float]:
+        """The joints' real angles (radians; a sliding joint's length)."""
+        states = self.p.getJointStates(body, list(joint_links), physicsClientId=self.client)
+        return [state[0] for state in states]
+
+    def joint_motion(self, body: int, joint_links: Sequence[int],
                      sliding: Sequence[bool]) -> tuple[list[float], list[float]]:
-        """The joints' real angles (radians; a sliding joint's length) and the torques their
-        motors applied in the last step (N·m; a sliding joint's force, N)."""
+        """The joints' speeds (rad/s; a sliding joint's, scene units/s) and the torques their
+        motors applied in the last step (N·m; a sliding joint's force, N): Bullet keeps
+        both until the next step, so they are read when asked, not every tick."""
         states = self.p.getJointStates(body, list(joint_links), physicsClientId=self.client)
         torque, force = self.units.torque, self.units.force
-        return ([state[0] for state in states],
+        return ([state[1] for state in states],
                 [state[3] * (force if slides else torque) for state, slides in zip(states, sliding)])
 
 

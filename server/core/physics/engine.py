@@ -65,7 +65,6 @@ class _Built:
     base_centre: Vec3 = (0.0, 0.0, 0.0)
     part_centres: list[Vec3] | None = None  # of the parts on links, in part_links order
     bullet_pose: Any = None  # dynamic mode: the base's pose as Bullet gave it when last read
-    efforts: list[float] | None = None  # dynamic mode: each joint's torque (force), last read
 
 
 class PhysicsWorld:
@@ -310,18 +309,20 @@ class PhysicsWorld:
             bullet_pose = (tuple(bullet_pose[0]), tuple(bullet_pose[1]))
         pose = None if built.tree.static else \
             _shifted(bullet_pose or dynamics.base_pose(built.body), built.base_centre, -1)
-        angles, built.efforts = dynamics.joint_states(built.body, built.joint_links, built.tree.sliding) \
-            if built.joints else ([], [])
+        angles = dynamics.joint_angles(built.body, built.joint_links) if built.joints else []
         if pose is not None:
             built.base_pose = pose
         built.angles = angles
         return pose, angles
 
-    def efforts(self, root: str) -> list[float]:
-        """Dynamic mode: the torque (N·m; a sliding joint's force, N) each joint of the tree
-        of ``root`` was driven with in the last step, in the order of its joints."""
-        built = self._trees[root]
-        return list(built.efforts) if built.efforts else [0.0] * len(built.joints)
+    def joint_motion(self, root: str) -> tuple[list[float], list[float]]:
+        """Dynamic mode: each joint's speed (rad/s; a sliding joint's, scene units/s) and
+        the torque (N·m; a sliding joint's force, N) it was driven with in the last step,
+        of the tree of ``root``, in the order of its joints (zeros before its first step)."""
+        built, dynamics = self._trees[root], self.dynamics
+        if dynamics is None or not built.joints:
+            return [0.0] * len(built.joints), [0.0] * len(built.joints)
+        return dynamics.joint_motion(built.body, built.joint_links, built.tree.sliding)
 
     def motions(self) -> Iterator[tuple[str, Pose | None, list[float]]]:
         """Dynamic mode: :meth:`motion` of each tree Bullet may have moved since the last

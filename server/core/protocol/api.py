@@ -176,6 +176,7 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
               Method("getMaxSpeed", returns="number", mutates=False),
               # the torque it drove with in the last step, as a servo's current tells
               Method("getTorque", returns="number", mutates=False),
+              Method("getSpeed", returns="number", mutates=False),
               # not in the manual: coupled joints (a linkage, a tendon; URDF <mimic>)
               Method("follow", (Param("leader", "motor", None), Param("ratio", "number", 1.0),
                                 Param("offset", "number", 0.0)), returns="self"))),
@@ -230,6 +231,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("getAngle", (Param("index", "integer"),), returns="number", mutates=False),
         Method("setAngle", (Param("index", "integer"), Param("angle", "angle")), access="steer"),
         Method("getAngles", returns="numbers", mutates=False),
+        # not in the manual: each motor's getSpeed and getTorque at once (a controller's
+        # observation each step)
+        Method("getSpeeds", returns="numbers", mutates=False),
+        Method("getTorques", returns="numbers", mutates=False),
         Method("setAngles", (Param("angles", "angle", variadic=True),), access="steer"),
         # not in the manual: let other clients set this robot's motor angles and attach
         # their own parts to it (server.core.protocol.ownership)

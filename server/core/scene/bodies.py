@@ -228,15 +228,26 @@ class SceneBodies:
         """Newtons pressing on ``part`` at the last tick (0 in kinematic mode)."""
         return 0.0 if part is None else self.physics.forces.get(part.id, 0.0)
 
-    def effort(self, motor: Node) -> float:
-        """The torque (a slider's force) ``motor`` drove with in the last step, N·m (N);
-        0 in kinematic mode, and for a motor not yet built into its tree."""
+    def motor_motion(self, motors: Sequence[Node]) -> list[tuple[float, float]]:
+        """Each motor's speed (rad/s; a slider's, scene units/s) and the torque (a slider's
+        force) it drove with in the last step, N·m (N), positive turning its angle up; 0, 0
+        in kinematic mode, where motors jump to their angles, and for a motor not yet
+        built into its tree."""
         self.sync()
-        root_id = motor.root().id
-        motors = self._joint_motors.get(root_id, [])
-        if self.physics.dynamics is None or motor not in motors:
-            return 0.0
-        return self.physics.efforts(root_id)[motors.index(motor)]
+        out = []
+        read: dict[str, tuple[list[float], list[float]]] = {}
+        for motor in motors:
+            root_id = motor.root().id
+            built = self._joint_motors.get(root_id, [])
+            if self.physics.dynamics is None or motor not in built:
+                out.append((0.0, 0.0))
+                continue
+            if root_id not in read:  # one read of Bullet per tree
+                read[root_id] = self.physics.joint_motion(root_id)
+            speeds, efforts = read[root_id]
+            index = built.index(motor)
+            out.append((speeds[index], efforts[index]))
+        return out
 
     def _read_poses(self) -> None:
         """Read the parts' poses of the trees moved since they were last read (Bullet's

@@ -120,6 +120,9 @@ def test_in_dynamic_mode_a_motor_reads_where_it_is_not_where_it_was_sent(scene):
     scene.sync()
     assert motor.get_angle() != pytest.approx(-1.5, abs=0.2)  # the finger hangs down instead
     assert abs(motor.get_torque()) == pytest.approx(2e-5, rel=0.05)  # straining at its bound
+    [torque] = arm.get_torques()  # the robot's, in motor order
+    assert abs(torque) == pytest.approx(2e-5, rel=0.05)
+    assert len(arm.get_speeds()) == 1 and math.isfinite(motor.get_speed())  # it swings
     assert motor.get_max_speed() == math.inf
     motor.set_max_speed(0.5)
     scene.sync()

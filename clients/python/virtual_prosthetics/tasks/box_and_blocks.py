@@ -1,19 +1,23 @@
 """``box-and-blocks``: the Box and Blocks Test (Mathiowetz et al., 1985). A box of two
 compartments split by a partition, 150 cubes of 2.5 cm in one; the score is how many
-blocks the hand moves over the partition in 60 s (adults: 55-89). The baseline takes the
-highest block it can reach, carries it over and lets go, again and again."""
+blocks the hand moves over the partition in 60 s (adults: 55-89), counted as the test's
+examiner counts (:class:`Tally`): a block counts when it is carried over with the
+fingertips across the partition, and blocks carried together count as one. The baseline
+takes the highest block it can reach, carries it over and lets go, again and again."""
 
 from __future__ import annotations
 
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from ..objects import Box, Part
 from ..robots import Robot
 from ..session import Session
+from . import progress
 from .controller import Grip, prepare, smooth
 from .grip import HandGrip
+from .observation import rotate
 from .scale import Scale
 from .trial import TaskHand, drive, under_hand
 
@@ -55,6 +59,21 @@ class Stage:
         """Blocks past the partition (all start on its -x side)."""
         return sum(p[0] > self.partition_x and p[1] < self.floor + self.scale.length(WALL_HEIGHT)
                    for p in self.block_positions())
+
+    def across(self) -> tuple[set[str], bool]:
+        """The blocks past the partition now, and whether every fingertip is (where each
+        digit's tip is open, carried with the hand's pose: closing curls a tip under the
+        palm, not across the box)."""
+        def read(mirror: Any) -> tuple[set[str], bool]:
+            blocks = {b.id for b in self.blocks
+                      if b.id in mirror.nodes and mirror.nodes[b.id]["position"][0] > self.partition_x}
+            hand = mirror.nodes.get(self.hand.id)
+            tips = [d.at for d in self.grip.digits if d.at is not None]
+            if hand is None or not tips:
+                return blocks, False
+            return blocks, all(hand["position"][0] + rotate(hand["quaternion"], tip)[0] > self.partition_x
+                               for tip in tips)
+        return self.session.read(read)
 
     def remove(self) -> None:
         for node in ((self.hand,) if self.owned else ()) + (*self.blocks, *self.walls):
@@ -101,6 +120,34 @@ def build(session: Session, hands: TaskHand, rng: random.Random, count: int = BL
     session.sync()
     prepare(hand, GRIP)
     return Stage(session, scale, hand, grip, blocks, walls, 0.0, wall, hands.source.owned)
+
+
+@dataclass
+class Tally:
+    """The examiner's count (Mathiowetz et al., 1985): a block that goes over the partition
+    counts once the fingertips are across it too (thrown or pushed over, it does not);
+    blocks that go over in one carry (from the tips' crossing until they come back) count
+    as one. ``across``: every block that went over, however."""
+
+    blocks: int = 0
+    across: int = 0
+    seen: set[str] = field(default_factory=set)
+    waiting: bool = False    # a block went over, the fingertips not yet
+    credited: bool = False   # this carry has counted its block
+
+    def step(self, stage: Stage) -> None:
+        """Look at the box once (a tick)."""
+        over, tips_across = stage.across()
+        new = over - self.seen
+        self.seen |= over
+        self.across += len(new)
+        if new and not (tips_across and self.credited):
+            self.waiting = True
+        if tips_across and self.waiting:
+            self.blocks += 1
+            self.waiting, self.credited = False, True
+        if not tips_across:
+            self.credited = False
 
 
 CYCLE = (("reach", 0.5), ("descend", 0.5), ("close", 0.7), ("lift", 0.5), ("carry", 0.6),
@@ -164,19 +211,35 @@ def _phase(t: float) -> tuple[str, float]:
 def box_and_blocks(session: Session, hands: TaskHand, seed: int, *,
                    controller: Callable[[Stage], Callable[[float], None]] = Baseline,
                    seconds: float = SECONDS, blocks: int = BLOCKS) -> dict[str, Any]:
-    """The test once: the blocks moved in ``seconds`` (the test's 60) of scene time."""
+    """The test once: the blocks moved in ``seconds`` (the test's 60) of scene time, as
+    the examiner counts them (``blocks``) and as they lie (``blocksOver``: past the
+    partition at the end, however they got there)."""
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
         session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
         session.sync()
-        scale = Scale.of(session)
-        stage = build(session, hands, random.Random(seed), blocks)
-        drive(session, 1.0, lambda t: None)  # the heap settles
-        before = stage.moved()
-        drive(session, seconds, controller(stage))
-        drive(session, 1.0, lambda t: None)  # what was let go lands
-        moved = stage.moved() - before
-        stage.remove()
+        with progress.shown(seconds + 2.0, f"box-and-blocks {hands.source.name}"):
+            stage = build(session, hands, random.Random(seed), blocks)
+            tally, moved = run(stage, controller(stage), seconds)
         return {"task": "box-and-blocks", "hand": hands.source.name, "seed": seed, "seconds": seconds,
-                "scale": scale.factor, "unit": scale.unit, "blocks": moved,
-                "humanNorm": [55, 89]}
+                "scale": stage.scale.factor, "unit": stage.scale.unit, "blocks": tally.blocks,
+                "blocksOver": moved, "blocksAcross": tally.across, "humanNorm": [55, 89]}
+
+
+def run(stage: Stage, hand: Callable[[float], None], seconds: float) -> tuple[Tally, int]:
+    """The heap settled, ``hand`` driven for ``seconds``, what it let go landed; the
+    examiner's tally and the blocks past the partition that were not before. The box
+    is cleared away."""
+    session = stage.session
+    drive(session, 1.0, lambda t: None)
+    before = stage.moved()
+    tally = Tally(seen=stage.across()[0])
+
+    def step(t: float) -> None:
+        hand(t)
+        tally.step(stage)
+    drive(session, seconds, step)
+    drive(session, 1.0, lambda t: tally.step(stage))
+    moved = stage.moved() - before
+    stage.remove()
+    return tally, moved

@@ -1,7 +1,9 @@
-"""The baseline grasp controller: a scripted approach, closure, lift and hold, the same for
-every trial of a grip and for every hand (it closes a hand by its grip map); no learning.
-A user's controller is any function ``(trial, t)`` that moves ``trial.hand`` at ``t``
-seconds into the trial (see :class:`Phases` for when the task observes)."""
+"""The grasp tasks' controllers. The task moves the wrist (:func:`approach`: down, and up
+once the hand has closed; see :class:`Phases` for when it observes); a hand controller
+(:data:`~.observation.HandController`) is given an :class:`~.observation.Observation`
+each step and answers the hand's motor targets. Two come with the tasks, for any hand
+(both close it by its grip map): :func:`baseline`, scripted, and :func:`force_stop`, closed
+loop: each digit closes until it presses the object with a force."""
 
 from __future__ import annotations
 
@@ -9,11 +11,12 @@ from dataclasses import dataclass
 from typing import Callable
 
 from ..robots import Robot
+from .grip import HandGrip
+from .observation import Angles, HandController, Observation
 from .trial import Trial
 
-
-# a controller: moves ``trial.hand`` at ``t`` seconds into the trial
-Control = Callable[[Trial, float], None]
+# the wrist's path: moves ``trial.hand`` to where it is ``t`` seconds into the trial
+Arm = Callable[[Trial, float], None]
 
 
 @dataclass(frozen=True)
@@ -77,31 +80,74 @@ def smooth(t: float, start: float, span: float) -> float:
     return x * x * (3 - 2 * x)
 
 
-def baseline(grip: Grip, phases: Phases = PHASES) -> Control:
-    """The scripted controller of ``grip``: down (the opposing digit preshaped from the
-    start), the opposing digit then the others closed, up."""
+def approach(phases: Phases = PHASES) -> Arm:
+    """The wrist's path: over the object, down to it, and up once the hand has closed."""
 
-    def control(trial: Trial, t: float) -> None:
+    def arm(trial: Trial, t: float) -> None:
         x, y, z = trial.home
         down = smooth(t, phases.hover, phases.descend)
         up = smooth(t, phases.lifting, phases.lift)
         trial.hand.set_position(x, y + trial.lift * (1 - down) + trial.lift * up, z)
-        trial.hand.set_angles(*trial.grip.angles(shares(trial, grip, t, phases)))
+
+    return arm
+
+
+def baseline(grip: Grip, phases: Phases = PHASES) -> HandController:
+    """The scripted hand of ``grip``: the opposing digit preshaped from the start, then
+    it and the others closed, each to the grip's share, on a fixed timeline."""
+
+    def control(seen: Observation) -> Angles:
+        return Angles(seen.grip.angles(shares(seen.grip, grip, seen.t, phases)))
 
     return control
 
 
-def shares(trial: Trial, grip: Grip, t: float, phases: Phases = PHASES) -> dict[int, float]:
+def shares(hand: HandGrip, grip: Grip, t: float, phases: Phases = PHASES) -> dict[int, float]:
     """How far the baseline has closed each digit of ``grip`` at ``t``."""
-    closing = trial.grip.nearest(grip.digits)
+    closing = hand.nearest(grip.digits)
     out = {}
-    for index in range(len(trial.grip.digits)):
-        if index == trial.grip.opposing:
+    for index in range(len(hand.digits)):
+        if index == hand.opposing:
             share = grip.close if grip.thumb is None else grip.thumb
             out[index] = share * smooth(t, phases.closing - grip.lead, phases.close)
         else:
             out[index] = grip.close * smooth(t, phases.closing, phases.close) if index in closing else 0.0
     return out
+
+
+STOP_FORCE = 1.0  # newtons: a light pinch (a human hand holds a 50 g object with ~1-2 N)
+
+
+def force_stop(grip: Grip, force: float = STOP_FORCE, phases: Phases = PHASES) -> HandController:
+    """A closed-loop hand: each digit of ``grip`` closes at the baseline's pace until it
+    presses the object with ``force`` newtons while a digit across from it does too (the
+    object squeezed between them: one digit alone only pushes it; the table does not
+    count), then goes :data:`SQUEEZE` further and stays; one that never does closes as far
+    as the baseline's."""
+    stopped: dict[int, float] = {}
+
+    def control(seen: Observation) -> Angles:
+        planned = shares(seen.grip, grip, seen.t, phases)
+        pressing = [f >= force for f in seen.digit_forces]
+        for index, presses in enumerate(pressing):
+            if index in stopped or not presses or planned.get(index, 0.0) <= 0:
+                continue
+            if any(p for j, p in enumerate(pressing) if _across(seen.grip, index, j)):
+                stopped[index] = min(1.0, planned[index] + SQUEEZE)
+        return Angles(seen.grip.angles({i: stopped.get(i, share) for i, share in planned.items()}))
+
+    return control
+
+
+def _across(hand: HandGrip, a: int, b: int) -> bool:
+    """Whether digits ``a`` and ``b`` close against each other: one opposes and the other
+    does not (without an opposing digit, any two do)."""
+    if a == b:
+        return False
+    return hand.opposing < 0 or (a == hand.opposing) != (b == hand.opposing)
+
+
+SQUEEZE = 0.1  # of a digit's way closed, past where it first pressed with the force
 
 
 def prepare(hand: Robot, grip: Grip) -> None:

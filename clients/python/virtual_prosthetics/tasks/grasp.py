@@ -10,7 +10,9 @@ from dataclasses import dataclass
 from typing import Any, Callable, Iterator, Sequence
 
 from ..session import Session
-from .controller import PHASES, Control, Grip, baseline, prepare
+from . import progress
+from .controller import PHASES, Arm, Grip, approach, baseline, prepare
+from .observation import HandController, Observation, apply
 from .objects import CARD, CUBE, CYLINDER, PLATE, SPHERE, TIP, TestObject
 from .scale import Scale
 from .trial import TaskHand, Trial, drive, lay_out
@@ -67,16 +69,22 @@ def succeeded(trial: Trial) -> bool:
     return high and trial.slip() < SLIP * trial.item.extent
 
 
-def run_batch(trials: list[Trial], grip: Grip, control: Control,
+def run_batch(trials: list[Trial], grip: Grip, arm: Arm, controller: Callable[[Grip], HandController],
               seconds: float = PHASES.end) -> None:
-    """Drive a row of trials together for ``seconds``, observing them from the hold on."""
+    """Drive a row of trials together for ``seconds``: each step the task moves each
+    wrist by ``arm`` and each hand's own controller (one made per trial) sets its motors
+    from what it observes; the task observes from the hold on."""
     session = trials[0].session
+    hands = [controller(grip) for trial in trials]
+    sent: list[dict[int, float]] = [{} for _ in trials]
     for trial in trials:
         prepare(trial.hand, grip)
 
     def step(t: float) -> None:
-        for trial in trials:
-            control(trial, t)
+        for trial, hand, torques in zip(trials, hands, sent):
+            arm(trial, t)
+            apply(trial, hand(Observation(trial, t)), torques)
+            trial.watch_contact()
             if t >= PHASES.holding:
                 trial.observe()
 
@@ -84,14 +92,14 @@ def run_batch(trials: list[Trial], grip: Grip, control: Control,
 
 
 def run_trials(session: Session, hands: TaskHand, item: TestObject, every: Sequence[tuple[float, float]],
-               mass: float, grip: Grip, control: Control, side_by_side: int,
-               seconds: float = PHASES.end) -> list[Trial]:
+               mass: float, grip: Grip, arm: Arm, controller: Callable[[Grip], HandController],
+               side_by_side: int, seconds: float = PHASES.end) -> list[Trial]:
     """A trial per draw of ``every``, ``side_by_side`` at a time in a row (one: a robot
     already in the scene), each row cleared away when it is done; the trials, observed."""
     done: list[Trial] = []
     for batch in _batches(every, side_by_side if hands.source.owned else 1):
         row = lay_out(session, hands, item, batch, mass, grip)
-        run_batch(row, grip, control, seconds)
+        run_batch(row, grip, arm, controller, seconds)
         done += row
         for trial in row:
             trial.remove()
@@ -100,8 +108,9 @@ def run_trials(session: Session, hands: TaskHand, item: TestObject, every: Seque
 
 def grasp(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_side: int = 10,
           patterns: Sequence[str] = tuple(PATTERN_NAMES),
-          controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
-    """Every pattern's light and heavy object, ``trials`` times each; the results."""
+          controller: Callable[[Grip], HandController] = baseline) -> dict[str, Any]:
+    """Every pattern's light and heavy object, ``trials`` times each, each hand driven by
+    a ``controller(grip)`` of its own; the results."""
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
         session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
@@ -109,18 +118,22 @@ def grasp(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_
         scale = Scale.of(session)
         rng = random.Random(seed)
         results = []
-        for pattern in (p for p in PATTERNS if p.name in patterns):
-            for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
-                done = run_trials(session, hands, pattern.item, draws(rng, trials), mass, pattern.grip,
-                                  controller(pattern.grip), side_by_side)
-                results.append(summary(pattern, weight, done))
+        chosen = [p for p in PATTERNS if p.name in patterns]
+        rows = -(-trials // (side_by_side if hands.source.owned else 1))
+        with progress.shown(len(chosen) * 2 * rows * PHASES.end, f"grasp {hands.source.name}"):
+            for pattern in chosen:
+                for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
+                    done = run_trials(session, hands, pattern.item, draws(rng, trials), mass,
+                                      pattern.grip, approach(), controller, side_by_side)
+                    results.append(summary(pattern, weight, done))
         return {"task": "grasp", "hand": hands.source.name, "seed": seed, "scale": scale.factor,
                 "unit": scale.unit, "results": results}
 
 
 def summary(pattern: Pattern, weight: str, trials: list[Trial]) -> dict[str, Any]:
     """One line of the results: the pattern's object at one weight over its trials (slip:
-    the median trial's, in metres; peak force: the most pressing on the object in any
+    the median trial's during the hold, in metres, and from the hand's first contact to
+    the hold's end, as the protocol measures it; peak force: the most pressing on the object in any
     hold, in a human hand's newtons)."""
     successes = sum(succeeded(trial) for trial in trials)
     return {"grip": pattern.name, "object": pattern.item.name, "weight": weight,
@@ -128,4 +141,6 @@ def summary(pattern: Pattern, weight: str, trials: list[Trial]) -> dict[str, Any
             "trials": len(trials), "successes": successes,
             "successRate": successes / len(trials) if trials else 0.0,
             "peakForceN": round(max((max(t.forces, default=0.0) for t in trials), default=0.0), 2),
-            "slip": round(statistics.median(t.slip() for t in trials), 4) if trials else 0.0}
+            "slip": round(statistics.median(t.slip() for t in trials), 4) if trials else 0.0,
+            "slipFromContact": round(statistics.median(t.slip_from_contact() for t in trials), 4)
+            if trials else 0.0}

@@ -8,7 +8,9 @@ import random
 from typing import Any, Callable
 
 from ..session import Session
-from .controller import PHASES, Control, Grip, baseline
+from . import progress
+from .controller import PHASES, Arm, Grip, approach, baseline
+from .observation import HandController
 from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, draws, run_trials
 from .scale import Scale
 from .trial import TaskHand, Trial
@@ -20,13 +22,13 @@ DROPPED = 0.5  # × the ball's size: further than this from where it sat in the 
 SETTLE = 0.5   # seconds still after the path before the ball's place in the hand is read
 
 
-def carry(scale: Scale, control: Control) -> Control:
-    """``control`` until the hold begins, then round a circle in the x-y plane."""
+def carry(scale: Scale, arm: Arm) -> Arm:
+    """The wrist by ``arm`` until the hold begins, then round a circle in the x-y plane."""
     radius = scale.length(RADIUS)
 
     def step(trial: Trial, t: float) -> None:
         if t < PHASES.holding:
-            control(trial, t)
+            arm(trial, t)
             return
         angle = 2 * math.pi * min(ROUNDS, (t - PHASES.holding) / PERIOD)
         x, y, z = trial.home
@@ -49,7 +51,7 @@ def dropped(trial: Trial) -> bool:
 
 
 def hold(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_side: int = 10,
-         controller: Callable[[Grip], Control] = baseline) -> dict[str, Any]:
+         controller: Callable[[Grip], HandController] = baseline) -> dict[str, Any]:
     """``trials`` balls (masses and frictions drawn from ``seed``), each carried round the
     path; the drops."""
     # paused first: a scene another run steps is refused before anything of it changes
@@ -59,9 +61,12 @@ def hold(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_s
         scale = Scale.of(session)
         pattern = PATTERNS[0]
         grip = pattern.grip
-        done = run_trials(session, hands, pattern.item, draws(random.Random(seed), trials),
-                          pattern.item.light, grip, carry(scale, controller(grip)), side_by_side,
-                          PHASES.holding + ROUNDS * PERIOD + SETTLE)
+        seconds = PHASES.holding + ROUNDS * PERIOD + SETTLE
+        rows = -(-trials // (side_by_side if hands.source.owned else 1))
+        with progress.shown(rows * seconds, f"hold {hands.source.name}"):
+            done = run_trials(session, hands, pattern.item, draws(random.Random(seed), trials),
+                              pattern.item.light, grip, carry(scale, approach()), controller,
+                              side_by_side, seconds)
         return {"task": "hold", "hand": hands.source.name, "seed": seed, "trials": trials,
                 "object": pattern.item.name, "path": {"radiusM": RADIUS, "periodS": PERIOD,
                                                       "rounds": ROUNDS},

@@ -9,9 +9,11 @@ from typing import Any, Callable, Protocol, Sequence
 
 from ..objects import Box, Part
 from ..robots import Robot
+from ..sensor import Sensor
 from ..session import Session
 from .grip import HandGrip, Layout, hand_grip
 from .hands import HandSource
+from . import progress
 from .objects import TestObject
 from .scale import Scale
 
@@ -67,19 +69,40 @@ class Trial:
     friction: float
     lift: float
     owned: bool = True  # the task made the hand (and removes it with the trial)
+    sensor: Sensor | None = None  # on the object, watched: who presses it how, each frame
     heights: list[float] = field(default_factory=list)
     offsets: list[tuple[float, ...]] = field(default_factory=list)
     forces: list[float] = field(default_factory=list)
+    touched: list[tuple[float, ...]] = field(default_factory=list)  # offsets since first contact
 
     @property
     def layout(self) -> Layout:
         return self.grip.layout
 
+    def _node(self, node_id: str, key: str) -> list[float]:
+        return self.session.read(lambda mirror: list(mirror.nodes[node_id][key]))
+
     def object_position(self) -> list[float]:
-        return self.session.read(lambda mirror: list(mirror.nodes[self.obj.id]["position"]))
+        return self._node(self.obj.id, "position")
 
     def hand_position(self) -> list[float]:
-        return self.session.read(lambda mirror: list(mirror.nodes[self.hand.id]["position"]))
+        return self._node(self.hand.id, "position")
+
+    def object_quaternion(self) -> list[float]:
+        return self._node(self.obj.id, "quaternion")
+
+    def hand_quaternion(self) -> list[float]:
+        return self._node(self.hand.id, "quaternion")
+
+    def object_offset(self) -> list[float]:
+        """From the hand's position to the object's (scene units)."""
+        return [a - b for a, b in zip(self.object_position(), self.hand_position())]
+
+    def object_contacts(self) -> list[dict[str, Any]]:
+        """What presses on the object at the last frame, body by body (ids, newtons)."""
+        if self.sensor is None:
+            return []
+        return [{**c, "other": getattr(c["other"], "id", c["other"])} for c in self.sensor.sense_contacts()]
 
     def observe(self) -> None:
         """Note the object's height above the table, where it is relative to the hand
@@ -91,12 +114,27 @@ class Trial:
         force = self.session.read(lambda mirror: mirror.forces.get(self.obj.id, 0.0))
         self.forces.append(force)
 
+    def watch_contact(self) -> None:
+        """Once the hand first touches the object, note where the object is relative to
+        the hand every step (what :meth:`slip_from_contact` measures)."""
+        if not self.touched and not any(c["other"] not in (self.table.id, "ground")
+                                        for c in self.object_contacts()):
+            return
+        self.touched.append(tuple(self.object_offset()))
+
     def slip(self) -> float:
         """How far the object moved in the hand while observed (human metres)."""
-        if not self.offsets:
+        return self._moved(self.offsets)
+
+    def slip_from_contact(self) -> float:
+        """How far the object moved in the hand from its first contact with the hand to
+        the end (human metres): what closing and lifting dragged it too."""
+        return self._moved(self.touched)
+
+    def _moved(self, offsets: list[tuple[float, ...]]) -> float:
+        if not offsets:
             return 0.0
-        first = self.offsets[0]
-        return self.scale.metres(max(math.dist(first, o) for o in self.offsets))
+        return self.scale.metres(max(math.dist(offsets[0], o) for o in offsets))
 
     def remove(self) -> None:
         for node in (self.hand, self.obj, self.table) if self.owned else (self.obj, self.table):
@@ -141,8 +179,13 @@ def lay_out(session: Session, hands: TaskHand, item: TestObject, draws: Sequence
                 obj.set_rotation(0, 0, math.pi / 2)
             obj.set_mass(weight * mass_factor)
             obj.set_friction(friction_factor)
+        # an invisible sensor on the object (it has no body: the object's physics stays
+        # as it was), watched: frames tell which digit presses it how hard
+        sensor = Sensor(False, scene=session).attach_to_slot(obj, obj.add_slot(0, 0, 0))
+        sensor.watch()
         trials.append(Trial(session, scale, hand, grip, obj, table, item, home, top,
-                            weight * mass_factor, friction_factor, 0.6 * length, hands.source.owned))
+                            weight * mass_factor, friction_factor, 0.6 * length, hands.source.owned,
+                            sensor))
     return trials
 
 
@@ -158,3 +201,4 @@ def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> Non
             with session.connection.gathering():
                 step(tick * period)
             session.step()
+            progress.advance(period)

@@ -9,6 +9,7 @@ from tests import hand_files
 from virtual_prosthetics.tasks import grasp
 from virtual_prosthetics.tasks.__main__ import main
 from virtual_prosthetics.tasks.hands import hand_source
+from virtual_prosthetics.tasks.observation import Angles
 from virtual_prosthetics.tasks.trial import TaskHand
 
 
@@ -58,11 +59,8 @@ def test_a_gripper_no_table_names_holds_the_ball_and_the_cube(scene):
 
 def test_a_controller_that_never_closes_the_hand_lifts_nothing(scene):
     def open_hand(grip):
-        baseline = grasp.baseline(grip)
-
-        def control(trial, t):
-            baseline(trial, t)
-            trial.hand.flex_fingers(0)  # the user's controller: the same path, hand open
+        def control(seen):  # the user's controller: the hand open all the way
+            return Angles(seen.grip.angles({i: 0.0 for i in range(len(seen.grip.digits))}))
         return control
 
     result = grasp.grasp(scene, _hand(scene, "edged"), 2, seed=3, patterns=["spherical"],
@@ -94,8 +92,11 @@ def test_the_command_line_evaluates_a_robot_file_with_a_grip_map_of_its_own(serv
 def test_the_command_line_prints_json_and_refuses_unknown_grips(server, scene_name, capsys):
     assert main(["grasp", "--url", server.ws, "--scene", scene_name, "--trials", "1",
                  "--grips", "tip"]) == 0
-    printed = json.loads(capsys.readouterr().out)
+    captured = capsys.readouterr()
+    printed = json.loads(captured.out)
     assert printed["task"] == "grasp" and [l["grip"] for l in printed["results"]] == ["tip", "tip"]
+    # the finding: minutes with no output; a bar of scene seconds with the time left, on stderr
+    assert "grasp edged: 100%" in captured.err and f"{2 * grasp.PHASES.end:.0f}/" in captured.err
     with pytest.raises(SystemExit) as refused:
         main(["grasp", "--url", server.ws, "--scene", scene_name, "--grips", "claw"])
     assert "unknown grip claw" in str(refused.value) and "spherical" in str(refused.value)

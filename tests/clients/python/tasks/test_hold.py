@@ -2,6 +2,7 @@
 
 from virtual_prosthetics.tasks import hold
 from virtual_prosthetics.tasks.hands import hand_source
+from virtual_prosthetics.tasks.observation import Angles
 from virtual_prosthetics.tasks.trial import TaskHand
 
 
@@ -15,10 +16,10 @@ def test_a_hand_that_lets_go_drops_every_ball(scene):
     def lets_go(grip):
         baseline = hold.baseline(grip)
 
-        def control(trial, t):
-            baseline(trial, t)
-            if t > hold.PHASES.lifting + 0.5:
-                trial.hand.flex_fingers(0)
+        def control(seen):
+            if seen.t > hold.PHASES.lifting + 0.5:
+                return Angles(seen.grip.angles({i: 0.0 for i in range(len(seen.grip.digits))}))
+            return baseline(seen)
         return control
 
     assert hold.hold(scene, TaskHand(hand_source("edged", scene)), 2, seed=1, controller=lets_go)["drops"] == 2

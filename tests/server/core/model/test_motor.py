@@ -209,10 +209,17 @@ def test_a_motor_moves_no_faster_than_its_speed_bound(scene):
     motor = _arm(scene, 0.0)  # balanced: gravity turns it neither way
     assert motor.get_max_speed() == math.inf
     motor.set_max_speed(0.5).set_angle(1.0)
+    assert motor.get_speed() == 0.0  # not driven yet
     for _ in range(30):  # half a second
         scene.tick(1 / 60)
     assert motor.get_angle() == pytest.approx(0.25, abs=0.02)  # 0.5 rad/s
+    assert motor.get_speed() == pytest.approx(0.5, rel=0.05)  # and reads so
+    robot = motor.root()
+    assert robot.get_speeds() == [motor.get_speed()] and robot.get_torques() == [motor.get_torque()]
     motor.set_max_speed(math.inf)
     for _ in range(30):
         scene.tick(1 / 60)
     assert motor.get_angle() == pytest.approx(1.0, abs=0.02)  # as fast as its torque allows
+    assert abs(motor.get_speed()) < 0.05  # there, and still
+    scene.set_physics("kinematic")
+    assert robot.get_speeds() == [0.0] == robot.get_torques()
