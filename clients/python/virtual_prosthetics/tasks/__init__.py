@@ -2,7 +2,8 @@
 
 - ``grasp``: SHAP's six grip patterns, a light and a heavy object each (:mod:`.grasp`);
 - ``box-and-blocks``: blocks moved over the partition in 60 s (:mod:`.box_and_blocks`);
-- ``hold``: a ball held while the hand moves along a path; drops (:mod:`.hold`).
+- ``hold``: a ball held while the hand moves along a path; drops (:mod:`.hold`);
+- ``relocate``: the ball or cube brought to a target, MyoSuite's criteria (:mod:`.relocate`).
 
 Any hand (:mod:`.hands`): a 1.0 hand, a robot file, a function that builds one, or a robot
 in the scene, closed by its grip map (:mod:`.grip`). Objects are real sizes in the scene's
@@ -16,7 +17,7 @@ import argparse
 from typing import Any, Callable
 
 from ..session import Session
-from . import box_and_blocks, grasp, hold
+from . import box_and_blocks, grasp, hold, relocate
 from .trial import TaskHand
 
 
@@ -40,7 +41,13 @@ def _hold(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[s
     return hold.hold(session, hands, args.trials, args.seed, side_by_side=args.side_by_side, **extra)
 
 
+def _relocate(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
+    extra = {"controller": args.controller} if args.controller else {}
+    return relocate.relocate(session, hands, args.trials, args.seed, side_by_side=args.side_by_side,
+                             **extra)
+
+
 TASKS: dict[str, Callable[[Session, TaskHand, argparse.Namespace], dict[str, Any]]] = {
-    "grasp": _grasp, "box-and-blocks": _box_and_blocks, "hold": _hold}
+    "grasp": _grasp, "box-and-blocks": _box_and_blocks, "hold": _hold, "relocate": _relocate}
 
 __all__ = ["TASKS", "TaskHand"]

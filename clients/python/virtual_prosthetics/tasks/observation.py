@@ -78,13 +78,13 @@ class Observation:
     def object_position(self) -> tuple[float, float, float]:
         """Where the object's centre is from the hand's, in the hand's own frame (metres)."""
         offset = [self._trial.scale.metres(v) for v in self._trial.object_offset()]
-        return rotate(_conjugate(self._trial.hand_quaternion()), offset)
+        return rotate(conjugate(self._trial.hand_quaternion()), offset)
 
     @cached_property
     def object_quaternion(self) -> tuple[float, float, float, float]:
         """The object's turn relative to the hand's, as a quaternion (x, y, z, w)."""
         hand, obj = self._trial.hand_quaternion(), self._trial.object_quaternion()
-        return _product(_conjugate(hand), obj)
+        return product(conjugate(hand), obj)
 
 
 FAR = 1e3  # radians (a slider's length): where a torque target aims a motor
@@ -117,11 +117,13 @@ def apply(trial: Trial, targets: Targets | None, previous: dict[int, float]) -> 
 
 
 # Written here, not imported: the client depends on websockets alone
-def _conjugate(q: Sequence[float]) -> tuple[float, float, float, float]:
+def conjugate(q: Sequence[float]) -> tuple[float, float, float, float]:
+    """The inverse turn of the unit quaternion ``q`` (x, y, z, w)."""
     return (-q[0], -q[1], -q[2], q[3])
 
 
-def _product(a: Sequence[float], b: Sequence[float]) -> tuple[float, float, float, float]:
+def product(a: Sequence[float], b: Sequence[float]) -> tuple[float, float, float, float]:
+    """The turn ``b`` then ``a``, as quaternions (x, y, z, w)."""
     ax, ay, az, aw = a
     bx, by, bz, bw = b
     return (aw * bx + ax * bw + ay * bz - az * by, aw * by - ax * bz + ay * bw + az * bx,
@@ -130,5 +132,5 @@ def _product(a: Sequence[float], b: Sequence[float]) -> tuple[float, float, floa
 
 def rotate(q: Sequence[float], v: Sequence[float]) -> tuple[float, float, float]:
     """``v`` turned by the quaternion ``q`` (x, y, z, w)."""
-    x, y, z, _ = _product(_product(q, (*v, 0.0)), _conjugate(q))
+    x, y, z, _ = product(product(q, (*v, 0.0)), conjugate(q))
     return (x, y, z)

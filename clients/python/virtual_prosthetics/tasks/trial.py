@@ -74,6 +74,9 @@ class Trial:
     offsets: list[tuple[float, ...]] = field(default_factory=list)
     forces: list[float] = field(default_factory=list)
     touched: list[tuple[float, ...]] = field(default_factory=list)  # offsets since first contact
+    poses: list[tuple[list[float], list[float]]] = field(default_factory=list)  # the object's, observed
+    start: tuple[float, ...] = (0.0, 0.0, 0.0)  # where the object was laid (scene units)
+    start_quaternion: tuple[float, ...] = (0.0, 0.0, 0.0, 1.0)  # and how it was turned
 
     @property
     def layout(self) -> Layout:
@@ -111,6 +114,7 @@ class Trial:
         bottom = position[1] - self.scale.length(self.item.size[1]) / 2
         self.heights.append(bottom - self.table_top)
         self.offsets.append(tuple(a - b for a, b in zip(position, hand)))
+        self.poses.append((position, self.object_quaternion()))
         force = self.session.read(lambda mirror: mirror.forces.get(self.obj.id, 0.0))
         self.forces.append(force)
 
@@ -183,9 +187,11 @@ def lay_out(session: Session, hands: TaskHand, item: TestObject, draws: Sequence
         # as it was), watched: frames tell which digit presses it how hard
         sensor = Sensor(False, scene=session).attach_to_slot(obj, obj.add_slot(0, 0, 0))
         sensor.watch()
+        turned = (0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4)) \
+            if item.shape == "cylinder" else (0.0, 0.0, 0.0, 1.0)
         trials.append(Trial(session, scale, hand, grip, obj, table, item, home, top,
                             weight * mass_factor, friction_factor, 0.6 * length, hands.source.owned,
-                            sensor))
+                            sensor, start=at, start_quaternion=turned))
     return trials
 
 

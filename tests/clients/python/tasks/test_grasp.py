@@ -63,7 +63,7 @@ def test_a_controller_that_never_closes_the_hand_lifts_nothing(scene):
             return Angles(seen.grip.angles({i: 0.0 for i in range(len(seen.grip.digits))}))
         return control
 
-    result = grasp.grasp(scene, _hand(scene, "edged"), 2, seed=3, patterns=["spherical"],
+    result = grasp.grasp(scene, _hand(scene, "edged"), 1, seed=3, patterns=["spherical"],
                          controller=open_hand)
     assert [line["successes"] for line in result["results"]] == [0, 0]
 
