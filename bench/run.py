@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import busy_connect, chaos, chaos_cluster, cluster, core, idle_scenes, live, piles, recording, scenes
+from . import busy_connect, chaos, chaos_cluster, cluster, core, idle_scenes, live, piles, recording, scenes, tasks
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -59,6 +59,7 @@ class Sizes:
     cluster_idle_wait: float  # seconds for the busy scenes to go before that
     loaded_scenes: int  # animated while a script connects (busy_connect)
     piles: tuple[int, int, float]  # balls made in one spot, boxes in a tower, seconds watched
+    tasks: tuple[float, int]  # Box and Blocks: scene seconds, blocks (bench/tasks.py)
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -69,7 +70,8 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              cluster_chaos_faults=5 * len(chaos_cluster.KINDS), idle_scenes=200, hands_most=100,
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
              cluster_viewers=(500, 750, 875, 1000, 1125, 1250, 2000), cluster_busy=200, cluster_objects=50,
-             cluster_idle_wait=20.0, loaded_scenes=13, piles=(2000, 300, 180.0))
+             cluster_idle_wait=20.0, loaded_scenes=13, piles=(2000, 300, 180.0),
+             tasks=(20.0, 150))
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=2.0, busy_hands=2,
@@ -77,7 +79,7 @@ QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, reque
               cluster_chaos_faults=len(chaos_cluster.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
               cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0,
-              loaded_scenes=2, piles=(60, 10, 1.5))
+              loaded_scenes=2, piles=(60, 10, 1.5), tasks=(1.0, 20))
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -107,6 +109,7 @@ def measure(sizes: Sizes) -> dict[str, Any]:
     served: dict[str, Callable[[], Any]] = {
         "outside": lambda: _outside(sizes, small, large),
         "piles": lambda: piles.measure(*sizes.piles),
+        "tasks": lambda: tasks.measure(*sizes.tasks),
         "chaos": lambda: chaos.run(sizes.chaos_faults, quick=sizes is QUICK),
         "chaos_cluster": lambda: chaos_cluster.run(sizes.cluster_chaos_faults,
                                                    quick=sizes is QUICK),
@@ -183,6 +186,8 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "cluster_chaos_changes_lost": found["chaos_cluster"]["lost"],
         "bus_away_read_answered_s": found["chaos_cluster"]["read_answered_worst_s"],
         **cluster.headline(found["cluster"]),
+        "grasp_trial_realtime_x": found["tasks"]["grasp"]["realtime_x_one_core"],
+        "bb_cpu_per_scene_s": found["tasks"]["box_and_blocks"]["cpu_per_scene_s"],
         "commit": commit,
     }
 
