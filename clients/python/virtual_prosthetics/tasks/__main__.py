@@ -13,7 +13,7 @@ from typing import Any, Callable, Sequence
 from ..errors import ConnectionLost, ServerError, Timeout, VPError
 from ..runtime import connect
 from ..waiting import DEFAULT_SECONDS, ENVIRONMENT, wait_seconds
-from . import TASKS
+from . import TASKS, report
 from .grip import read_grip_map
 from .hands import BUILT_IN, hand_source, imported, robot_source
 from .trial import TaskHand
@@ -30,7 +30,8 @@ def _function(spec: str) -> Callable[..., Any]:
 def parser() -> argparse.ArgumentParser:
     parse = argparse.ArgumentParser(prog="python -m virtual_prosthetics.tasks",
                                     description=__doc__.split("\n\n")[0])
-    parse.add_argument("task", choices=sorted(TASKS))
+    parse.add_argument("task", choices=sorted(TASKS),
+                       help="or 'report' (its own options: report --help)")
     parse.add_argument("--url", default="ws://127.0.0.1:8000")
     parse.add_argument("--scene", default="tasks", help="the scene to run in (default: tasks)")
     parse.add_argument("--hand", default="edged",
@@ -70,6 +71,9 @@ def _seconds(text: str) -> float:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["report"]:  # many runs at once, with files and a page (tasks/report.py)
+        return report.main(argv[1:])
     args = parser().parse_args(argv)
     if args.trials < 1 or args.side_by_side < 1:
         parser().error("--trials and --side-by-side must be at least 1")

@@ -91,13 +91,23 @@ def run_batch(trials: list[Trial], grip: Grip, arm: Arm, controller: Callable[[G
     drive(session, seconds, step)
 
 
+def per_row(side_by_side: int, hands: TaskHand) -> int:
+    """Trials run at once: ``side_by_side``, or one for a robot already in the scene."""
+    return side_by_side if hands.source.owned else 1
+
+
+def rows(trials: int, side_by_side: int, hands: TaskHand) -> int:
+    """How many rows :func:`run_trials` takes for ``trials``."""
+    return -(-trials // per_row(side_by_side, hands))
+
+
 def run_trials(session: Session, hands: TaskHand, item: TestObject, every: Sequence[tuple[float, float]],
                mass: float, grip: Grip, arm: Arm, controller: Callable[[Grip], HandController],
                side_by_side: int, seconds: float = PHASES.end) -> list[Trial]:
     """A trial per draw of ``every``, ``side_by_side`` at a time in a row (one: a robot
     already in the scene), each row cleared away when it is done; the trials, observed."""
     done: list[Trial] = []
-    for batch in _batches(every, side_by_side if hands.source.owned else 1):
+    for batch in _batches(every, per_row(side_by_side, hands)):
         row = lay_out(session, hands, item, batch, mass, grip)
         run_batch(row, grip, arm, controller, seconds)
         done += row
@@ -119,8 +129,8 @@ def grasp(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_
         rng = random.Random(seed)
         results = []
         chosen = [p for p in PATTERNS if p.name in patterns]
-        rows = -(-trials // (side_by_side if hands.source.owned else 1))
-        with progress.shown(len(chosen) * 2 * rows * PHASES.end, f"grasp {hands.source.name}"):
+        planned = len(chosen) * 2 * rows(trials, side_by_side, hands) * PHASES.end
+        with progress.shown(planned, f"grasp {hands.source.name}"):
             for pattern in chosen:
                 for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
                     done = run_trials(session, hands, pattern.item, draws(rng, trials), mass,
@@ -134,7 +144,7 @@ def summary(pattern: Pattern, weight: str, trials: list[Trial]) -> dict[str, Any
     """One line of the results: the pattern's object at one weight over its trials (slip:
     the median trial's during the hold, in metres, and from the hand's first contact to
     the hold's end, as the protocol measures it; peak force: the most pressing on the object in any
-    hold, in a human hand's newtons)."""
+    hold, in a human hand's newtons; ``each``: every trial's own)."""
     successes = sum(succeeded(trial) for trial in trials)
     return {"grip": pattern.name, "object": pattern.item.name, "weight": weight,
             "massKg": pattern.item.light if weight == "light" else pattern.item.heavy,
@@ -143,4 +153,12 @@ def summary(pattern: Pattern, weight: str, trials: list[Trial]) -> dict[str, Any
             "peakForceN": round(max((max(t.forces, default=0.0) for t in trials), default=0.0), 2),
             "slip": round(statistics.median(t.slip() for t in trials), 4) if trials else 0.0,
             "slipFromContact": round(statistics.median(t.slip_from_contact() for t in trials), 4)
-            if trials else 0.0}
+            if trials else 0.0,
+            "each": [{**drawn(t), "held": succeeded(t), "slip": round(t.slip(), 5),
+                      "slipFromContact": round(t.slip_from_contact(), 5),
+                      "peakForceN": round(max(t.forces, default=0.0), 2)} for t in trials]}
+
+
+def drawn(trial: Trial) -> dict[str, float]:
+    """A trial's draws: its object's mass (kg) and friction."""
+    return {"massKg": round(trial.mass, 5), "friction": round(trial.friction, 4)}

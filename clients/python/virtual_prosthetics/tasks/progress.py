@@ -33,6 +33,25 @@ def shown(seconds: float, what: str) -> Iterator[None]:
         bar.close()
 
 
+class _Silent:
+    """A bar nobody sees: tasks run side by side (``report``) add to one bar of their own."""
+
+    total = n = 0.0
+
+    def update(self, seconds: float) -> None:
+        pass
+
+
+@contextmanager
+def silenced() -> Iterator[None]:
+    """No bar for the tasks run in the block (this thread's)."""
+    token = _bar.set(_Silent())  # type: ignore[arg-type]
+    try:
+        yield
+    finally:
+        _bar.reset(token)
+
+
 def advance(seconds: float) -> None:
     """``seconds`` more of scene time run (nothing without a bar)."""
     bar = _bar.get()

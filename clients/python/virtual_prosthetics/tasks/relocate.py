@@ -1,9 +1,10 @@
 """``relocate``: pick the object up and bring it to a target, MyoSuite's relocate task at
 the hand's size: a trial succeeds when the object is within 25 mm and 0.262 rad (15°) of
 the target for more than 5 steps in a row; one that drops it (300 mm, or back down at the
-table, which is nearer: within 20 % of the hand's length of it) fails. The target is the object's start pose, raised and moved
-aside (:data:`TARGET`); the baseline grasps as ``grasp`` does, then steers the wrist by
-where the object is in the hand, not where it was laid."""
+table, which is nearer: within 20 % of the hand's length of it) fails. The target is the
+object's start pose, raised and moved aside (:data:`TARGET`); the baseline grasps as
+``grasp`` does, then steers and turns the wrist by where and how the object sits in the
+hand, not where it was laid."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ from typing import Any, Callable
 from ..session import Session
 from . import progress
 from .controller import PHASES, Arm, Grip, approach, baseline, smooth
-from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, draws, run_trials
+from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, drawn, draws, rows, run_trials
 from .observation import HandController, conjugate, product, rotate
 from .scale import Scale
 from .trial import TaskHand, Trial
@@ -112,13 +113,13 @@ def relocate(session: Session, hands: TaskHand, trials: int, seed: int, *, side_
         rng = random.Random(seed)
         seconds = PHASES.holding + MOVE + SETTLE
         chosen = [p for p in PATTERNS if p.name in patterns]
-        rows = -(-trials // (side_by_side if hands.source.owned else 1))
         results = []
-        with progress.shown(len(chosen) * rows * seconds, f"relocate {hands.source.name}"):
+        planned = len(chosen) * rows(trials, side_by_side, hands) * seconds
+        with progress.shown(planned, f"relocate {hands.source.name}"):
             for pattern in chosen:
                 done = run_trials(session, hands, pattern.item, draws(rng, trials), pattern.item.light,
                                   pattern.grip, steer(approach()), controller, side_by_side, seconds)
-                judged = [judge(trial) for trial in done]
+                judged = [{**drawn(trial), **judge(trial)} for trial in done]
                 results.append({"grip": pattern.name, "object": pattern.item.name, "trials": len(done),
                                 "successes": sum(j["success"] for j in judged),
                                 "drops": sum(j["dropped"] for j in judged), "each": judged})
