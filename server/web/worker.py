@@ -429,13 +429,14 @@ class SceneWorker:
             return
         self._events.append(("reply", number, True, self.recordings.end("stopped")))
 
-    def _tick(self, dt: float) -> None:
-        """Run the animator, advance the scene and send its messages to every client."""
+    def _tick(self, dt: float | None) -> None:
+        """Run the animator, advance the scene (None: a paused scene's stand) and send its
+        messages to every client."""
         started = time.perf_counter()
         try:
-            if self._animator is not None:
+            if self._animator is not None and dt is not None:
                 self._animator(self.scene, self.scene.time + dt)
-            ticked = self.scene.tick(dt)
+            ticked = self.scene.stand() if dt is None else self.scene.tick(dt)
             messages = self._notices + self._resynced() + [Outgoing.of(m) for m in ticked]
             self._notices = []
             self.recordings.tick(ticked)
@@ -456,7 +457,7 @@ class SceneWorker:
         """A due tick of a paused scene: its clock stands, but what requests changed still
         reaches every client (a frame of no time), and clients that left still go."""
         if self.scene.feed.pending or self._notices or self._resync:
-            self._tick(0.0)
+            self._tick(None)
         else:
             self._expire(time.monotonic())
             self.saver.tick(time.monotonic())

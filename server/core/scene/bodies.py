@@ -73,6 +73,11 @@ class SceneBodies:
         self._targets_due = False  # dynamic mode: motors' targets to be driven toward
         self._forces_sent: dict[str, float] = {}  # by the last frame (forces_changed)
         self._stirred = True  # dynamic mode: anything built, put or moved since contacts were read
+        # dynamic mode: anything built, put or driven since steps were last taken (its own
+        # flag: a tick that took no step, its time too short or a paused scene's stand,
+        # read the contacts and so cleared the one above, and a still world then counted
+        # every later step as rest: a ball put up high in it hung there)
+        self._changed = True
         self._still = False  # dynamic mode: the last steps moved nothing
         self.stages = BuildStages()  # how many new trees a tick builds
 
@@ -145,7 +150,7 @@ class SceneBodies:
         """Build, place and turn what changed; then read the moved parts' poses."""
         if not (self._restructured or self._based or self._turned):
             return
-        self._stirred = True
+        self._stirred = self._changed = True
         rebuilt = self._rebuild()
         moved = self._turn(rebuilt) | self._place_bases(rebuilt)
         for root_id in moved:
@@ -166,7 +171,7 @@ class SceneBodies:
         self.tracker.made_again()
         self._unposed.update(self.physics.roots())
         self._targets_due = physics.dynamic
-        self._stirred = True
+        self._stirred = self._changed = True
 
     def advance(self, dt: float, exact: bool = False) -> tuple[float, dict[str, float], dict[str, Pose]]:
         """Dynamic mode: drive the motors, step the world through ``dt``; the seconds the
@@ -182,12 +187,14 @@ class SceneBodies:
                 physics.drive(root_id, [m.target for m in motors],  # type: ignore[attr-defined]
                               [m.get_max_torque() for m in motors],  # type: ignore[attr-defined]
                               [m.get_max_speed() for m in motors])  # type: ignore[attr-defined]
-            self._targets_due, self._stirred = False, True
+            self._targets_due = False
+            self._stirred = self._changed = True
         dynamics = physics.dynamics
-        at_rest = self._still and not self._stirred
+        at_rest = self._still and not self._changed
         steps = dynamics.advance(dt, still=at_rest, exact=exact)  # type: ignore[union-attr]
         if not steps or at_rest:
             return steps * dynamics.physics.step, {}, {}  # type: ignore[union-attr]
+        self._changed = False
         angles: dict[str, float] = {}
         poses: dict[str, Pose] = {}
         for root_id, pose, joints in physics.motions():

@@ -267,8 +267,20 @@ class Scene:
         with self.bodies.stages.tick():
             return self._tick(dt)
 
-    def _tick(self, dt: float) -> list[dict[str, Any]]:
-        if self.physics.dynamic:  # the clock is the world's: a late tick slows it, never jumps
+    def stand(self) -> list[dict[str, Any]]:
+        """A paused dynamic scene's frame of no time: what requests changed reaches every
+        client, but the world is neither built, stepped nor sensed until the next step.
+        Stands come when the wall clock says: a body built or sensed in one (a hand half
+        made between two of its script's messages) made the same seeded grasp end
+        differently on a loaded machine (5 of 8 held instead of 7). Not paused or not
+        dynamic: an ordinary tick of no time."""
+        if not (self.clock.paused and self.physics.dynamic):
+            return self.tick(0.0)
+        return self._tick(0.0, standing=True)
+
+    def _tick(self, dt: float, standing: bool = False) -> list[dict[str, Any]]:
+        # the clock is the world's: a late tick slows it, never jumps
+        if self.physics.dynamic and not standing:
             dt = self._step(dt)
         pending = self.feed.pending
         delta = self.delta(pending)
@@ -278,7 +290,8 @@ class Scene:
         self.time += dt
         self.seq += 1
         try:
-            delta.update(observe(self.bodies, self.watches, self.nodes))
+            if not standing:
+                delta.update(observe(self.bodies, self.watches, self.nodes))
         except Exception:  # a bug: the scene keeps running, the log tells
             self.failures += 1
             log.exception("contacts or sensing of scene %s failed", self.name)

@@ -51,10 +51,11 @@ def test_a_gripper_no_table_names_holds_the_ball_and_the_cube(scene):
     hands = _hand(scene, "tests.clients.python.tasks.gripper:three_digits")
     result = grasp.grasp(scene, hands, 2, seed=5, patterns=["spherical", "tripod"])
     assert result["hand"] == "tests.clients.python.tasks.gripper:three_digits"
-    # of 8 (light and heavy, ball and cube, twice each): 6 to 8 held, as the run's server is
-    # fresh or not (a first scene's physics differs from later ones': the closing note's)
+    # of 8 (light and heavy, ball and cube, twice each): 8 on an idle machine and a loaded
+    # one alike (5 to 8 before the paused scene's stands stopped building and sensing);
+    # one is let go for another machine's floating point
     held = [line["successes"] for line in result["results"]]
-    assert sum(held) >= 6, result["results"]
+    assert sum(held) >= 7, result["results"]
 
 
 def test_a_controller_that_never_closes_the_hand_lifts_nothing(scene):
