@@ -55,10 +55,15 @@ class Stage:
         return self.session.read(lambda mirror: [list(mirror.nodes[b.id]["position"])
                                                  for b in self.blocks if b.id in mirror.nodes])
 
+    def past(self, x: float) -> bool:
+        """Whether a place ``x`` along the box is past the partition (every block starts
+        on its -x side)."""
+        return x > self.partition_x
+
     def moved(self) -> int:
-        """Blocks past the partition (all start on its -x side)."""
-        return sum(p[0] > self.partition_x and p[1] < self.floor + self.scale.length(WALL_HEIGHT)
-                   for p in self.block_positions())
+        """Blocks past the partition and down in its compartment (not held over the wall)."""
+        top = self.floor + self.scale.length(WALL_HEIGHT)
+        return sum(self.past(p[0]) and p[1] < top for p in self.block_positions())
 
     def across(self) -> tuple[set[str], bool]:
         """The blocks past the partition now, and whether every fingertip is (where each
@@ -66,12 +71,12 @@ class Stage:
         palm, not across the box)."""
         def read(mirror: Any) -> tuple[set[str], bool]:
             blocks = {b.id for b in self.blocks
-                      if b.id in mirror.nodes and mirror.nodes[b.id]["position"][0] > self.partition_x}
+                      if b.id in mirror.nodes and self.past(mirror.nodes[b.id]["position"][0])}
             hand = mirror.nodes.get(self.hand.id)
             tips = [d.at for d in self.grip.digits if d.at is not None]
             if hand is None or not tips:
                 return blocks, False
-            return blocks, all(hand["position"][0] + rotate(hand["quaternion"], tip)[0] > self.partition_x
+            return blocks, all(self.past(hand["position"][0] + rotate(hand["quaternion"], tip)[0])
                                for tip in tips)
         return self.session.read(read)
 

@@ -110,10 +110,10 @@ class Trial:
     def observe(self) -> None:
         """Note the object's height above the table, where it is relative to the hand
         and the force on it (human newtons)."""
-        position, hand = self.object_position(), self.hand_position()
+        position = self.object_position()
         bottom = position[1] - self.scale.length(self.item.size[1]) / 2
         self.heights.append(bottom - self.table_top)
-        self.offsets.append(tuple(a - b for a, b in zip(position, hand)))
+        self.offsets.append(tuple(self.object_offset()))
         self.poses.append((position, self.object_quaternion()))
         force = self.session.read(lambda mirror: mirror.forces.get(self.obj.id, 0.0))
         self.forces.append(force)
