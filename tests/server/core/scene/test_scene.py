@@ -160,6 +160,14 @@ def test_a_scene_run_outside_a_server_says_it_keeps_no_recordings(scene):
         assert "outside a server" in refused.value.message
 
 
+def _resting_ball(scene):
+    """A dynamic scene with a ball come to rest on the ground: a still world."""
+    scene.set_physics("dynamic")
+    with scene.journal.transaction():
+        Ball(scene, "ball", 0.5).set_position((0.0, 0.25, 0.0))
+    for _ in range(120):
+        scene.tick(1 / 60)
+
 
 def _put_up_in_a_still_world(stand):
     """A ball at rest, then, paused, put 3 up beside a new batch of 300 balls, with a
@@ -167,12 +175,8 @@ def _put_up_in_a_still_world(stand):
     from server.core.scene.scene import Scene
     scene = Scene(f"stands-{stand}")
     try:
-        scene.set_physics("dynamic")
         scene.pause("script")
-        with scene.journal.transaction():
-            Ball(scene, "ball", 0.5).set_position((0.0, 0.25, 0.0))
-        for _ in range(120):
-            scene.tick(1 / 60)
+        _resting_ball(scene)
         with scene.journal.transaction():
             scene.nodes["ball"].set_position((0.0, 3.0, 0.0))
             for i in range(300):
@@ -212,14 +216,10 @@ def test_a_stand_sends_what_changed_and_leaves_the_world_unbuilt_until_the_step(
 def test_a_tick_too_short_for_a_step_leaves_a_change_to_the_next(scene):
     # a still world, a ball put up, a tick shorter than a physics step (a late tick's
     # catch-up): the contacts it read cleared the change, and the ball hung in the air
-    scene.set_physics("dynamic")
+    _resting_ball(scene)
     with scene.journal.transaction():
-        Ball(scene, "b", 0.5).set_position((0, 0.25, 0))
-    for _ in range(120):
-        scene.tick(1 / 60)
-    with scene.journal.transaction():
-        scene.nodes["b"].set_position((0, 3, 0))
+        scene.nodes["ball"].set_position((0, 3, 0))
     scene.tick(0.001)
     for _ in range(10):
         scene.tick(1 / 60)
-    assert scene.nodes["b"].position[1] < 2.9
+    assert scene.nodes["ball"].position[1] < 2.9
