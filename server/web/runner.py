@@ -34,11 +34,11 @@ PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecesso
 CONTEXT = multiprocessing.get_context("forkserver")
 # scipy's hulls too: a dynamic scene's first hand measures its parts' volumes with them.
 # Not trimesh (meshes, imports, exports): a third of a CPU-second of every server's start,
-# paid instead by the first scene that reads a mesh. And the server's command line: every new process runs the script that started the
-# server again (multiprocessing's fix-up of __main__; its own preload of __main__ never
-# happens, as the fork server is not told the script's path), and vp-server's one import
-# is server.cli. Found loaded, it costs nothing; imported anew (FastAPI, uvicorn) it cost
-# each scene 0.33 CPU-seconds of its start.
+# paid instead by the first scene that reads a mesh. And the server's command line: every
+# new process runs the script that started the server again (multiprocessing's fix-up of
+# __main__; its own preload of __main__ never happens, as the fork server is not told the
+# script's path), and vp-server's one import is server.cli. Found loaded, it costs
+# nothing; imported anew (FastAPI, uvicorn) it cost each scene 0.33 CPU-seconds of its start.
 CONTEXT.set_forkserver_preload([worker.__name__, "scipy.spatial", "scipy.optimize",
                                 "server.cli",
                                 "server.web.forkserver_heap"])  # last: freezes what they loaded

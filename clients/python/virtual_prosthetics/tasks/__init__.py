@@ -21,30 +21,32 @@ from . import box_and_blocks, grasp, hold, relocate
 from .trial import TaskHand
 
 
+def _controller(args: argparse.Namespace) -> dict[str, Any]:
+    """The hand controller named with ``--controller``, as a task's keyword (none: its own)."""
+    return {"controller": args.controller} if args.controller else {}
+
+
 def _grasp(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
     patterns = args.grips.split(",") if args.grips else grasp.PATTERN_NAMES
     unknown = sorted(set(patterns) - set(grasp.PATTERN_NAMES))
     if unknown:
         raise SystemExit(f"unknown grip {', '.join(unknown)}; the grips are {', '.join(grasp.PATTERN_NAMES)}")
-    extra = {"controller": args.controller} if args.controller else {}
     return grasp.grasp(session, hands, args.trials, args.seed, side_by_side=args.side_by_side,
-                       patterns=patterns, **extra)
+                       patterns=patterns, **_controller(args))
 
 
 def _box_and_blocks(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
-    extra = {"controller": args.controller} if args.controller else {}
-    return box_and_blocks.box_and_blocks(session, hands, args.seed, **extra)
+    return box_and_blocks.box_and_blocks(session, hands, args.seed, **_controller(args))
 
 
 def _hold(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
-    extra = {"controller": args.controller} if args.controller else {}
-    return hold.hold(session, hands, args.trials, args.seed, side_by_side=args.side_by_side, **extra)
+    return hold.hold(session, hands, args.trials, args.seed, side_by_side=args.side_by_side,
+                     **_controller(args))
 
 
 def _relocate(session: Session, hands: TaskHand, args: argparse.Namespace) -> dict[str, Any]:
-    extra = {"controller": args.controller} if args.controller else {}
     return relocate.relocate(session, hands, args.trials, args.seed, side_by_side=args.side_by_side,
-                             **extra)
+                             **_controller(args))
 
 
 TASKS: dict[str, Callable[[Session, TaskHand, argparse.Namespace], dict[str, Any]]] = {

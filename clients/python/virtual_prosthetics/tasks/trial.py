@@ -19,6 +19,8 @@ from .scale import Scale
 
 TABLE_TOP = 0.4  # × the hand's length: the tables' height
 SPACING = 2.2    # × the hand's length: from one trial's hand to the next
+# how a cylinder is laid: a quarter turn about z, on its side (x, y, z, w)
+LYING = (0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4))
 
 
 class Placement(Protocol):
@@ -180,15 +182,14 @@ def lay_out(session: Session, hands: TaskHand, item: TestObject, draws: Sequence
             obj = item.make(session, scale)
             obj.set_position(*at)
             if item.shape == "cylinder":
-                obj.set_rotation(0, 0, math.pi / 2)
+                obj.set_quaternion(list(LYING))
             obj.set_mass(weight * mass_factor)
             obj.set_friction(friction_factor)
         # an invisible sensor on the object (it has no body: the object's physics stays
         # as it was), watched: frames tell which digit presses it how hard
         sensor = Sensor(False, scene=session).attach_to_slot(obj, obj.add_slot(0, 0, 0))
         sensor.watch()
-        turned = (0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4)) \
-            if item.shape == "cylinder" else (0.0, 0.0, 0.0, 1.0)
+        turned = LYING if item.shape == "cylinder" else (0.0, 0.0, 0.0, 1.0)
         trials.append(Trial(session, scale, hand, grip, obj, table, item, home, top,
                             weight * mass_factor, friction_factor, 0.6 * length, hands.source.owned,
                             sensor, start=at, start_quaternion=turned))
