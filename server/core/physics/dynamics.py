@@ -42,7 +42,9 @@ Defaults, and why (:class:`Physics`):
   fewer blocks with every hand. Past it, resting free bodies sleep: a pile of 500 balls
   never came to rest without (its jitter kept every ball moving), and with it settled in
   seconds and cost nearly nothing. A sleeper is woken when it is put somewhere, and every
-  one when a free body goes (it may have held some up). Every tree is a multibody: single bodies as
+  one when a free body goes (it may have held some up). Past resting.CROWD free bodies,
+  a single one at rest far from anything moving is held still on its own (:mod:`.resting`):
+  Bullet sleeps a touching heap only as a whole. Every tree is a multibody: single bodies as
   Bullet rigid bodies solve faster but held the grasp task's objects less well.
 - ``density`` 1240 kg/m³ (PLA, what printed prosthetic hands are made of): a part's mass
   is its volume times this, unless ``setMass`` gave it one. A 1.0 hand then weighs
@@ -60,6 +62,7 @@ from ...errors import BadArguments, OutOfRange, WrongType, show
 from ..kit.math3d import ORIGIN, Pose, Vec3, between, compose
 from .articulation import NO_POSE, Articulation
 from .geometry import centroid, volume
+from .resting import Resting
 
 KINEMATIC, DYNAMIC = "kinematic", "dynamic"
 MODES = (KINEMATIC, DYNAMIC)
@@ -218,6 +221,8 @@ class Dynamics:
         self.sleeping = False  # resting free bodies sleep (more than SLEEP_CROWD of them)
         self._wake_all = False  # before the next step (a free body went)
         self.units = physics.bullet
+        self.resting = Resting(pybullet, client, physics.unit)
+        self.woke = False  # the last steps' review let resting bodies move again
         pybullet.setGravity(0, -self.units.acceleration(physics.gravity), 0, physicsClientId=client)
         pybullet.setPhysicsEngineParameter(fixedTimeStep=physics.step,
                                            numSolverIterations=physics.solverIterations,
@@ -303,6 +308,8 @@ class Dynamics:
             if body in self._moving:  # a free body
                 self._free.add(body)
                 self._doze(body)
+                if not tree.links:
+                    self.resting.add(body)
             return None
         mount = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
                                    base_pose[0], childFrameOrientation=base_pose[1],
@@ -368,6 +375,7 @@ class Dynamics:
     def removed(self, body: int, mount: int | None) -> None:
         """A tree gone, with its mount (Bullet gives their ids to the next ones made)."""
         self._speed_bound.discard(body)
+        self.resting.removed(body)
         if body in self._free:
             self._free.discard(body)
             self._wake_all = self.sleeping
@@ -402,6 +410,7 @@ class Dynamics:
 
     def teleport(self, body: int, pose: Pose) -> None:
         """Put a free body at a pose, at rest (a script's setPosition of an object)."""
+        self.resting.release(body)
         self.p.resetBasePositionAndOrientation(body, pose[0], pose[1], physicsClientId=self.client)
         self.p.resetBaseVelocity(body, (0, 0, 0), (0, 0, 0), physicsClientId=self.client)
         if self.sleeping and body in self._free:
@@ -448,6 +457,7 @@ class Dynamics:
             self._tune(spent / taken)
         self.held_back = count - taken
         self.steps += taken
+        self.woke = self.resting.review(taken * step, self._moving - self.resting.free)
         return taken
 
     def _tune(self, per_step: float) -> None:

@@ -26,18 +26,13 @@ from .bullet import pybullet, shape_arguments
 from .clearance import Clearance
 from .contact_forces import ContactForce, contacts_by_part, forces_by_part
 from .dynamics import Dynamics, Physics
+from .filter_groups import BODY_GROUP, BODY_MASK, CROWD_GROUP, CROWD_MASK, GROUND_GROUP, GROUND_MASK
 from .self_contacts import dynamic_body
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"
 CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
 TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
-# Collision filter groups: the ground (1) meets every part; parts (2) meet the ground and
-# each other through Bullet's own broadphase and narrowphase; a part in a crowd (4) meets
-# nothing there, so Bullet's pair cache never grows with the square of a pile: its pairs
-# are measured one by one, a budget a tick (contacts.py).
-_BODY_GROUP, _BODY_MASK = 2, 1 | 2
-_CROWD_GROUP, _CROWD_MASK = 4, 0
 # Parts of one tree meet each other too, neighbours included (spec: self-collision); in
 # dynamic mode, see self_contacts.py.
 _SELF_COLLISION = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_INCLUDE_PARENT
@@ -93,7 +88,8 @@ class PhysicsWorld:
         plane = pybullet.createCollisionShape(pybullet.GEOM_PLANE, planeNormal=[0, 1, 0],
                                               physicsClientId=self._client)
         self._ground = pybullet.createMultiBody(0, plane, physicsClientId=self._client)
-        pybullet.setCollisionFilterGroupMask(self._ground, -1, 1, -1, physicsClientId=self._client)
+        pybullet.setCollisionFilterGroupMask(self._ground, -1, GROUND_GROUP, GROUND_MASK,
+                                             physicsClientId=self._client)
         pybullet.setPhysicsEngineParameter(contactBreakingThreshold=BREAKING_THRESHOLD,
                                            physicsClientId=self._client)
         self.dynamics = Dynamics(pybullet, self._client, self.physics) \
@@ -107,7 +103,7 @@ class PhysicsWorld:
         self._padding[GROUND] = 0.0
 
     def _filter(self, body: int, link: int, crowded: bool = False) -> None:
-        group, mask = (_CROWD_GROUP, _CROWD_MASK) if crowded else (_BODY_GROUP, _BODY_MASK)
+        group, mask = (CROWD_GROUP, CROWD_MASK) if crowded else (BODY_GROUP, BODY_MASK)
         pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=self._client)
 
     def crowd(self, key: str, crowded: bool) -> None:

@@ -209,7 +209,7 @@ class SceneBodies:
             if moved:
                 self.tracker.moved(physics.tree(root_id).parts())  # type: ignore[union-attr]
                 self._unposed.add(root_id)
-        self._still = not (angles or poses)
+        self._still = not (angles or poses or dynamics.woke)  # type: ignore[union-attr]
         self._stirred = self._stirred or not self._still
         return steps * dynamics.physics.step, angles, poses  # type: ignore[union-attr]
 

@@ -1,0 +1,120 @@
+"""In a crowd, free bodies at rest far from what moves are held still until something
+moving comes near (in a scene: what a script and a viewer would see)."""
+
+import math
+
+import pytest
+
+from server.core.model.parts import Ball, Box, EdgedFinger
+from server.core.model.robot import Robot
+from server.core.physics import resting
+
+SIZE = 0.5  # scene units: the blocks' side
+SIDE = 9    # blocks per row and column of a layer
+
+
+def _heap(scene, layers=2):
+    """Layers of SIDE × SIDE blocks on the ground (more than the crowd), settled: the
+    blocks by layer."""
+    scene.set_physics("dynamic")
+    assert layers * SIDE * SIDE > resting.CROWD
+    heap = []
+    with scene.journal.transaction():
+        for layer in range(layers):
+            heap.append([])
+            for k in range(SIDE * SIDE):
+                block = Box(scene, f"b{layer}.{k}", SIZE, SIZE, SIZE)
+                block.set_position((k % SIDE * SIZE * 1.02, SIZE * (0.5 + layer), k // SIDE * SIZE * 1.02))
+                heap[-1].append(block)
+    _settle(scene)
+    return heap
+
+
+def _settle(scene, least=60):
+    for ticks in range(3000):
+        scene.tick(1 / 60)
+        if ticks >= least and not scene.moving:
+            return
+    raise AssertionError("the heap never came to rest")
+
+
+def _held(scene):
+    return scene.bodies.physics.dynamics.resting.held
+
+
+def test_a_crowd_at_rest_is_held_still_where_it_settled(scene):
+    heap = _heap(scene)
+    blocks = [block for layer in heap for block in layer]
+    assert len(_held(scene)) == len(blocks)  # every block, body by body
+    where = {block.id: block.position for block in blocks}
+    for _ in range(60):
+        scene.tick(1 / 60)
+    assert {block.id: block.position for block in blocks} == where
+    assert all(block.position[1] == pytest.approx(SIZE * 1.5, abs=0.02) for block in heap[1])
+
+
+def test_a_ball_dropped_on_a_held_heap_lands_on_it_and_knocks_what_it_hits(scene):
+    heap = _heap(scene)
+    middle = heap[1][SIDE * SIDE // 2]
+    x, top, z = middle.position
+    before = {block.id: block.position for layer in heap for block in layer}
+    ball = Ball(scene, "ball", 0.3)
+    with scene.journal.transaction():
+        ball.set_mass(2.0)  # about eight blocks' weight
+        ball.set_position((x + 0.1, top + 3, z))
+    for _ in range(120):
+        scene.tick(1 / 60)
+    assert ball.position[1] > top  # on the heap, not through it
+    moved = {i for i, p in before.items() if scene.nodes[i].position != p}
+    assert middle.id in moved  # the block it fell on moves as a body does
+    far = {i for i, p in before.items() if math.dist(p, (x, top, z)) > 2.5}
+    assert len(far) > 20 and not far & moved  # those far from it stayed where they were
+
+
+def test_a_block_taken_from_under_another_lets_it_fall(scene):
+    heap = _heap(scene)
+    under, above = heap[0][SIDE * SIDE // 2], heap[1][SIDE * SIDE // 2]
+    height = above.position[1]
+    assert len(_held(scene)) == 2 * SIDE * SIDE
+    scene.delete(under)
+    for _ in range(60):
+        scene.tick(1 / 60)
+    assert above.position[1] < height - SIZE / 2  # down in the hole
+
+
+def test_a_held_block_put_somewhere_by_a_script_falls(scene):
+    heap = _heap(scene)
+    block = heap[1][0]
+    block.set_position((-5, 4, 0))
+    for _ in range(60):
+        scene.tick(1 / 60)
+    assert block.position[1] == pytest.approx(SIZE / 2, abs=0.02)
+
+
+def test_a_robots_finger_swept_through_a_held_heap_pushes_the_blocks_it_meets(scene):
+    heap = _heap(scene, layers=1)
+    robot = Robot(scene, "r")
+    finger = EdgedFinger(scene, "f")
+    robot.attach_chain(finger)
+    row = [block for block in heap[0] if block.position[2] == pytest.approx(SIDE // 2 * SIZE * 1.02, abs=0.1)]
+    z = row[0].position[2]
+    robot.set_position((-2, 0.3, z))  # beside the heap, its finger along x
+    for _ in range(30):
+        scene.tick(1 / 60)
+    before = {block.id: block.position for block in heap[0]}
+    for k in range(90):  # through the first blocks of the row
+        robot.set_position((-2 + 3 * (k + 1) / 90, 0.3, z))
+        scene.tick(1 / 60)
+    pushed = [block for block in row if block.position[0] > before[block.id][0] + 0.2]
+    assert pushed, "the finger went through the blocks"
+    far = [block for block in heap[0] if abs(block.position[2] - z) > 2]
+    assert all(block.position == before[block.id] for block in far)
+
+
+def test_a_few_bodies_are_never_held(scene):
+    scene.set_physics("dynamic")
+    balls = [Ball(scene, f"b{k}", 0.2) for k in range(resting.CROWD)]
+    for k, ball in enumerate(balls):
+        ball.set_position((k * 0.5, 0.2, 0))
+    _settle(scene)
+    assert not _held(scene)
