@@ -52,8 +52,7 @@ class _Held:
 
 
 class Resting:
-    """The resting free bodies of one dynamic world (``unit``: metres per scene unit;
-    ``steps`` are of ``step`` seconds)."""
+    """The resting free bodies of one dynamic world (``unit``: metres per scene unit)."""
 
     def __init__(self, pybullet: Any, client: int, unit: float) -> None:
         self.p, self.client = pybullet, client
@@ -89,8 +88,9 @@ class Resting:
 
     def review(self, seconds: float, robots: Iterable[int]) -> bool:
         """After steps of ``seconds``: hold still the free bodies at rest far from what
-        moves, and let move those that something moving came near; whether any may move
-        again (the world is not at rest, though nothing moved yet)."""
+        moves, and let move those that something moving came near (``robots``: the bodies
+        with parts that move other than single free ones: robots, free trees with joints);
+        whether any may move again (the world is not at rest, though nothing moved yet)."""
         movers: np.ndarray | None = None
         if len(self.free) <= CROWD:
             thawing = list(self.held)
@@ -167,8 +167,9 @@ class Resting:
         p, client = self.p, self.client
         held = self.held.pop(body)
         self._boxes = None
+        # (its sleeping, where the world lets bodies sleep, is Bullet's: what touches it wakes it)
         p.changeDynamics(body, -1, mass=held.mass, localInertiaDiagonal=held.inertia,
-                         activationState=p.ACTIVATION_STATE_WAKE_UP, physicsClientId=client)
+                         physicsClientId=client)
         p.setCollisionFilterGroupMask(body, -1, BODY_GROUP, BODY_MASK, physicsClientId=client)
         self._calm[body] = 0.0
 

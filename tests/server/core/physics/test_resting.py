@@ -118,3 +118,15 @@ def test_a_few_bodies_are_never_held(scene):
         ball.set_position((k * 0.5, 0.2, 0))
     _settle(scene)
     assert not _held(scene)
+
+
+def test_a_crowd_thinned_to_a_few_lets_every_body_move_again(scene):
+    heap = _heap(scene)
+    left = heap[0][:resting.CROWD]
+    for block in heap[1] + heap[0][resting.CROWD:]:
+        scene.delete(block)
+    scene.tick(1 / 60)
+    assert not _held(scene)
+    for _ in range(60):  # and none is held again while the world stays this small
+        scene.tick(1 / 60)
+    assert not _held(scene) and len(left) == resting.CROWD
