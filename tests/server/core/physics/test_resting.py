@@ -130,3 +130,29 @@ def test_a_crowd_thinned_to_a_few_lets_every_body_move_again(scene):
     for _ in range(60):  # and none is held again while the world stays this small
         scene.tick(1 / 60)
     assert not _held(scene) and len(left) == resting.CROWD
+
+
+
+def test_what_moves_is_found_near_from_either_side_alike(scene):
+    # the review asks Bullet's broadphase from the movers' side when they are fewer than
+    # the bodies asked about, else from those bodies' side (a pile of 2 000 moving balls)
+    heap = _heap(scene)
+    ball = Ball(scene, "ball", 0.3)
+    with scene.journal.transaction():
+        ball.set_mass(2.0)
+        ball.set_position((2, 3, 2))
+    rest = scene.bodies.physics.dynamics.resting
+    for _ in range(60):  # until it falls onto the heap and some of it moves
+        scene.tick(1 / 60)
+        movers, reach = rest._moving_boxes(0.0, ())
+        if len(movers) > 3:
+            break
+    movers[-1, -1] = heap[0][0].position * 2  # and a body gone from the heap's corner
+    asked = sorted(rest.free)
+    assert 2 < len(movers) < len(asked)
+    from_movers = rest._near(movers, reach, asked)
+    size = len(movers) - 1  # (fewer asked than movers: asked from their side)
+    from_asked = set().union(*(rest._near(movers, reach, asked[k:k + size])
+                               for k in range(0, len(asked), size)))
+    corner = scene.bodies.physics._trees[heap[0][0].id].body
+    assert from_asked == from_movers and corner in from_movers
