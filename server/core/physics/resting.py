@@ -7,11 +7,13 @@ block of the Box and Blocks heap each second keeps all 150 awake, and the solver
 every contact of the heap every step (2.4 CPU-seconds per scene-second for a heap at
 rest; 0.006 asleep). Here each body rests on its own: a single free body (no links) that
 moved slower than REST_SPEED and turned slower than REST_SPIN for CALM seconds, and lies
-beyond MARGIN of every robot's link and every moving free body, becomes static in Bullet
+beyond ROBOT_MARGIN of every robot's link and MARGIN of every free body moving faster
+than STIR_SPEED, becomes static in Bullet
 (a fixed base, mass 0: Bullet's own switch, ``changeDynamics``), in RESTING_GROUP, which
 meets moving bodies and robots but not the ground or other resting bodies: Bullet then
-neither pairs nor solves the heap's resting contacts. When a robot's link or a moving
-body comes within MARGIN (and the distance it travels in LOOKAHEAD), a resting body gets
+neither pairs nor solves the heap's resting contacts. When a robot's link comes within
+ROBOT_MARGIN, or a moving body within MARGIN and the distance it travels in LOOKAHEAD,
+a resting body gets
 its mass, inertia and group back before the next step, so whatever touches it meets a
 body that moves. A body put somewhere by a script, and the bodies near one taken away,
 move again at once.
@@ -108,9 +110,9 @@ class Resting:
 
     def _near(self, movers: dict[Link, Box], reach: float, asked: list[int]) -> set[int]:
         """Which of the bodies ``asked`` overlap a box of what moves (each widened by at
-        most ``reach`` beyond the body or link's own box). Bullet's
-        broadphase names the candidates, a few µs a box, from whichever side is smaller:
-        every body tested against every box took a third of a 2 000-ball pile's process."""
+        most ``reach`` beyond the body or link's own box). Bullet's broadphase names the
+        candidates, a few µs a box, from whichever side is smaller: every body tested
+        against every box took a third of a 2 000-ball pile's process."""
         boxes = {body: self.held[body].box if body in self.held else self._box(body) for body in asked}
         ask, client, near = self.p.getOverlappingObjects, self.client, set()
         if len(movers) <= len(boxes):
