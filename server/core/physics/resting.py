@@ -8,14 +8,12 @@ every contact of the heap every step (2.4 CPU-seconds per scene-second for a hea
 rest; 0.006 asleep). Here each body rests on its own: a single free body (no links) that
 moved slower than REST_SPEED and turned slower than REST_SPIN for CALM seconds, and lies
 beyond ROBOT_MARGIN of every robot's link and MARGIN of every free body moving faster
-than STIR_SPEED, becomes static in Bullet
-(a fixed base, mass 0: Bullet's own switch, ``changeDynamics``), in RESTING_GROUP, which
-meets moving bodies and robots but not the ground or other resting bodies: Bullet then
-neither pairs nor solves the heap's resting contacts. When a robot's link comes within
-ROBOT_MARGIN, or a moving body within MARGIN and the distance it travels in LOOKAHEAD,
-a resting body gets
-its mass, inertia and group back before the next step, so whatever touches it meets a
-body that moves. A body put somewhere by a script, and the bodies near one taken away,
+than STIR_SPEED, becomes static in Bullet (a fixed base, mass 0: Bullet's own switch,
+``changeDynamics``), in RESTING_GROUP, which meets moving bodies and robots but not the
+ground or other resting bodies: Bullet then neither pairs nor solves the heap's resting
+contacts. When a robot's link comes within ROBOT_MARGIN, or a moving body within MARGIN
+and the distance it travels in LOOKAHEAD, a resting body gets its mass, inertia and group
+back before the next step, so whatever touches it meets a body that moves. A body put somewhere by a script, and the bodies near one taken away,
 move again at once.
 
 No library does this: Bullet's deactivation is per island (above), and PyBullet offers
