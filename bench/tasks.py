@@ -1,7 +1,9 @@
 """What the hand-function tasks cost, on one core: a grasp trial's scene seconds per CPU
-second (``grasp_trial_realtime_x``: above 1 is faster than real time on one core) and
-Box and Blocks' CPU seconds per scene second (``bb_cpu_per_scene_s``), each counting
-every process of the server and the client (this process) that drives the task.
+second (``grasp_trial_realtime_x``: above 1 is faster than real time on one core), alone
+and as the command line runs trials, ten side by side in one scene
+(``grasp_batch_trial_realtime_x``: a trial's share of the row's CPU), and Box and Blocks'
+CPU seconds per scene second (``bb_cpu_per_scene_s``), each counting every process of
+the server and the client (this process) that drives the task.
 """
 
 from __future__ import annotations
@@ -31,24 +33,32 @@ def _costed(running: RunningServer, run: Callable[[], Any]) -> tuple[float, floa
     return cpu() - before, time.perf_counter() - started
 
 
-def measure(bb_seconds: float, blocks: int) -> dict[str, Any]:
-    """One grasp trial (the edged hand, the ball light and heavy) and Box and Blocks for
-    ``bb_seconds`` with ``blocks`` blocks, each in a scene of its own."""
+def measure(bb_seconds: float, blocks: int, batch: int = 10) -> dict[str, Any]:
+    """One grasp trial (the edged hand, the ball light and heavy), ``batch`` of them side
+    by side, and Box and Blocks for ``bb_seconds`` with ``blocks`` blocks, each in a
+    scene of its own."""
     running = start_server("--no-demo")
     try:
-        with vp.connect(running.ws, scene="bench-grasp") as session:
-            hands = TaskHand(hand_source("edged", session))
-            cpu, wall = _costed(running, lambda: grasp.grasp(session, hands, 1, seed=3,
-                                                             patterns=["spherical"]))
-        scene = 2 * (round(grasp.PHASES.end / TICK) + 1) * TICK  # two rows: light, heavy
+        one, row = _grasp(running, 1), _grasp(running, batch)
         with vp.connect(running.ws, scene="bench-bb") as session:
             hands = TaskHand(hand_source("edged", session))
             bb_cpu, bb_wall = _costed(running, lambda: box_and_blocks.box_and_blocks(
                 session, hands, 1, seconds=bb_seconds, blocks=blocks))
         bb_scene = bb_seconds + 2.0  # the heap settling and the last drop landing
-        return {"grasp": {"scene_s": scene, "cpu_s": cpu, "wall_s": wall,
-                          "realtime_x_one_core": scene / cpu, "realtime_x_wall": scene / wall},
+        return {"grasp": one, "grasp_batch": row,
                 "box_and_blocks": {"scene_s": bb_scene, "blocks": blocks, "cpu_s": bb_cpu,
                                    "wall_s": bb_wall, "cpu_per_scene_s": bb_cpu / bb_scene}}
     finally:
         stop_server(running)
+
+
+def _grasp(running: RunningServer, trials: int) -> dict[str, Any]:
+    """The cost of ``trials`` grasp trials of the edged hand's spherical grip, run side by
+    side in a scene of their own (the light ball's row, then the heavy's), per trial."""
+    with vp.connect(running.ws, scene=f"bench-grasp-{trials}") as session:
+        hands = TaskHand(hand_source("edged", session))
+        cpu, wall = _costed(running, lambda: grasp.grasp(session, hands, trials, seed=3,
+                                                         patterns=["spherical"]))
+    scene = trials * 2 * (round(grasp.PHASES.end / TICK) + 1) * TICK  # two rows each
+    return {"trials": trials, "scene_s": scene, "cpu_s": cpu, "wall_s": wall,
+            "realtime_x_one_core": scene / cpu, "realtime_x_wall": scene / wall}

@@ -203,7 +203,7 @@ export function setCameraTarget(...target) {
 }
 
 // Not in 1.0: setPhysics('dynamic', {unit, gravity, substeps, solverIterations,
-// solverTolerance, friction, density}) (options left out take their defaults; unit: metres
+// solverTolerance, friction, density, warmStart}) (options left out take their defaults; unit: metres
 // per scene unit, masses, forces and torques are SI) or setPhysics('kinematic').
 export function setPhysics(mode, options) {
 	currentSession().call(SCENE_ID, 'setPhysics', options === undefined ? [mode] : [mode, options]);

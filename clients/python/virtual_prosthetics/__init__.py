@@ -39,7 +39,7 @@ def set_transforms(transforms: dict[Any, list[float]]) -> None:
 
 def set_physics(mode: str, **options: float) -> None:
     """``vp.set_physics("dynamic", unit=0.19 / 3.5, gravity=9.81, substeps=5,
-    solver_iterations=50, solver_tolerance=0.05, friction=1.0, density=1240)`` or
+    solver_iterations=50, solver_tolerance=0.05, friction=1.0, density=1240, warm_start=0)`` or
     ``vp.set_physics("kinematic")`` (not in the manual; ``unit``: metres per scene unit)."""
     current_session().set_physics(mode, **options)
 

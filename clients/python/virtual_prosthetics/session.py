@@ -221,8 +221,8 @@ class Session:
         """``setPhysics`` (not in the manual): ``"kinematic"`` (1.0's: motors jump, nothing
         falls) or ``"dynamic"``, with options ``unit`` (metres per scene unit: masses,
         forces and torques are SI at the size it makes things), ``gravity``, ``substeps``,
-        ``solver_iterations``, ``solver_tolerance``, ``friction``, ``density`` (left out:
-        the defaults)."""
+        ``solver_iterations``, ``solver_tolerance``, ``friction``, ``density``,
+        ``warm_start`` (left out: the defaults)."""
         wire = {_camel(name): value for name, value in options.items()}
         self.call(SCENE_ID, "setPhysics", (mode, wire) if wire else (mode,))
 

@@ -251,7 +251,9 @@ class Scene:
 
     def delta(self, changes: ChangeSet) -> dict[str, Any]:
         """What a change set amounts to now, in wire form (empty parts left out)."""
-        return frames.changes_wire(self.nodes, changes, self.camera.wire(), self.physics.wire())
+        # the physics' wire form only when it changed: every tick's delta asks
+        physics = self.physics.wire() if changes.physics else None
+        return frames.changes_wire(self.nodes, changes, self.camera.wire(), physics)
 
     # --- time ----------------------------------------------------------------------------
 

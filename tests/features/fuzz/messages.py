@@ -99,7 +99,7 @@ def argument(kind: str, refs: list[str]) -> st.SearchStrategy[Any]:
             "gravity": numbers(-20, 20), "substeps": st.integers(1, 3),
             "solverIterations": st.integers(1, 60), "solverTolerance": numbers(0, 1),
             "friction": numbers(0, 2),
-            "density": numbers(1, 5000)}),
+            "density": numbers(1, 5000), "warmStart": numbers(0, 1)}),
         "mass": numbers(0.01, 1000), "friction": numbers(0, 3), "torque": numbers(0, 1e5),
         "speed": st.one_of(numbers(0.01, 10), st.just("Infinity")),
         "transforms": st.dictionaries(st.sampled_from(refs), st.lists(numbers(-1, 1), min_size=7, max_size=7)

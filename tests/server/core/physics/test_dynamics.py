@@ -31,11 +31,20 @@ def test_options_left_out_take_their_defaults_and_the_wire_form_round_trips():
     ("dynamic", {"gravity": math.inf}, WrongType, "gravity"),
     ("dynamic", {"density": 0.5}, OutOfRange, "density"),
     ("dynamic", {"solverTolerance": 2}, OutOfRange, "solverTolerance must be within [0.0, 1.0]"),
+    ("dynamic", {"warmStart": 1.5}, OutOfRange, "warmStart must be within [0.0, 1.0]"),
 ])
 def test_bad_options_are_refused_naming_what_was_wrong(mode, options, error, words):
     with pytest.raises(error) as refused:
         Physics.of(mode, options)
     assert words in refused.value.message
+
+
+def test_contacts_are_warm_started_only_when_asked(scene):
+    scene.set_physics("dynamic")
+    assert not scene.bodies.physics.dynamics.warm_started  # off by default: tasks as measured
+    scene.set_physics("dynamic", {"warmStart": 0.85})
+    assert scene.bodies.physics.dynamics.warm_started
+    assert scene.physics.wire()["warmStart"] == 0.85
 
 
 def test_the_default_torque_holds_a_hand_level():
