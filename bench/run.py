@@ -80,7 +80,7 @@ QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, reque
               cluster_chaos_faults=len(chaos_cluster.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
               cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0,
-              loaded_scenes=2, piles=(60, 10, 1.5), tasks=(1.0, 20, 2))
+              loaded_scenes=2, piles=(60, 10, 1.5), tasks=(1.0, 20, 1))
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
