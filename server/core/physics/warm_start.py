@@ -68,7 +68,7 @@ def enable(pybullet: Any, client: int, factor: float = FACTOR) -> bool:
 @functools.cache
 def client_table(path: str) -> ClientTable | None:
     """PyBullet's client table in this process, from its library at ``path``; None when
-    the file has no symbol table or neither symbol."""
+    the file has no symbol table or lacks either symbol."""
     found = symbols(path, (TABLE, ANCHOR))
     if len(found) < 2:
         log.warning("PyBullet at %s has no %s: contacts are not warm started, and a held "
