@@ -36,7 +36,7 @@ Defaults, and why (:class:`Physics`):
   impulse of the step before, not from nothing (:mod:`.warm_start`: Bullet's articulated
   warm starting, which PyBullet builds but does not offer; Bullet's own figure is 0.85).
   At the same iterations a tower of boxes sinks about half as far, and with 80
-  iterations instead of 150 a grasp trial costs about half the CPU. Off by default: it
+  iterations instead of 150 a grasp trial costs about two thirds of the CPU. Off by default: it
   changes which grasps hold (at seed 3 the anthro hand's ball slipped at 150 iterations,
   the round hand's light ball at 80), so the tasks keep 150 iterations cold until their
   tables are measured again with it.
