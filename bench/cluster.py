@@ -33,7 +33,7 @@ from server.cluster.leases import lease_holder
 from server.cluster.roles import LEASE_SECONDS
 from tests.server.cluster.conftest import Cluster, ask_bus, holder, running_bus
 
-from .live import NICE, cpu_seconds, driving
+from .live import NICE, cpu_by_process, cpu_since, driving
 from .processes import descendants
 from .report import AT_60_HZ
 from .stats import figure
@@ -68,14 +68,12 @@ class LoadCluster(Cluster):
 
     def seconds(self) -> dict[str, dict[int, float]]:
         """Each role's processes' CPU seconds so far."""
-        return {role: {pid: cpu_seconds([pid]) for pid in pids}
-                for role, pids in self.pids().items()}
+        return {role: cpu_by_process(pids) for role, pids in self.pids().items()}
 
     def cores_since(self, before: dict[str, dict[int, float]], started: float) -> dict[str, float]:
-        """The cores each role used since ``before`` (taken at ``started``): a process that
-        ended meanwhile is left out, rather than its whole life taken off the sum."""
+        """The cores each role used since ``before`` (taken at ``started``; :func:`cpu_since`)."""
         span = time.monotonic() - started
-        return {role: sum(s - before.get(role, {}).get(pid, 0.0) for pid, s in now.items()) / span
+        return {role: cpu_since(before.get(role, {}), now) / span
                 for role, now in self.seconds().items()}
 
 

@@ -174,6 +174,18 @@ def cpu_seconds(pids: list[int]) -> float:
     return ticks / 100  # clock ticks (USER_HZ, 100 on Linux)
 
 
+def cpu_by_process(pids: list[int]) -> dict[int, float]:
+    """Each process's CPU seconds so far (for :func:`cpu_since`)."""
+    return {pid: cpu_seconds([pid]) for pid in pids}
+
+
+def cpu_since(before: dict[int, float], now: dict[int, float]) -> float:
+    """CPU seconds the processes of ``now`` spent since ``before`` (one that started
+    meanwhile, all of its own): one that ended meanwhile is left out, rather than its
+    whole life taken off the sum."""
+    return sum(seconds - before.get(pid, 0.0) for pid, seconds in now.items())
+
+
 def two_scenes(running: RunningServer, count: int, seconds: float) -> dict[str, Any]:
     """Two scenes of hands-``count`` driven at once: each one's tick and tick rate."""
     with driving(running, "busy1", "hands", count, seconds), \

@@ -18,7 +18,7 @@ from virtual_prosthetics.tasks.trial import TaskHand
 
 from tests.conftest import RunningServer, start_server, stop_server
 
-from .live import cpu_seconds
+from .live import cpu_by_process, cpu_since
 from .processes import descendants
 
 TICK = 1 / 60
@@ -27,16 +27,14 @@ TICK = 1 / 60
 def _costed(running: RunningServer, run: Callable[[], Any]) -> tuple[float, float]:
     """CPU seconds (server, every process, and this client) and wall seconds of ``run``.
 
-    Counted per process: a sum over the processes alive at each end lost the whole CPU
-    of a scene that ended meanwhile (the ten-trial grasp's, stopped once idle, took
-    50 CPU-s off Box and Blocks' figure, which read 0.38 instead of about 0.6)."""
+    Counted per process (:func:`cpu_since`): a sum over the processes alive at each end
+    lost the whole CPU of a scene that ended meanwhile (the ten-trial grasp's, stopped
+    once idle, took 50 CPU-s off Box and Blocks' figure, which read 0.38, not 0.56)."""
     def cpu() -> dict[int, float]:
-        return {pid: cpu_seconds([pid]) for pid in [running.process.pid, *descendants(running.process.pid)]}
+        return cpu_by_process([running.process.pid, *descendants(running.process.pid)])
     before, mine, started = cpu(), time.process_time(), time.perf_counter()
     run()
-    after = cpu()
-    spent = sum(seconds - before.get(pid, 0.0) for pid, seconds in after.items())
-    return spent + time.process_time() - mine, time.perf_counter() - started
+    return cpu_since(before, cpu()) + time.process_time() - mine, time.perf_counter() - started
 
 
 def measure(bb_seconds: float, blocks: int, batch: int = 10) -> dict[str, Any]:
