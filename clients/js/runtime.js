@@ -237,6 +237,24 @@ export async function step(ticks = 1) {
 	return currentSession().mirror.time;
 }
 
+// Not in 1.0: the scene's state kept by the server and put back. await saveState() gives
+// its id; await restoreState(id) puts the scene back as it was then, every body at rest in
+// a fresh physics world (the same steps after it give the same world), and resolves once
+// the mirror holds it (only the scene's keeper, only while every object in it is this
+// client's); forgetState(id) frees it.
+export async function saveState() {
+	return currentSession().call(SCENE_ID, 'saveState', [], { wait: true });
+}
+
+export async function restoreState(state) {
+	await currentSession().call(SCENE_ID, 'restoreState', [state], { wait: true });
+	await currentSession().sync();
+}
+
+export function forgetState(state) {
+	currentSession().call(SCENE_ID, 'forgetState', [state]);
+}
+
 // The scene's physics as the mirror has it: {mode, gravity, substeps, …}.
 export function getPhysics() {
 	return { ...currentSession().mirror.physics };

@@ -259,6 +259,11 @@ class SceneWorker:
         answers = [] if session is None else [
             Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
         self.metrics.served(now, len(answers))
+        if self.scene.restored:  # restoreState: everyone's snapshot before its answer
+            self.scene.restored = False
+            self._resync = True
+            self._stand()
+            self.saver.save(replaced=True)
         for _ in range(self.scene.clock.take()):  # a step's ticks, before its answer
             self._tick(1.0 / self.tick_rate)
         self._events.append(("answers", cid, answers, len(text)))

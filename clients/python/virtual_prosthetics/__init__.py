@@ -64,6 +64,21 @@ def step(ticks: int = 1) -> float:
     return current_session().step(ticks)
 
 
+def save_state() -> str:
+    """Keep the current scene's state on the server; its id (:meth:`Session.save_state`)."""
+    return current_session().save_state()
+
+
+def restore_state(state: str) -> None:
+    """Put the current scene back as ``state`` was (:meth:`Session.restore_state`)."""
+    current_session().restore_state(state)
+
+
+def forget_state(state: str) -> None:
+    """Free a saved state (:meth:`Session.forget_state`)."""
+    current_session().forget_state(state)
+
+
 def set_camera_target(*target: float) -> None:
     """Manual ``setCameraTarget(x, y, z)``: every viewer's camera turns towards it."""
     current_session().set_camera_target(*target)
@@ -75,5 +90,5 @@ __all__ = [
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor", "Slider",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset", "ImportedRobot", "load_robot",
-    "set_physics", "get_physics", "pause", "resume", "step", "Recording", "start_recording", "stop_recording",
+    "set_physics", "get_physics", "pause", "resume", "step", "save_state", "restore_state", "forget_state", "Recording", "start_recording", "stop_recording",
 ]

@@ -286,6 +286,23 @@ class Session:
         with self.lock:
             return self.mirror.time
 
+    def save_state(self) -> str:
+        """``saveState`` (not in the manual): the server keeps the scene's state now (its
+        objects, motors, masses, physics, watched sensors); its id, for :meth:`restore_state`."""
+        return str(self.call(SCENE_ID, "saveState", wait=True))
+
+    def restore_state(self, state: str) -> None:
+        """``restoreState``: the scene put back as ``state`` was, every body at rest, in a
+        fresh physics world (the same steps after it give the same world); returns once
+        the mirror holds it. Only the scene's keeper, and only while every object in it is
+        this client's."""
+        self.call(SCENE_ID, "restoreState", (state,), wait=True)
+        self.sync()
+
+    def forget_state(self, state: str) -> None:
+        """``forgetState``: the server frees a saved state."""
+        self.call(SCENE_ID, "forgetState", (state,))
+
     def close(self) -> None:
         """Disconnect; the server deletes what this client made."""
         global _current

@@ -38,6 +38,7 @@ class Limits:
     watched_sensors: int = 1_000
     contact_tests: int = 2_000            # pair tests per tick; more wait for later ticks
     contact_pairs: int = 32_000           # touching pairs recorded at once
+    saved_states: int = 16                # states saveState keeps (forgetState frees one)
     # one SceneMesh (a mesh a page added to its scene)
     shape_vertices: int = 10_000          # vertices of its geometry
     shape_triangles: int = 20_000         # triangles of a triangle mesh

@@ -144,6 +144,10 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
         Method("pause", client=True),
         Method("resume"),
         Method("step", (Param("ticks", "ticks", 1),)),
+        # not in the manual: the scene's state kept and put back (server.core.protocol.saved_states)
+        Method("saveState", returns="string"),
+        Method("restoreState", (Param("state", "string"),), access="keeper"),
+        Method("forgetState", (Param("state", "string"),)),
         # not in the manual: recordings (server.core.recording), kept by the server
         Method("startRecording", client=True, returns="string"),
         Method("stopRecording", returns="recording"),

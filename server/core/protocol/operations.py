@@ -6,24 +6,14 @@ from typing import Any, Callable
 
 from ...errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
 from ..kit.numbers import encode_numbers
-from ..model.hands import AnthroHand, EdgedHand, RoundHand
-from ..model.imported import ImportedRobot
-from ..model.gltf_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
-from ..model.motor import Motor, MotorX, MotorY, MotorZ, Slider
-from ..model.node import Node, Slot
-from ..model.page_meshes import SceneMesh
-from ..model.parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
-from ..model.robot import Robot
-from ..model.sensor import Sensor
+from ..model.node import Node
 from ..scene.scene import Scene
 from . import api
 from .arguments import bind
+from .node_classes import NODE_CLASSES
 from .ownership import Ownership
+from .saved_states import SCENE_CALLS
 
-NODE_CLASSES: dict[str, type[Node]] = {cls.type_name: cls for cls in (
-    Slot, Part, Motor, Slider, MotorX, MotorY, MotorZ, Ball, Box, EdgedFinger, EdgedTip, EdgedPalm,
-    Sensor, Robot, EdgedHand, GLTFPart, RoundFinger, RoundPalm, AnthroPalm, AnthroThumb,
-    RoundHand, AnthroHand, SceneMesh, ImportedRobot)}
 SCENE_ID = "scene"
 
 
@@ -131,5 +121,8 @@ class Operations:
             self.ownership.check_call(None if target is self.scene else target, method, args,
                                       self.scene.keeper)
         extra = {"client": self.client_id} if method.client else {}
-        value = getattr(target, method.python)(*args, **extra)
+        if target is self.scene and name in SCENE_CALLS:
+            value = SCENE_CALLS[name](self.scene, *args, client=self.client_id)
+        else:
+            value = getattr(target, method.python)(*args, **extra)
         return RESULTS[method.returns](target, value)

@@ -36,7 +36,7 @@ from . import api
 from .api import Param
 from .arguments import bind
 from .messages import check_document, encode
-from .operations import NODE_CLASSES
+from .node_classes import NODE_CLASSES
 
 FORMAT = "virtual-prosthetics-scene"
 VERSION = 1
@@ -232,7 +232,7 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     if len(wanted) != len(entries):
         raise BadMessage("scene document: an id is listed twice in nodes")
     _store_assets(scene, document["assets"])
-    physics = document.get("physics", {"mode": KINEMATIC})
+    physics = dict(document.get("physics", {"mode": KINEMATIC}))  # a kept state restores again
     scene.set_physics(KINEMATIC)  # angles restored as set, targets after
     for root in scene.roots():
         scene.delete(root)

@@ -78,6 +78,10 @@ class Scene:
         self.keeper: str | None = None
         self.moving = False  # dynamic mode: something moved in the last tick
         self.couplings = Couplings(self.nodes)
+        # saveState's states (server.core.protocol.saved_states), by id; opaque here
+        self.saved_states: dict[str, Any] = {}
+        self.states_saved = 0
+        self.restored = False  # restoreState replaced everything: the process resyncs clients
 
     @property
     def ids(self) -> IdBook:

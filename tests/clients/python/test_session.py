@@ -183,3 +183,33 @@ def test_a_pause_ends_when_its_client_leaves_and_stepping_a_running_scene_is_ref
             assert refused.value.code == "not_paused" and "pause()" in str(refused.value)
     finally:
         watcher.close()
+
+
+def test_a_saved_state_comes_back_for_this_client_and_every_viewer(server, scene_name):
+    watcher = vp.Session(server.ws, scene=scene_name, role="viewer")
+    try:
+        with vp.connect(server.ws, scene=scene_name) as keeper:
+            ball = vp.Ball(0.5)
+            ball.set_position(1, 2, 3)
+            state = vp.save_state()
+            ball.set_position(4, 5, 6)
+            box = vp.Box()
+            keeper.sync()
+            vp.restore_state(state)
+            assert ball._state()["position"] == [1, 2, 3]  # read at once: the mirror holds it
+            assert keeper.read(lambda mirror: box.id not in mirror.nodes)
+            _eventually(lambda: watcher.read(lambda mirror: mirror.nodes[ball.id]["position"]) == [1, 2, 3]
+                        and box.id not in mirror_ids(watcher))
+            with pytest.raises(vp.ServerError) as refused:
+                watcher.restore_state(state)
+            assert refused.value.code == "forbidden"
+            vp.forget_state(state)
+            with pytest.raises(vp.ServerError) as unknown:
+                vp.restore_state(state)
+            assert unknown.value.code == "unknown_object" and state in str(unknown.value)
+    finally:
+        watcher.close()
+
+
+def mirror_ids(session: vp.Session) -> set[str]:
+    return session.read(lambda mirror: set(mirror.nodes))

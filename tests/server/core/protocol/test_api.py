@@ -6,7 +6,9 @@ from server.core.physics.assets import AssetLibrary
 from server.core.protocol import api
 from server.core.protocol.arguments import KINDS
 from server.core.protocol.messages import schema
-from server.core.protocol.operations import NODE_CLASSES, Operations
+from server.core.protocol.node_classes import NODE_CLASSES
+from server.core.protocol.operations import Operations
+from server.core.protocol.saved_states import SCENE_CALLS
 from server.core.scene.scene import Scene
 from server.errors import ERROR_CODES
 from tests.hand_files import stored_hand
@@ -20,7 +22,8 @@ def test_every_creatable_type_has_a_class_and_every_class_a_type():
 def test_every_method_in_the_table_exists_with_room_for_its_arguments():
     for type_name, cls in {**NODE_CLASSES, "Scene": Scene}.items():
         for method in api.methods_of(type_name).values():
-            function = getattr(cls, method.python, None)
+            answered = SCENE_CALLS.get(method.name) if cls is Scene else None  # by saved_states
+            function = answered or getattr(cls, method.python, None)
             assert callable(function), f"{type_name}.{method.python} is missing"
             parameters = list(inspect.signature(function).parameters.values())[1:]
             if any(p.kind is p.VAR_POSITIONAL for p in parameters):

@@ -1,0 +1,107 @@
+"""The Gymnasium environments against the real server: Gymnasium's own checker passes
+with a 1.0 hand and with a gripper of the tests' making, a seed and the same actions give
+the same episode, and the task's verdicts come out as reward, ends and ``success``."""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import virtual_prosthetics.gym as vp_gym
+from virtual_prosthetics.tasks.controller import PHASES, shares
+
+pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
+
+GRIPPER = "tests.clients.python.tasks.gripper:three_digits"
+
+
+@pytest.fixture
+def make(server):
+    made = []
+
+    def making(env_id: str, **options):
+        # a scene of its own each (gym-…): the checker makes a second from the spec
+        env = gymnasium.make(env_id, url=server.ws, **options)
+        made.append(env)
+        return env
+    yield making
+    for env in made:
+        env.close()
+
+
+@pytest.mark.parametrize("env_id", sorted(vp_gym.IDS.values()))
+def test_gymnasiums_checker_passes_with_a_built_in_hand(make, env_id):
+    env = make(env_id, hand="round")
+    check_env(env.unwrapped, skip_render_check=True)  # its own seeded-reset determinism too
+    assert env.spec.max_episode_steps == round(env.unwrapped.task.seconds * 60)
+
+
+def test_gymnasiums_checker_passes_with_the_tests_own_gripper_under_torque_control(make):
+    env = make("VirtualProsthetics/Grasp-v0", hand=GRIPPER, object="cube", control="torques")
+    check_env(env.unwrapped, skip_render_check=True)
+    parts = env.unwrapped.layout.split(env.reset(seed=1)[0])
+    assert parts["angles"].shape == (6,) and parts["digitForces"].shape == (3,)
+
+
+def test_a_seed_and_the_same_actions_give_the_same_episode(make):
+    env = make("VirtualProsthetics/Grasp-v0", hand="edged")
+    actions = np.random.default_rng(1).uniform(-1, 1, (150, env.action_space.shape[0])).astype(np.float32)
+
+    def episode(seed: int) -> np.ndarray:
+        seen = [env.reset(seed=seed)[0]]
+        seen += [env.step(action)[0] for action in actions]
+        return np.array(seen)
+    first = episode(5)
+    assert np.array_equal(first, episode(5))  # bit for bit, contacts included
+    assert not np.array_equal(first, episode(6))  # another ball's mass and friction
+    assert np.abs(first[-1] - first[0]).max() > 0.1  # the fingers moved, the ball with them
+
+
+def scripted(env) -> tuple[float, dict]:
+    """Run an episode with the tasks' baseline as actions; its total reward, last info."""
+    inner = env.unwrapped
+    observation, info = env.reset(seed=3)
+    total, ended = 0.0, False
+    while not ended:
+        grip = inner.hands.grip
+        wanted = grip.angles(shares(grip, inner.pattern.grip, inner.t))
+        angles = inner.layout.split(observation)["angles"]
+        action = inner.actions.action_of([a if w is None else w for a, w in zip(angles, wanted)])
+        observation, reward, terminated, truncated, info = env.step(action)
+        total += reward
+        ended = terminated or truncated
+    return total, {**info, "terminated": terminated, "truncated": truncated}
+
+
+def test_the_baseline_through_the_env_holds_and_succeeds_and_an_open_hand_drops(make):
+    env = make("VirtualProsthetics/Grasp-v0", hand="edged")
+    total, info = scripted(env)
+    assert info["success"] and info["truncated"] and not info["terminated"], info
+    assert info["distance"] < 0.02  # the ball went where the wrist went
+    env.reset(seed=3)
+    opened = np.full(env.action_space.shape, -1.0, dtype=np.float32)  # every motor at its low end
+    steps, ended = 0, False
+    while not ended:
+        _, reward, terminated, truncated, info = env.step(opened)
+        steps, ended = steps + 1, terminated or truncated
+    assert terminated and info["dropped"] and not info["success"], info
+    assert reward < -10  # dropped: MyoSuite's penalty on top of the distance
+    assert steps == math.ceil(PHASES.holding * 60)  # judged from the hold on, as the task does
+
+
+def test_what_an_environment_cannot_be_is_said(server):
+    with pytest.raises(ValueError, match="Hold takes sphere"):
+        gymnasium.make("VirtualProsthetics/Hold-v0", url=server.ws, object="cube")
+    with pytest.raises(ValueError, match="weight 'medium'"):
+        gymnasium.make("VirtualProsthetics/Grasp-v0", url=server.ws, weight="medium")
+
+
+def test_a_human_render_says_where_to_watch(make, capsys):
+    env = make("VirtualProsthetics/Hold-v0", hand="edged", render_mode="human")
+    env.reset(seed=0)
+    env.render()
+    assert capsys.readouterr().out.count(f"/view?scene={env.unwrapped.session.name}") == 1
