@@ -19,7 +19,7 @@ from ..core.kit.limits import DEFAULT, Limits
 from ..core.physics.assets import AssetLibrary
 from ..errors import (BusUnavailable, Forbidden, InternalError, LimitExceeded, LookupFailure,
                       RecordingBusy, RecordingDamaged, StorageFailure, TooLarge, VPError)
-from . import assets, heap, recording_routes, rest, robot_routes, socket
+from . import assets, heap, picture_route, recording_routes, rest, robot_routes, socket
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed
 from .cors import PageOrigins
 from .connection_limits import LoopErrorLog
@@ -88,6 +88,7 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     app.include_router(recording_routes.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(assets.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(robot_routes.router, dependencies=[Depends(viewing_allowed)])
+    app.include_router(picture_route.router, dependencies=[Depends(viewing_allowed)])
     app.include_router(socket.router)
     _answer_errors(app)
     mount_pages(app)

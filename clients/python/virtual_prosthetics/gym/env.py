@@ -16,7 +16,7 @@ from typing import Any, Mapping
 import gymnasium
 import numpy as np
 
-from ..http_api import http_url
+from ..http_api import http_url, request, scene_path
 from ..runtime import connect
 from ..tasks.controller import PHASES, prepare
 from ..tasks.grasp import FRICTION_SPREAD, MASS_SPREAD, PATTERNS, SOLVER_ITERATIONS
@@ -39,7 +39,8 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
     ``weight`` the task gives it; each reset draws its mass and friction as the tasks do.
     ``scene``: the scene to run in (default: a new one, ``gym-…``)."""
 
-    metadata = {"render_modes": ["human"], "render_fps": 60}
+    metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 60}
+    picture_size = (320, 240)  # rgb_array's width and height (pixels)
 
     def __init__(self, episode: str = "Grasp", url: str = "ws://127.0.0.1:8000", hand: str = "edged",
                  object: str = "sphere", weight: str = "light", control: str = "angles",
@@ -97,6 +98,10 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         trial = lay_out(self.session, self.hands, self.pattern.item, [(1.0, 1.0)], self.mass,
                         self.pattern.grip)[0]
         prepare(trial.hand, self.pattern.grip)
+        length = trial.layout.length  # the camera: ahead of the hand, a little above and aside
+        self.session.set_camera_target(trial.home[0], trial.table_top + 0.4 * length, trial.home[2])
+        self.session.set_camera_position(trial.home[0] + 1.2 * length, trial.table_top + 1.4 * length,
+                                         trial.home[2] - 2.4 * length)
         self.session.sync()
         self._start = self.session.save_state()
         return trial
@@ -167,9 +172,16 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
             print(f"watch at {self.viewer_url}", flush=True)
             self._shown = True
 
-    def render(self) -> None:
-        """``human``: the scene is drawn by its viewers; prints their address once."""
+    def render(self) -> np.ndarray | None:
+        """``human``: the scene's viewers draw it (its address is printed once);
+        ``rgb_array``: the scene from its camera, drawn by the server (grey shapes)."""
         self._show()
+        if self.render_mode != "rgb_array":
+            return None
+        width, height = self.picture_size
+        path = f"{scene_path(self.session, 'picture')}?width={width}&height={height}&format=rgb"
+        data = request(self.session, path, "render")
+        return np.frombuffer(data, dtype=np.uint8).reshape(height, width, 3)
 
     def close(self) -> None:
         """Leave the scene (what the environment made goes with it)."""

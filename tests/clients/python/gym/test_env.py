@@ -105,3 +105,16 @@ def test_a_human_render_says_where_to_watch(make, capsys):
     env.reset(seed=0)
     env.render()
     assert capsys.readouterr().out.count(f"/view?scene={env.unwrapped.session.name}") == 1
+
+
+def test_an_rgb_array_render_is_the_trial_from_the_scenes_camera(make):
+    env = make("VirtualProsthetics/Grasp-v0", hand="edged", object="cube", render_mode="rgb_array")
+    check_env(env.unwrapped)  # the render check included
+    env.reset(seed=0)
+    frame = env.render()
+    assert frame.shape == (240, 320, 3) and frame.dtype == np.uint8
+    colours = {tuple(pixel) for pixel in frame.reshape(-1, 3)[::7]}
+    assert (255, 255, 255) in colours  # the sky
+    blue = (frame[:, :, 2].astype(int) - frame[:, :, 0] > 60).mean()  # the steel-blue cube
+    grey = ((np.ptp(frame, axis=2) < 12) & (frame[:, :, 0] > 90) & (frame[:, :, 0] < 230)).mean()  # the hand
+    assert blue > 0.002 and grey > 0.02
