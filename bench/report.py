@@ -60,6 +60,11 @@ TARGETS: dict[str, tuple[str, Callable[[float], bool]]] = {
     "grasp_batch_trial_realtime_x": ("≥ 3× real time on one core, a trial of ten side by side",
                                      lambda v: v >= 3),
     "bb_cpu_per_scene_s": ("≤ 0.5 CPU-s per scene-s", lambda v: v <= 0.5),
+    "gym_steps_per_s": ("≥ 60 (a step is a tick: faster than real time)", lambda v: v >= 60),
+    "gym_vector2_speedup": ("≥ 1.7 (two scenes over one, on 2 cores)", lambda v: v >= 1.7),
+    "gym_reset_ms": ("≤ 50 ms", lambda v: v <= 50),
+    "gym_step_overhead": ("≤ 1.5 (a step through the server over the same tick in-process)",
+                          lambda v: v <= 1.5),
 }
 
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import busy_connect, chaos, chaos_cluster, cluster, core, idle_scenes, live, piles, recording, scenes, tasks
+from . import busy_connect, chaos, chaos_cluster, cluster, core, gym, idle_scenes, live, piles, recording, scenes, tasks
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -61,6 +61,7 @@ class Sizes:
     piles: tuple[int, int, float]  # balls made in one spot, boxes in a tower, seconds watched
     # Box and Blocks' scene seconds and blocks, grasp trials side by side (bench/tasks.py)
     tasks: tuple[float, int, int]
+    gym: tuple[int, int]  # environment steps and resets measured (bench/gym.py)
 
 
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
@@ -72,7 +73,7 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
              cluster_viewers=(500, 750, 875, 1000, 1125, 1250, 2000), cluster_busy=200, cluster_objects=50,
              cluster_idle_wait=20.0, loaded_scenes=13, piles=(2000, 300, 180.0),
-             tasks=(20.0, 150, 10))
+             tasks=(20.0, 150, 10), gym=(600, 30))
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(2,), viewer_seconds=2.0, busy_hands=2,
@@ -80,7 +81,7 @@ QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, reque
               cluster_chaos_faults=len(chaos_cluster.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
               cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0,
-              loaded_scenes=2, piles=(60, 10, 1.5), tasks=(1.0, 20, 1))
+              loaded_scenes=2, piles=(60, 10, 1.5), tasks=(1.0, 20, 1), gym=(6, 2))
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
@@ -111,6 +112,7 @@ def measure(sizes: Sizes) -> dict[str, Any]:
         "outside": lambda: _outside(sizes, small, large),
         "piles": lambda: piles.measure(*sizes.piles),
         "tasks": lambda: tasks.measure(*sizes.tasks),
+        "gym": lambda: gym.measure(*sizes.gym),
         "chaos": lambda: chaos.run(sizes.chaos_faults, quick=sizes is QUICK),
         "chaos_cluster": lambda: chaos_cluster.run(sizes.cluster_chaos_faults,
                                                    quick=sizes is QUICK),
@@ -190,6 +192,10 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "grasp_trial_realtime_x": found["tasks"]["grasp"]["realtime_x_one_core"],
         "grasp_batch_trial_realtime_x": found["tasks"]["grasp_batch"]["realtime_x_one_core"],
         "bb_cpu_per_scene_s": found["tasks"]["box_and_blocks"]["cpu_per_scene_s"],
+        "gym_steps_per_s": found["gym"]["steps_per_s"],
+        "gym_vector2_speedup": found["gym"]["vector2_speedup"],
+        "gym_reset_ms": found["gym"]["reset_ms"],
+        "gym_step_overhead": found["gym"]["step_overhead"],
         "commit": commit,
     }
 

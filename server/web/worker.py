@@ -248,6 +248,7 @@ class SceneWorker:
             self.scene.keeper = client_id
         session.operations.keep = keep
         session.on_change = self.saver.changed
+        session.on_step = self._take_steps
         self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
                                             Outgoing.of(self.scene.snapshot())]))
 
@@ -264,9 +265,13 @@ class SceneWorker:
             self._resync = True
             self._stand()
             self.saver.save(replaced=True)
-        for _ in range(self.scene.clock.take()):  # a step's ticks, before its answer
-            self._tick(1.0 / self.tick_rate)
+        self._take_steps()  # a step's ticks, before its answer
         self._events.append(("answers", cid, answers, len(text)))
+
+    def _take_steps(self) -> None:
+        """The ticks steps asked for, taken now (their frames go before the answers)."""
+        for _ in range(self.scene.clock.take()):
+            self._tick(1.0 / self.tick_rate)
 
     def _leave(self, cid: int) -> None:
         session = self._sessions.pop(cid, None)

@@ -51,6 +51,9 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert tasks["grasp"]["cpu_s"] > 0 and tasks["box_and_blocks"]["blocks"] == 20
     assert tasks["grasp_batch"] == tasks["grasp"] and tasks["grasp"]["trials"] == 1
     assert tasks["box_and_blocks"]["scene_s"] == 3.0
+    learning = figures["gym"]  # six steps of one environment and of two, two resets
+    assert learning["steps_per_s"] > 0 and learning["vector2_steps_per_s"] > 0
+    assert 0 < learning["reset_ms"] <= learning["reset_ms_max"] and learning["step_overhead"] > 0
     markdown = (tmp_path / "RESULTS.md").read_text()
     assert markdown.count(BEGIN) == 1 and markdown.count(END) == 1
     for name in TARGETS:

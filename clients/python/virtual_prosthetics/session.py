@@ -15,7 +15,7 @@ from .connection import Connection
 from .errors import ConnectionLost, ServerError, Timeout, VPError
 from .mirror import Mirror
 from .waiting import bound, wait_seconds
-from .wire_messages import Call, Create, Delete
+from .wire_messages import Batch, Call, Create, Delete
 
 T = TypeVar("T")
 SCENE_ID = "scene"
@@ -285,6 +285,24 @@ class Session:
             raise
         with self.lock:
             return self.mirror.time
+
+    def step_reading(self, reads: list[tuple[str, str]], ticks: int = 1) -> list[Any]:
+        """:meth:`step`, and the results of ``reads`` (``(object id, method)`` of reads
+        without arguments: ``getSpeeds``, ``getTorques``…) as of after the ticks, in one
+        message and one answer (the server takes a step's ticks before what follows it in a
+        message): a learning environment's step."""
+        ops = [Call(op="call", object=target, method=method, args=[]) for target, method in reads]
+        try:
+            with self.connection.gathering():  # with what is gathered already, one text
+                self.call(SCENE_ID, "step", (ticks,))
+                results = self.connection.send(Batch(op="batch", ops=ops), wait=True)
+            self.connection.raise_deferred()  # the step's own refusal
+        except ServerError as error:
+            if error.code == "not_paused":
+                self.holding = False
+            raise
+        self.dispatch_contacts()
+        return list(results)
 
     def save_state(self) -> str:
         """``saveState`` (not in the manual): the server keeps the scene's state now (its

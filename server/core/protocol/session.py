@@ -39,6 +39,10 @@ class Session:
         self.resume = resume  # what a reconnecting client sends to be this client again
         # told of every request that changed the scene, once it is applied (the journal)
         self.on_change: Callable[[Session, dict[str, Any]], None] | None = None
+        # takes the ticks a step asked for (the process serving the scene): what follows a
+        # step in the same text sees the world it stepped to, so a script steps and reads
+        # in one message
+        self.on_step: Callable[[], None] | None = None
         now = time.monotonic()
         self._bytes = TokenBucket(scene.limits.bytes_per_second, now)
         self._own_id = re.compile(rf"{re.escape(client_id)}\.[A-Za-z0-9_.:-]+")
@@ -75,8 +79,14 @@ class Session:
         refusal = self._over_rate(text, now)
         if refusal is not None:
             return [_encoded(refusal.to_wire(request_id(m), _op_name(m))) for m in messages]
-        answers = (self._handle(message) for message in messages)
-        return [answer for answer in answers if answer is not None]
+        answers = []
+        for message in messages:
+            answer = self._handle(message)
+            if answer is not None:
+                answers.append(answer)
+            if self.on_step is not None and self.scene.clock.owed:
+                self.on_step()
+        return answers
 
     def _over_rate(self, text: str | bytes, now: float) -> VPError | None:
         limits = self.scene.limits

@@ -213,3 +213,28 @@ def test_a_saved_state_comes_back_for_this_client_and_every_viewer(server, scene
 
 def mirror_ids(session: vp.Session) -> set[str]:
     return session.read(lambda mirror: set(mirror.nodes))
+
+
+def test_a_step_and_the_reads_after_it_go_in_one_message(scene):
+    vp.set_physics("dynamic")
+    hand = vp.EdgedHand(True)
+    hand.set_position(0, 3, 0)
+    finger = hand.get_motors()[5]
+    scene.pause()
+    scene.step()
+    start = scene.get_time()
+    texts = []
+    sent = scene.connection._ws.send
+    scene.connection._ws.send = lambda text: (texts.append(text), sent(text))[1]
+    try:
+        with scene.connection.gathering():
+            hand.flex_fingers(1.2)  # the fingers closing
+            time, angle, torques = scene.step_reading(
+                [("scene", "getTime"), (finger.id, "getAngle"), (hand.id, "getTorques")], 2)
+    finally:
+        scene.connection._ws.send = sent
+    assert len(texts) == 1  # the finger command, the step and the reads
+    assert time == pytest.approx(start + 2 / 60) == scene.get_time()  # read after the ticks
+    assert angle == finger.get_angle() < -0.5  # as the frames of the ticks say: closing
+    assert len(torques) == 20
+    scene.resume()

@@ -128,7 +128,9 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         return self._observe(), self._info(self._judge()[:3])
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        """Drive the motors by ``action`` for one step while the task moves the wrist."""
+        """Drive the motors by ``action`` for one step while the task moves the wrist: one
+        message to the scene and one answer a tick (the last with the motors' speeds and
+        torques)."""
         assert self.trial is not None
         targets = self.actions.targets(action)
         for tick in range(self.ticks_per_step):
@@ -136,7 +138,10 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
                 self.arm(self.trial, self.t)
                 if tick == 0:
                     apply(self.trial, targets, self._sent)
-            self.session.step()
+                if tick == self.ticks_per_step - 1:
+                    motion = self._step_reading()
+                else:
+                    self.session.step()
             self.t += self.period / self.ticks_per_step
             self.trial.watch_contact()
             if self.t >= PHASES.holding:
@@ -145,12 +150,20 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
                 self.grasped = (tuple(self.trial.object_position()), tuple(self.trial.hand_position()))
         distance, turn, dropped, success = self._judge()
         truncated = self.t >= self.task.seconds - 1e-9
-        return (self._observe(), self.task.reward(distance, turn, dropped), dropped, truncated,
+        return (self._observe(motion), self.task.reward(distance, turn, dropped), dropped, truncated,
                 self._info((distance, turn, dropped), success))
 
-    def _observe(self) -> np.ndarray:
+    def _step_reading(self) -> tuple[list[float], list[float]]:
+        """A tick, and the hand's motors' speeds and torques after it."""
         assert self.trial is not None
-        return self.watcher.observe(self.trial, self.t, self.task.goal(self.trial, self.t, self.grasped))
+        hand = self.trial.hand.id
+        speeds, torques = self.session.step_reading([(hand, "getSpeeds"), (hand, "getTorques")])
+        return [float(v) for v in speeds], [float(v) for v in torques]
+
+    def _observe(self, motion: tuple[list[float], list[float]] | None = None) -> np.ndarray:
+        assert self.trial is not None
+        return self.watcher.observe(self.trial, self.t, self.task.goal(self.trial, self.t, self.grasped),
+                                    motion)
 
     def _judge(self) -> tuple[float, float, bool, bool]:
         """The object's distance from its goal (m), its turn from its start (rad), whether

@@ -71,9 +71,11 @@ class Watcher:
     def reset(self) -> None:
         self._last = None
 
-    def observe(self, trial: Trial, t: float, goal: Vec) -> np.ndarray:
-        """The vector at ``t``, with ``goal`` the object's place it should be (scene units)."""
-        seen = Observation(trial, t)
+    def observe(self, trial: Trial, t: float, goal: Vec,
+                motion: tuple[list[float], list[float]] | None = None) -> np.ndarray:
+        """The vector at ``t``, with ``goal`` the object's place it should be (scene units)
+        and ``motion`` the motors' speeds and torques when read already (else asked)."""
+        seen = Observation(trial, t, motion)
         position, quaternion = seen.object_position, seen.object_quaternion
         velocity, spin = self._motion(position, quaternion)
         palm = conjugate(trial.hand_quaternion())

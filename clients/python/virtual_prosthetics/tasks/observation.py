@@ -44,12 +44,15 @@ Targets = Union[Angles, Torques]
 class Observation:
     """One step of one trial as its hand's controller sees it."""
 
-    def __init__(self, trial: Trial, t: float) -> None:
+    def __init__(self, trial: Trial, t: float,
+                 motion: tuple[list[float], list[float]] | None = None) -> None:
         self.t = t
         """Seconds since the trial began."""
         self.grip: HandGrip = trial.grip
         """The hand's digits (which motors close which) and layout."""
         self._trial = trial
+        if motion is not None:  # speeds and torques read with the step (Session.step_reading)
+            self.__dict__["speeds"], self.__dict__["torques"] = motion
 
     @cached_property
     def angles(self) -> list[float]:

@@ -141,3 +141,22 @@ def test_watching_past_the_limit_fails_and_watches_nothing(scene):
     assert error["code"] == "limit_exceeded" and error["details"]["index"] == count - 1
     assert f"at most {count - 1} sensors" in error["message"]
     assert len(scene.watches) == 0
+
+
+def test_what_follows_a_step_in_one_text_sees_the_world_it_stepped_to(scene):
+    session = Session(scene, "c1")
+    taken = []
+
+    def take() -> None:  # as the process serving the scene takes a step's ticks
+        for _ in range(scene.clock.take()):
+            taken.append(scene.tick(1 / 60))
+    session.on_step = take
+    before = scene.time
+    pause, step, time = send(session, {"op": "call", "id": 1, "object": "scene", "method": "pause"},
+                             {"op": "call", "id": 2, "object": "scene", "method": "step", "args": [3]},
+                             {"op": "call", "id": 3, "object": "scene", "method": "getTime"})
+    assert len(taken) == 3 and time["result"] == before + 3 / 60
+    session.on_step = None  # without a process to take them, the ticks wait for the text's end
+    [time] = send(session, {"op": "call", "object": "scene", "method": "step", "args": [2]},
+                  {"op": "call", "id": 4, "object": "scene", "method": "getTime"})
+    assert time["result"] == before + 3 / 60 and scene.clock.owed == 2
