@@ -14,7 +14,6 @@ import pybullet
 from fastapi import APIRouter, Request, Response
 from PIL import Image
 
-from ..core.physics.picture_world import PictureWorld
 from ..core.scene.scene import Scene
 from .rest import NOT_FOUND, ErrorBody, hub_of
 
@@ -34,11 +33,13 @@ async def scene_picture(request: Request, scene: str, width: int = 320, height: 
     return Response(body, media_type=media, headers={"X-Width": str(width), "X-Height": str(height)})
 
 
-_WORLDS: weakref.WeakKeyDictionary[Scene, PictureWorld] = weakref.WeakKeyDictionary()
+_WORLDS: weakref.WeakKeyDictionary[Scene, Any] = weakref.WeakKeyDictionary()  # PictureWorld
 
 
 def _drawn(scene: Scene, width: int, height: int, format: str) -> bytes:
     """The picture's bytes (in the scene's process: travels there by name)."""
+    # here, not at the top: the web process never draws, and scipy is half a second of its start
+    from ..core.physics.picture_world import PictureWorld
     scene.bodies.sync()  # what changed since the last tick, as every reader sees it
     if scene not in _WORLDS:
         _WORLDS[scene] = PictureWorld(pybullet)

@@ -22,7 +22,7 @@ from ..tasks.controller import PHASES, prepare
 from ..tasks.grasp import FRICTION_SPREAD, MASS_SPREAD, PATTERNS, SOLVER_ITERATIONS
 from ..tasks.hands import hand_source
 from ..tasks.observation import apply
-from ..tasks.relocate import _angle as turn_between
+from ..tasks.relocate import turn_between
 from ..tasks.scale import Scale
 from ..tasks.trial import TaskHand, Trial, lay_out
 from .actions import action_map
@@ -51,6 +51,8 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         self.pattern = _pattern(self.task.name, self.task.patterns, object)
         if weight not in WEIGHTS:
             raise ValueError(f"weight {weight!r}: expected one of {', '.join(WEIGHTS)}")
+        if not (isinstance(ticks_per_step, int) and ticks_per_step >= 1):  # (the server: ≤ 60)
+            raise ValueError(f"ticks_per_step {ticks_per_step!r}: a whole number of ticks, at least 1")
         if render_mode not in (None, *self.metadata["render_modes"]):
             raise ValueError(f"render_mode {render_mode!r}: expected None or "
                              f"{', '.join(self.metadata['render_modes'])}")
@@ -187,7 +189,8 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
 
     def render(self) -> np.ndarray | None:
         """``human``: the scene's viewers draw it (its address is printed once);
-        ``rgb_array``: the scene from its camera, drawn by the server (grey shapes)."""
+        ``rgb_array``: the scene from its camera, drawn by the server (its parts in their
+        colours, lit but not textured)."""
         self._show()
         if self.render_mode != "rgb_array":
             return None

@@ -76,7 +76,7 @@ def _nlerp(q: tuple[float, ...], r: tuple[float, ...], share: float) -> tuple[fl
     return tuple(v / norm for v in mixed)
 
 
-def _angle(q: list[float] | tuple[float, ...], r: list[float] | tuple[float, ...]) -> float:
+def turn_between(q: list[float] | tuple[float, ...], r: list[float] | tuple[float, ...]) -> float:
     """The angle of the turn between two unit quaternions."""
     dot = min(1.0, abs(sum(a * b for a, b in zip(q, r))))
     return 2 * math.acos(dot)
@@ -90,13 +90,13 @@ def judge(trial: Trial) -> dict[str, Any]:
     for position, quaternion in trial.poses:
         distance = trial.scale.metres(math.dist(position, target))
         nearest = min(nearest, distance)
-        run = run + 1 if distance < POSITION and _angle(quaternion, trial.start_quaternion) < ANGLE else 0
+        run = run + 1 if distance < POSITION and turn_between(quaternion, trial.start_quaternion) < ANGLE else 0
         best = max(best, run)
     lowest = min((p[1] for p, _ in trial.poses), default=trial.start[1])
     fell = trial.scale.metres(max((p[1] for p, _ in trial.poses), default=lowest) - lowest)
     down = min(trial.heights, default=0.0) < LIFTED * trial.layout.length  # back at the table
     dropped = fell >= DROP or down
-    turned = min((_angle(q, trial.start_quaternion) for _, q in trial.poses), default=math.inf)
+    turned = min((turn_between(q, trial.start_quaternion) for _, q in trial.poses), default=math.inf)
     return {"success": best > STEPS and not dropped, "dropped": dropped,
             "nearestM": round(nearest, 4), "leastTurnRad": round(turned, 3), "stepsWithin": best}
 

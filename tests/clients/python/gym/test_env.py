@@ -98,6 +98,8 @@ def test_what_an_environment_cannot_be_is_said(server):
         gymnasium.make("VirtualProsthetics/Hold-v0", url=server.ws, object="cube")
     with pytest.raises(ValueError, match="weight 'medium'"):
         gymnasium.make("VirtualProsthetics/Grasp-v0", url=server.ws, weight="medium")
+    with pytest.raises(ValueError, match="ticks_per_step 0"):
+        gymnasium.make("VirtualProsthetics/Grasp-v0", url=server.ws, ticks_per_step=0)
 
 
 def test_a_human_render_says_where_to_watch(make, capsys):
