@@ -1,7 +1,9 @@
 """What the Gymnasium environments give (``virtual_prosthetics.gym``; Grasp-v0, the edged
-hand, the light ball): steps a second of one environment (``gym_steps_per_s``), of two in
-Gymnasium's vector environment over two scenes against one (``gym_vector2_speedup``; each
-in a process of its own, stepping its scene's process), a reset's wall time
+hand, the light ball): steps a second of one environment (``gym_steps_per_s``), of
+Gymnasium's vector environment over two scenes against the same over one
+(``gym_vector2_speedup``; each environment in a process of its own, stepping its scene's
+process; ``vector2_over_one_env``: against one environment without the vector's
+processes), a reset's wall time
 (``gym_reset_ms``: the scene restored in its process and the first observation read), and
 a step's wall time through the server over the CPU of the same tick of the same scene
 in-process (``gym_step_overhead``: the scene's document run by the core itself, the same
@@ -40,15 +42,22 @@ def measure(steps: int, resets: int) -> dict[str, Any]:
             overhead = _overhead(env, running.http, steps)
         finally:
             env.close()
-        vector = gymnasium.make_vec(ENV, num_envs=2, vectorization_mode="async", url=running.ws)
-        try:
-            two = _steps_per_s(vector, steps, width=2)
-        finally:
-            vector.close()
+        vector1, vector2 = (_vector_steps_per_s(running.ws, width, steps) for width in (1, 2))
     finally:
         stop_server(running)
-    return {"steps_per_s": one, "vector2_steps_per_s": two, "vector2_speedup": two / one,
+    return {"steps_per_s": one, "vector1_steps_per_s": vector1, "vector2_steps_per_s": vector2,
+            "vector2_speedup": vector2 / vector1, "vector2_over_one_env": vector2 / one,
             "reset_ms": statistics.median(reset_ms), "reset_ms_max": max(reset_ms), **overhead}
+
+
+def _vector_steps_per_s(url: str, width: int, steps: int) -> float:
+    """Steps a second of Gymnasium's vector environment over ``width`` scenes (each
+    environment in a process of its own, as ``async`` makes them)."""
+    vector = gymnasium.make_vec(ENV, num_envs=width, vectorization_mode="async", url=url)
+    try:
+        return _steps_per_s(vector, steps, width)
+    finally:
+        vector.close()
 
 
 def _actions(space: Any, count: int) -> np.ndarray:
@@ -92,6 +101,8 @@ def _overhead(env: Any, http: str, steps: int) -> dict[str, float]:
     import_scene(scene, document)
     hand = inner.first.hand.id
     ops = Operations(scene, owner_of(hand))
+    scene.clock.pause(owner_of(hand))  # its ticks exact, as a stepped scene's (no CPU budget)
+    scene.watches.add(inner.first.sensor.id, owner_of(hand))  # frames tell its contacts, as there
     angles = [list(inner.actions.targets(action).values) for action in actions]
     started = time.process_time()
     for values, position in zip(angles, wrist):
