@@ -194,3 +194,26 @@ test('a page switches its scene to dynamic: objects fall, forces are felt (body 
 		Prosthetic.close();
 	}
 });
+
+test('a saved state comes back: every body at rest where it was, the same steps the same world', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-states-${process.pid}` });
+	try {
+		const ball = new Prosthetic.Ball(0.3);
+		ball.setPosition(0, 5, 0);
+		await Prosthetic.pause();
+		Prosthetic.setPhysics('dynamic', { unit: 1 });
+		const state = await Prosthetic.saveState();
+		await Prosthetic.step(20);
+		const fallen = ball.node.position[1];
+		assert.ok(fallen < 5, `at ${fallen} after 20 ticks`);
+		await Prosthetic.restoreState(state);
+		assert.equal(ball.node.position[1], 5, 'back where it was, as soon as restoreState resolves');
+		await Prosthetic.step(20);
+		assert.equal(ball.node.position[1], fallen, 'the same fall, bit for bit');
+		Prosthetic.forgetState(state);
+		await assert.rejects(Prosthetic.restoreState(state), (error) => error.code === 'unknown_object' && error.message.includes(state));
+		await Prosthetic.resume();
+	} finally {
+		Prosthetic.close();
+	}
+});

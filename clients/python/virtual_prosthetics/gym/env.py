@@ -152,7 +152,9 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
                 self.grasped = (tuple(self.trial.object_position()), tuple(self.trial.hand_position()))
         distance, turn, dropped, success = self._judge()
         truncated = self.t >= self.task.seconds - 1e-9
-        return (self._observe(motion), self.task.reward(distance, turn, dropped), dropped, truncated,
+        # scored from the lift on (episodes.py): before it there is nothing to hold yet
+        reward = self.task.reward(distance, turn, dropped) if self.t >= PHASES.lifting else 0.0
+        return (self._observe(motion), reward, dropped, truncated,
                 self._info((distance, turn, dropped), success))
 
     def _step_reading(self) -> tuple[list[float], list[float]]:

@@ -11,6 +11,11 @@ own size; a 1.0 hand's at a human hand's):
 - Relocate, as ``myoChallengeRelocate``: ``-100·d - θ``, ``d`` from the task's target and
   ``θ`` the object's turn from its start (radians).
 
+Steps are scored from the lift on; before it a step's reward is 0. MyoSuite's ObjHold
+starts with the object in the hand; these episodes begin with the approach, when there is
+nothing to hold yet, and scoring it gave every hand that leaves the object alone a bonus a
+step (8 while the object lay still): learners learnt not to touch it.
+
 An episode ends (``terminated``) when the object is dropped as its task judges a drop (back
 down at the table after the lift, or fallen 300 mm; Hold: out of the hand by half its
 size), and is cut off (``truncated``) when the task's time is up. ``info["success"]`` is
