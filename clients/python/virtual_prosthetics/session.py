@@ -276,15 +276,21 @@ class Session:
         (anything gathered leaves first); return once they are taken and their frames are
         in the mirror, with the scene's time. A ``not_paused`` answer ends :attr:`holding`
         (another client resumed, or a restarted server lost the pause)."""
-        self.call(SCENE_ID, "step", (ticks,))
-        try:
+        with self._stepping():
+            self.call(SCENE_ID, "step", (ticks,))
             self.sync()
+        with self.lock:
+            return self.mirror.time
+
+    @contextmanager
+    def _stepping(self) -> Iterator[None]:
+        """A ``not_paused`` answer inside ends :attr:`holding` (and is raised)."""
+        try:
+            yield
         except ServerError as error:
             if error.code == "not_paused":
                 self.holding = False
             raise
-        with self.lock:
-            return self.mirror.time
 
     def step_reading(self, reads: list[tuple[str, str]], ticks: int = 1) -> list[Any]:
         """:meth:`step`, and the results of ``reads`` (``(object id, method)`` of reads
@@ -292,15 +298,11 @@ class Session:
         message and one answer (the server takes a step's ticks before what follows it in a
         message): a learning environment's step."""
         ops = [Call(op="call", object=target, method=method, args=[]) for target, method in reads]
-        try:
+        with self._stepping():
             with self.connection.gathering():  # with what is gathered already, one text
                 self.call(SCENE_ID, "step", (ticks,))
                 results = self.connection.send(Batch(op="batch", ops=ops), wait=True)
             self.connection.raise_deferred()  # the step's own refusal
-        except ServerError as error:
-            if error.code == "not_paused":
-                self.holding = False
-            raise
         self.dispatch_contacts()
         return list(results)
 

@@ -16,13 +16,12 @@ from __future__ import annotations
 from typing import Any, Iterator
 
 import numpy as np
-from scipy.spatial import ConvexHull
 
 from ...errors import OutOfRange
 from ..kit.math3d import Pose, Vec3
+from .bullet import shape_arguments
 from .engine import PhysicsWorld
-from .geometry import solid_points
-from .urdf_file import rgba
+from .urdf_file import hull_mesh, rgba
 
 SIZES = (16, 1024)  # pixels: the smallest and largest side of a picture
 FIELD_OF_VIEW = 50.0  # degrees, vertical: the viewer's camera's
@@ -78,20 +77,13 @@ def parts(world: PhysicsWorld) -> Iterator[tuple[str, dict[str, Any], Pose]]:
 
 
 def visual_arguments(pybullet: Any, geometry: dict[str, Any]) -> dict[str, Any]:
-    """``createVisualShape`` arguments: a sphere or box as it is, anything else as the
-    triangles of its convex hull (what the physics collides with)."""
-    if geometry["kind"] == "sphere":
-        return {"shapeType": pybullet.GEOM_SPHERE, "radius": geometry["radius"]}
-    if geometry["kind"] == "box":
-        return {"shapeType": pybullet.GEOM_BOX, "halfExtents": [s / 2 for s in geometry["size"]]}
-    points = np.asarray(solid_points(geometry), dtype=float)
-    hull = ConvexHull(points)
-    centre = points[hull.vertices].mean(axis=0)
-    triangles = []
-    for a, b, c in hull.simplices:  # each face turned outwards (the renderer culls backs)
-        normal = np.cross(points[b] - points[a], points[c] - points[a])
-        triangles += [a, b, c] if np.dot(normal, points[a] - centre) >= 0 else [a, c, b]
-    return {"shapeType": pybullet.GEOM_MESH, "vertices": points.tolist(), "indices": triangles}
+    """``createVisualShape`` arguments: a sphere or box as Bullet collides with it, anything
+    else as the triangles of the convex hull it collides with."""
+    if geometry["kind"] in ("sphere", "box"):
+        return shape_arguments(geometry)
+    hull = hull_mesh(geometry)  # trimesh's: its faces turned outwards (the renderer culls backs)
+    return {"shapeType": pybullet.GEOM_MESH, "vertices": hull.vertices.tolist(),
+            "indices": hull.faces.ravel().tolist()}
 
 
 def check_size(width: int, height: int) -> None:
