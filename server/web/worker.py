@@ -260,16 +260,17 @@ class SceneWorker:
         answers = [] if session is None else [
             Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
         self.metrics.served(now, len(answers))
-        if self.scene.restored:  # restoreState: everyone's snapshot before its answer
-            self.scene.restored = False
-            self._resync = True
-            self._stand()
-            self.saver.save(replaced=True)
         self._take_steps()  # a step's ticks, before its answer
         self._events.append(("answers", cid, answers, len(text)))
 
     def _take_steps(self) -> None:
-        """The ticks steps asked for, taken now (their frames go before the answers)."""
+        """The ticks steps asked for, taken now (their frames go before the answers); after
+        a restoreState, everyone's snapshot first (a step in the same text ticks after it)."""
+        if self.scene.restored:
+            self.scene.restored = False
+            self._resync = True
+            self._stand()
+            self.saver.save(replaced=True)
         for _ in range(self.scene.clock.take()):
             self._tick(1.0 / self.tick_rate)
 
