@@ -212,12 +212,15 @@ def _option(name: str, value: Any) -> float | int:
     return kind(value)
 
 
+SOLIDS_KEPT = 4096  # shapes' volumes and centres a process keeps (Dynamics._solid)
+_SOLIDS: dict[str, tuple[float, Vec3]] = {}
+
+
 class Dynamics:
     """The dynamic side of one PyBullet client (``pybullet`` is the module, ``client`` its id)."""
 
     def __init__(self, pybullet: Any, client: int, physics: Physics) -> None:
         self.p, self.client, self.physics = pybullet, client, physics
-        self._masses: dict[str, tuple[float, Vec3]] = {}  # shape -> volume (m³), centre
         self._debt = 0.0  # seconds not yet stepped
         self.steps = 0  # physics steps taken
         self._mounts: dict[int, Pose] = {}  # mount constraint -> where it is
@@ -259,11 +262,16 @@ class Dynamics:
         return self._solid(geometry)[0]
 
     def _solid(self, geometry: dict[str, Any]) -> tuple[float, Vec3]:
-        """Volume and centre of mass (in the part's frame) of a geometry, kept by shape."""
+        """Volume and centre of mass (in the part's frame) of a geometry, kept by shape for
+        the process: a world rebuilt (every restoreState) weighs the same shapes again."""
         key = repr(sorted((k, v) for k, v in geometry.items() if k not in ("color", "edges")))
-        if key not in self._masses:
-            self._masses[key] = (volume(geometry), centroid(geometry))
-        return self._masses[key]
+        solid = _SOLIDS.get(key)
+        if solid is None:
+            if len(_SOLIDS) >= SOLIDS_KEPT:
+                _SOLIDS.clear()
+            solid = _SOLIDS[key] = (volume(geometry), centroid(geometry))
+        return solid
+
 
     def _load_inertia(self, tree: Articulation) -> float:
         """A part-less base's inertia, in Bullet's units: that of its links' masses about

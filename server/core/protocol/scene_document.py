@@ -233,9 +233,9 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
         raise BadMessage("scene document: an id is listed twice in nodes")
     _store_assets(scene, document["assets"])
     physics = dict(document.get("physics", {"mode": KINEMATIC}))  # a kept state restores again
-    scene.set_physics(KINEMATIC)  # angles restored as set, targets after
     for root in scene.roots():
         scene.delete(root)
+    scene.set_physics(KINEMATIC)  # angles restored as set, targets after
     scene.registry.fresh_ids()
     for entry in entries:
         _make(scene, entry)

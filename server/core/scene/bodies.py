@@ -36,6 +36,9 @@ if TYPE_CHECKING:
     from ..physics.articulation import Articulation
 
 log = logging.getLogger(__name__)
+# How a sync builds the trees not built before: as this tick's build stage admits them
+# (dynamic mode), all of them, or none (left for a later sync)
+STAGED, ALL, LATER = "staged", "all", "later"
 HAIR = 1e-9  # dynamic mode: a joint or body that moved less than this (m, rad) has not moved
 
 
@@ -146,12 +149,13 @@ class SceneBodies:
 
     # --- keeping bodies in step ------------------------------------------------------------
 
-    def sync(self) -> None:
-        """Build, place and turn what changed; then read the moved parts' poses."""
+    def sync(self, new_trees: str = STAGED) -> None:
+        """Build, place and turn what changed; then read the moved parts' poses.
+        ``new_trees``: how trees not built before are built (:data:`STAGED`)."""
         if not (self._restructured or self._based or self._turned):
             return
         self._stirred = self._changed = True
-        rebuilt = self._rebuild()
+        rebuilt = self._rebuild(new_trees)
         moved = self._turn(rebuilt) | self._place_bases(rebuilt)
         for root_id in moved:
             self.tracker.moved(self.physics.tree(root_id).parts())  # type: ignore[union-attr]
@@ -164,12 +168,16 @@ class SceneBodies:
 
     def remake(self, physics: Physics) -> None:
         """Every tree built again, at rest where it is, in a world of ``physics``."""
-        self.sync()
+        staged = self.physics.dynamics is not None
+        # trees not built yet are built once, in the new world, not in this one and moved
+        # (an import makes every tree anew: that halved the bodies a restore builds)
+        self.sync(new_trees=LATER)
         self._mounts.clear()
         self.physics.rebuild(physics)
         self.tracker.crowding = not physics.dynamic
         self.tracker.made_again()
         self._unposed.update(self.physics.roots())
+        self.sync(new_trees=STAGED if staged else ALL)  # as this world would have built them
         self._targets_due = physics.dynamic
         self._stirred = self._changed = True
 
@@ -268,7 +276,7 @@ class SceneBodies:
                 self._parts.placed(keys, poses)
         self._unposed.clear()
 
-    def _rebuild(self) -> set[str]:
+    def _rebuild(self, new_trees: str) -> set[str]:
         """Build the marked trees again; the roots built."""
         roots: set[str] = set()
         for root_id in self._restructured:
@@ -289,7 +297,7 @@ class SceneBodies:
                 had.add(root_id)
                 self._forget_tree(root_id, tree)
         new: set[str] = set()
-        waiting = self._waiting([root_id for root_id in order if root_id not in had])
+        waiting = self._waiting([root_id for root_id in order if root_id not in had], new_trees)
         self._restructured.update(waiting)
         built = [root_id for root_id in order if root_id not in waiting] if waiting else order
         if built:
@@ -299,11 +307,13 @@ class SceneBodies:
         self._forget_parts(old - new)
         return set(built)
 
-    def _waiting(self, new_roots: list[str]) -> set[str]:
+    def _waiting(self, new_roots: list[str], new_trees: str) -> set[str]:
         """Of the roots to be built anew, in order, those this tick's stage leaves for a
         later one (:mod:`.build_stages`; dynamic mode only: a kinematic world has no
         solver, and its recordings resimulate exactly from a snapshot, every body built)."""
-        if self.physics.dynamics is None:
+        if new_trees == LATER:
+            return set(new_roots)
+        if new_trees == ALL or self.physics.dynamics is None:
             return set()
         world = len(self.physics)
         for index, root_id in enumerate(new_roots):

@@ -41,3 +41,16 @@ def test_bodies_of_one_geometry_share_a_shape_and_a_rebuild_keeps_them(world):
     world.rebuild()
     assert len(world) == 50 and "b0" not in world and world.rebuilds == 1
     assert world.touching("b7", GROUND) and world.pose("h")[0] == (0, 5, 0)
+
+
+def test_a_rebuild_empties_its_client_of_what_was_removed(world):
+    import pybullet
+    client = world.client
+    for k in range(20):
+        world.add(f"b{k}", CUBE, ((3 * k, 0.4, 0), IDENTITY))
+    for k in range(15):
+        world.remove(f"b{k}")
+    world.rebuild()
+    # the same client, holding only the ground and the five left (Bullet's own count)
+    assert world.client == client and pybullet.getNumBodies(physicsClientId=client) == 6
+    assert world.touching("b17", GROUND) and "b3" not in world

@@ -9,6 +9,7 @@ from server.core.model.hands import EdgedHand
 from server.core.model.motor import MotorZ
 from server.core.model.parts import Box, EdgedFinger
 from server.core.model.robot import Robot
+from server.core.scene.scene import Scene
 
 
 def test_collision_bodies_follow_the_motors(scene):
@@ -168,3 +169,32 @@ def test_a_lone_part_attached_to_a_robot_leaves_no_body_where_it_was(scene):
     robot.set_position((0, 3, 0))
     scene.tick(0.1)
     assert scene.failures == 0 and scene.bodies.failures == 0
+
+
+def _finger_robot(scene):
+    robot = Robot(scene, "r")
+    motor, finger = MotorZ(scene, "m"), EdgedFinger(scene, "f", 1)
+    robot.attach_chain(motor, finger)
+    robot.set_position((0, 2, 0))
+    motor.set_angle(0.4)
+    return motor, finger
+
+
+def test_trees_made_before_a_physics_switch_are_built_once_in_the_new_world(scene):
+    """An import (every restoreState) makes every tree anew and then switches the physics:
+    they are built in the new world only, where they are and as their motors are turned,
+    as a tree built before the switch is moved."""
+    motor, finger = _finger_robot(scene)
+    built: list[str] = []
+    physics = scene.bodies.physics
+    add_tree = physics.add_tree
+    physics.add_tree = lambda tree, *args: built.append(tree.root) or add_tree(tree, *args)
+    scene.set_physics("dynamic")
+    assert built == ["r"] and scene.bodies.physics.dynamics is not None
+    assert motor.get_angle() == pytest.approx(0.4)
+    other = Scene("built-before")
+    _, moved = _finger_robot(other)
+    other.tick(0.1)  # built in the kinematic world
+    other.set_physics("dynamic")
+    assert scene.bodies.physics.pose(finger.id) == other.bodies.physics.pose(moved.id)
+    other.close()
