@@ -48,6 +48,8 @@ export class Mirror {
 					else this.add([node]);
 				}
 				this.contacts = new Set(message.contacts.map(([a, b]) => `${a}|${b}`));
+				this.readings = new Map();   // none of a world that may be gone (a restore)
+				this.readSensors(message.sensors);
 				this.tick(message);
 				break;
 			}
@@ -56,11 +58,15 @@ export class Mirror {
 			case 'frame':
 				this.applyChanges(message);
 				if (message.contacts) this.contactChanges(message.contacts);
-				for (const [id, reading] of Object.entries(message.sensors ?? {})) {
-					this.readings.set(id, { ...reading, distance: fromWire(reading.distance) });
-				}
+				this.readSensors(message.sensors);
 				this.tick(message);
 				break;
+		}
+	}
+
+	readSensors(sensors) {
+		for (const [id, reading] of Object.entries(sensors ?? {})) {
+			this.readings.set(id, { ...reading, distance: fromWire(reading.distance) });
 		}
 	}
 

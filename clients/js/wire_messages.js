@@ -67,6 +67,7 @@
  * @property {Array<Object<string, *>>} nodes
  * @property {Array<Array<string>>} contacts
  * @property {Object<string, number>} [forces]
+ * @property {Object<string, Object<string, *>>} [sensors]
  */
 
 /**

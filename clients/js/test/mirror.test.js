@@ -53,3 +53,15 @@ test('a predicted node stays until its creation is answered, and goes if it was 
 	mirror.release(5);
 	assert.deepEqual(mirror.nodes.get('c').geometry, { kind: 'sphere' }, 'one the server made stays, as it made it');
 });
+
+test('a snapshot replaces the sensors\' readings: none of a world that may be gone', () => {
+	const mirror = new Mirror();
+	const snapshot = { op: 'snapshot', seq: 0, time: 0, camera: {}, physics: { mode: 'dynamic' }, nodes: [], contacts: [] };
+	mirror.apply(snapshot);
+	const pressed = { distance: 0.5, touch: 1, position: [0, 0, 0], objects: ['c1.b'], force: 3, contacts: [] };
+	mirror.apply(frame(1, { sensors: { 'c1.s': pressed, 'c1.t': pressed } }));
+	mirror.apply({ ...snapshot, sensors: { 'c1.s': { ...pressed, distance: 'Infinity', touch: 0, objects: [], force: 0 } } });
+	assert.equal(mirror.readings.get('c1.s').distance, Infinity);
+	assert.equal(mirror.readings.get('c1.s').touch, 0);
+	assert.equal(mirror.readings.has('c1.t'), false);
+});

@@ -51,6 +51,8 @@ class Mirror:
             self.forces = dict(message.get("forces", {}))  # pressing now (frames: changes)
             self._add(message["nodes"])
             self.contacts = {tuple(pair) for pair in message["contacts"]}  # type: ignore[misc]
+            self.readings = {sensor_id: _reading(reading)  # none of a world gone (a restore)
+                             for sensor_id, reading in message.get("sensors", {}).items()}
             self._clock(message)
         elif op == "added":
             self._add(message["nodes"])

@@ -297,12 +297,18 @@ class Session:
         without arguments: ``getSpeeds``, ``getTorques``…) as of after the ticks, in one
         message and one answer (the server takes a step's ticks before what follows it in a
         message): a learning environment's step."""
-        ops = [Call(op="call", object=target, method=method, args=[]) for target, method in reads]
         with self._stepping():
             with self.connection.gathering():  # with what is gathered already, one text
                 self.call(SCENE_ID, "step", (ticks,))
-                results = self.connection.send(Batch(op="batch", ops=ops), wait=True)
-            self.connection.raise_deferred()  # the step's own refusal
+                return self.read_many(reads)
+
+    def read_many(self, reads: list[tuple[str, str]]) -> list[Any]:
+        """The results of ``reads`` (``(object id, method)`` of reads without arguments), in
+        one message with whatever is gathered (:meth:`Connection.gathering`) and one answer;
+        raises the first refusal of what was sent with them."""
+        ops = [Call(op="call", object=target, method=method, args=[]) for target, method in reads]
+        results = self.connection.send(Batch(op="batch", ops=ops), wait=True)
+        self.connection.raise_deferred()
         self.dispatch_contacts()
         return list(results)
 
@@ -311,13 +317,15 @@ class Session:
         objects, motors, masses, physics, watched sensors); its id, for :meth:`restore_state`."""
         return str(self.call(SCENE_ID, "saveState", wait=True))
 
-    def restore_state(self, state: str) -> None:
+    def restore_state(self, state: str, wait: bool = True) -> None:
         """``restoreState``: the scene put back as ``state`` was, every body at rest, in a
         fresh physics world (the same steps after it give the same world); returns once
-        the mirror holds it. Only the scene's keeper, and only while every object in it is
-        this client's."""
-        self.call(SCENE_ID, "restoreState", (state,), wait=True)
-        self.sync()
+        the mirror holds it (``wait=False``: at once; the answer to anything sent after it
+        comes once the mirror holds it). Only the scene's keeper, and only while every
+        object in it is this client's."""
+        self.call(SCENE_ID, "restoreState", (state,), wait=wait)
+        if wait:
+            self.sync()
 
     def forget_state(self, state: str) -> None:
         """``forgetState``: the server frees a saved state."""

@@ -68,6 +68,7 @@ class Snapshot(TypedDict):
     nodes: list[dict[str, Any]]
     contacts: list[list[str]]
     forces: NotRequired[dict[str, float]]
+    sensors: NotRequired[dict[str, dict[str, Any]]]
 
 
 class Ok(TypedDict):

@@ -333,7 +333,7 @@ class Scene:
 
     def snapshot(self) -> Snapshot:
         """The whole scene: every node (parents before children), camera, time, the pairs
-        touching and (dynamic mode) the forces pressing."""
+        touching, (dynamic mode) the forces pressing and the watched sensors' readings."""
         nodes = [encode_numbers(n.describe()) for root in self.roots() for n in root.walk()]
         snapshot = Snapshot(op="snapshot", scene=self.name, seq=self.seq, time=self.time,
                             camera=self.camera.wire(), physics=self.physics.wire(), nodes=nodes,
@@ -341,6 +341,9 @@ class Scene:
         forces = self.bodies.forces_told()
         if forces:
             snapshot["forces"] = forces
+        readings = watched_readings(self.bodies, self.watches, self.nodes)
+        if readings:
+            snapshot["sensors"] = {i: reading.wire() for i, reading in readings.items()}
         return snapshot
 
     # --- scene calls (the manual's Scene API) --------------------------------------------

@@ -69,3 +69,17 @@ def test_the_physics_and_the_forces_on_parts_follow_the_frames() -> None:
     assert mirror.physics == dynamic and mirror.forces == {"c1.b": 98.1}
     mirror.apply({"op": "frame", "seq": 2, "time": 0.2, "forces": {"c1.b": 0, "c1.f": 3.5}})
     assert mirror.forces == {"c1.f": 3.5}  # 0: its contacts ended
+
+
+def test_a_snapshot_replaces_the_sensors_readings() -> None:
+    """A reading from before a snapshot is of a world that may be gone (a restored scene's
+    sensor would read its last episode's contacts)."""
+    mirror = Mirror()
+    mirror.apply(_snapshot(0.0))
+    pressed = {"distance": 0.5, "touch": 1, "position": [0, 0, 0], "objects": ["c1.b"],
+               "force": 3.0, "contacts": [{"other": "c1.b", "normal": 3.0, "friction": 0.0}]}
+    mirror.apply({"op": "frame", "seq": 1, "time": 0.1, "sensors": {"c1.s": pressed, "c1.t": pressed}})
+    free = {**pressed, "distance": "Infinity", "touch": 0, "objects": [], "force": 0, "contacts": []}
+    mirror.apply({**_snapshot(0.0), "sensors": {"c1.s": free}})
+    assert mirror.readings["c1.s"]["contacts"] == [] and mirror.readings["c1.s"]["distance"] == float("inf")
+    assert "c1.t" not in mirror.readings  # not watched in the new world: nothing told

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import secrets
 from dataclasses import replace
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import gymnasium
 import numpy as np
@@ -116,18 +116,18 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         super().reset(seed=seed)
         mass = self.mass * float(self.np_random.uniform(1 - MASS_SPREAD, 1 + MASS_SPREAD))
         friction = float(self.np_random.uniform(1 - FRICTION_SPREAD, 1 + FRICTION_SPREAD))
-        self.session.restore_state(self._start)
-        with self.session.connection.gathering():
+        with self.session.connection.gathering():  # one message and one answer
+            self.session.restore_state(self._start, wait=False)
             self.first.obj.set_mass(mass)
             self.first.obj.set_friction(friction)
+            motion = self._reading(self.session.read_many)
         self.trial = replace(self.first, mass=mass, friction=friction, heights=[], offsets=[],
                              forces=[], touched=[], poses=[])
         self.arm = self.task.arm(self.scale)  # a path keeps what it aimed at: a new one
         self.watcher.reset()
         self.t, self._sent, self.grasped = 0.0, {}, None
-        self.session.sync()
         self._show()
-        return self._observe(), self._info(self._judge()[:3])
+        return self._observe(motion), self._info(self._judge()[:3])
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         """Drive the motors by ``action`` for one step while the task moves the wrist: one
@@ -141,7 +141,7 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
                 if tick == 0:
                     apply(self.trial, targets, self._sent)
                 if tick == self.ticks_per_step - 1:
-                    motion = self._step_reading()
+                    motion = self._reading(self.session.step_reading)
                 else:
                     self.session.step()
             self.t += self.period / self.ticks_per_step
@@ -157,11 +157,12 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         return (self._observe(motion), reward, dropped, truncated,
                 self._info((distance, turn, dropped), success))
 
-    def _step_reading(self) -> tuple[list[float], list[float]]:
-        """A tick, and the hand's motors' speeds and torques after it."""
-        assert self.trial is not None
-        hand = self.trial.hand.id
-        speeds, torques = self.session.step_reading([(hand, "getSpeeds"), (hand, "getTorques")])
+    def _reading(self, read: Callable[[list[tuple[str, str]]], list[Any]]
+                 ) -> tuple[list[float], list[float]]:
+        """The hand's motors' speeds and torques, as ``read`` (a tick and a read, or a read)
+        gives them."""
+        hand = self.first.hand.id
+        speeds, torques = read([(hand, "getSpeeds"), (hand, "getTorques")])
         return [float(v) for v in speeds], [float(v) for v in torques]
 
     def _observe(self, motion: tuple[list[float], list[float]] | None = None) -> np.ndarray:

@@ -61,6 +61,23 @@ def test_a_seed_and_the_same_actions_give_the_same_episode(make):
     assert np.abs(first[-1] - first[0]).max() > 0.1  # the fingers moved, the ball with them
 
 
+def test_a_reset_and_a_step_are_one_message_each(make):
+    """The scene is restored, the object drawn and the motors read in one text (and one
+    answer); a step is one text too, and the episode goes on as after any reset."""
+    env = make("VirtualProsthetics/Grasp-v0", hand="edged")
+    env.reset(seed=1)
+    socket = env.unwrapped.session.connection._ws
+    sent: list[str] = []
+    send = socket.send
+    socket.send = lambda text: sent.append(text) or send(text)
+    observation, info = env.reset(seed=2)
+    assert len(sent) == 1 and "restoreState" in sent[0] and "getTorques" in sent[0]
+    assert info["massKg"] != pytest.approx(env.unwrapped.mass)  # drawn for this seed
+    env.step(env.action_space.sample())
+    assert len(sent) == 2 and '"step"' in sent[1]
+    assert env.observation_space.contains(observation)
+
+
 def scripted(env) -> tuple[float, dict]:
     """Run an episode with the tasks' baseline as actions; its total reward, last info."""
     inner = env.unwrapped

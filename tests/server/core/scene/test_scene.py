@@ -122,6 +122,18 @@ def test_a_snapshot_gives_the_forces_the_frames_told_so_a_newcomer_sees_a_restin
     assert forces == {k: v for k, v in told.items() if v} and forces["b"] > 0
 
 
+def test_a_snapshot_gives_the_watched_sensors_readings_of_the_world_now(scene):
+    """After a restore the snapshot is all a client has of the new world: a watched
+    sensor's reading comes with it, not only with the next tick's frame."""
+    Box(scene, "roof", 4, 0.1, 4).set_position((0, 3, 0))
+    sensor = Sensor(scene, "s")
+    assert "sensors" not in scene.snapshot()  # watched by nobody
+    scene.watches.add("s", "c1")
+    assert scene.snapshot()["sensors"]["s"]["distance"] == pytest.approx(2.95, abs=0.01)
+    sensor.set_position((0, 1, 0))
+    assert scene.snapshot()["sensors"]["s"]["distance"] == pytest.approx(1.95, abs=0.01)
+
+
 @pytest.mark.parametrize("make", [
     lambda scene: EdgedFinger(scene, "flat", 1, 0, 0.3),   # no thickness
     lambda scene: EdgedFinger(scene, "flat", 1, 0.3, 0),   # no width
