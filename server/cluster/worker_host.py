@@ -70,8 +70,10 @@ class HostedScene:
         self.heard[attachment] = time.monotonic()
         self.connections.setdefault(attachment, set())
         self.alone_since = None
+        joining = not any(self.connections.values())  # its client joins next: counted now
         return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
-                "saving": self.saving, "asleep": self.asleep, "scenes": len(self.host.scenes),
+                "saving": self.saving, "asleep": self.asleep,
+                "scenes": self.host.attended() + joining,
                 "room": self.host.room()}
 
     def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
@@ -170,7 +172,14 @@ class WorkerHost:
 
     async def _load(self, value: Any, reply: Reply | None) -> None:
         if reply is not None:
-            await reply.send((self.name, len(self.scenes), self.room()))
+            await reply.send((self.name, self.attended(), self.room()))
+
+    def attended(self) -> int:
+        """How busy this worker is, as gateways place scenes by it: its scenes with a client.
+        A scene its clients have left stops once idle; counted, it sent the next scenes
+        elsewhere (Gymnasium's vector environment makes one environment to read its spaces
+        and closes it: both of the vector's scenes then went to the other worker)."""
+        return sum(1 for hosted in self.scenes.values() if any(hosted.connections.values()))
 
     def room(self) -> NoRoom | None:
         """Why this worker takes no more scenes (None: it has room). Besides the ``scenes``

@@ -137,3 +137,30 @@ def test_an_rgb_array_render_is_the_trial_from_the_scenes_camera(make):
     blue = (frame[:, :, 2].astype(int) - frame[:, :, 0] > 60).mean()  # the steel-blue cube
     grey = ((np.ptp(frame, axis=2) < 12) & (frame[:, :, 0] > 90) & (frame[:, :, 0] < 230)).mean()  # the hand
     assert blue > 0.002 and grey > 0.02
+
+
+def test_a_vector_of_environments_on_a_cluster_spreads_its_scenes_over_the_workers(tmp_path):
+    """Gymnasium's async vector of two environments through one gateway: each its scene,
+    each scene on a worker of its own, stepping and resetting there."""
+    from urllib.parse import parse_qs, urlparse
+
+    from tests.server.cluster.conftest import Cluster, holder, running_bus
+    with running_bus(tmp_path) as url:
+        cluster = Cluster(url, tmp_path, gateways=1)
+        try:
+            vector = gymnasium.make_vec("VirtualProsthetics/Grasp-v0", num_envs=2,
+                                        vectorization_mode="async", url=cluster.gateways[0].ws)
+            try:
+                observations, _ = vector.reset(seed=[4, 4])
+                scenes = [parse_qs(urlparse(u).query)["scene"][0] for u in vector.get_attr("viewer_url")]
+                assert sorted(holder(url, scene) for scene in scenes) == ["wa", "wb"]
+                actions = np.zeros((20, *vector.action_space.shape), dtype=np.float32)
+                for action in actions:
+                    stepped = vector.step(action)[0]
+                assert np.array_equal(stepped[0], stepped[1])  # the same seed each: the same world
+                assert np.abs(stepped[0] - observations[0]).max() > 0.01  # (the wrist moved)
+                assert np.array_equal(vector.reset(seed=[4, 4])[0], observations)  # restored there
+            finally:
+                vector.close()
+        finally:
+            cluster.close()
