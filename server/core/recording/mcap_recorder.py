@@ -28,6 +28,7 @@ time, and says which.
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass
 from typing import IO, Any, Mapping
 
@@ -45,15 +46,18 @@ CHUNK_BYTES = 256 * 1024  # MCAP chunk size: the most a stop at max_bytes can ru
 PROFILE = "virtual-prosthetics"
 
 def _standalone(root: dict[str, Any]) -> dict[str, Any]:
-    """``root`` with the protocol's definitions it refers to (and only those)."""
+    """``root`` with the protocol's definitions it refers to (and only those), whole or in
+    part (``#/$defs/changes/properties/angles`` needs ``changes``)."""
     defs, wanted, todo = schema()["$defs"], {}, [root]
     while todo:
-        text = json.dumps(todo.pop())
-        for name in defs:
-            if f'"#/$defs/{name}"' in text and name not in wanted:
+        for name in _REFERRED.findall(json.dumps(todo.pop())):
+            if name not in wanted:
                 wanted[name] = defs[name]
                 todo.append(defs[name])
     return {**root, "$defs": wanted}
+
+
+_REFERRED = re.compile(r'"#/\$defs/([^"/]+)')
 
 
 SCHEMAS = {  # each channel's messages, as Foxglove and any JSON Schema reader read them

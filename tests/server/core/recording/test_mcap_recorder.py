@@ -48,3 +48,30 @@ def test_a_limit_stops_the_recording_cleanly_and_says_which(scene, limits, words
     assert 0 < len(ticks) < 60 * 60  # stopped early, and what it holds reads whole
     if "seconds" in words:
         assert (ticks[-1] - WALL) / 1e9 == pytest.approx(2, abs=TICK)
+
+
+def test_every_channels_schema_stands_alone_and_validates_what_was_recorded(scene):
+    """A tool builds a validator from a channel's schema in the file: every reference in
+    it resolves there (`#/$defs/changes/properties/angles` once pointed at nothing: every
+    tick message raised PointerToNowhere), and the messages recorded match it."""
+    import jsonschema
+
+    scene.set_physics("dynamic")
+    _, messages = _recorded(scene, RecordingLimits(1 << 30, 3600), 1)
+    reader = make_reader(io.BytesIO(_file(scene)))
+    schemas = {c.topic: json.loads(s.data) for s, c, _ in reader.iter_messages()}
+    assert {"/vp/ticks", "/vp/snapshot"} <= schemas.keys()
+    checked = 0
+    for topic, _, message in messages:
+        if topic in ("/vp/ticks", "/vp/snapshot"):
+            jsonschema.Draft202012Validator(schemas[topic]).validate(message)
+            checked += 1
+    assert checked > 60
+
+
+def _file(scene) -> bytes:
+    stream = io.BytesIO()
+    recorder = Recorder(stream, scene, WALL, RecordingLimits(1 << 30, 3600))
+    recorder.tick(scene.tick(TICK), scene)
+    recorder.finish("stopped", scene)
+    return stream.getvalue()
