@@ -227,10 +227,9 @@ class Session:
         self.call(SCENE_ID, "setPhysics", (mode, wire) if wire else (mode,))
 
     def get_physics(self) -> dict[str, Any]:
-        """The scene's physics: ``{"mode", "gravity", "substeps", …}`` (wire names)."""
-        self.connection.raise_deferred()
-        with self.lock:
-            return dict(self.mirror.physics)
+        """The scene's physics: ``{"mode", "gravity", "substeps", …}`` (wire names), once
+        every earlier write has been answered (a ``set_physics`` just sent included)."""
+        return self.read(lambda mirror: dict(mirror.physics))
 
     def get_time(self) -> float:
         """Manual ``getTime()``: the server's scene time now (a scene this client paused:

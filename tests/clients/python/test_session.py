@@ -82,6 +82,14 @@ def _eventually(check, seconds=5.0):
         time.sleep(0.02)
 
 
+def test_the_physics_read_right_after_it_was_set_is_what_was_set(scene):
+    """Found: ``get_physics()`` right after ``set_physics()`` gave the old mode and gravity."""
+    vp.set_physics("dynamic", gravity=3.5, solver_iterations=70)
+    assert vp.get_physics()["mode"] == "dynamic" and vp.get_physics()["gravity"] == 3.5
+    vp.set_physics("kinematic")
+    assert vp.get_physics()["mode"] == "kinematic"
+
+
 def test_a_script_switches_the_scene_to_dynamic_and_things_fall_and_are_felt(scene):
     pad = vp.Box(2, 0.2, 2).set_static()
     sensor = vp.Sensor().watch()
