@@ -47,6 +47,11 @@ async function refresh() {
 	}
 }
 
+// The commands shown name this server: the address the page came from (the README's
+// 8000 is only the default port)
+for (const url of document.querySelectorAll('.ws-url')) {
+	url.textContent = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}`;
+}
 passTokenOn(document);
 refresh().catch(console.error);
 setInterval(() => refresh().catch(console.error), REFRESH);
