@@ -59,7 +59,12 @@ export async function connect({ url, scene: name = 'default', role = 'controller
 	session.meshFiles = meshFilesFor(session.http, key);
 	setCurrentSession(session);
 	keepSyncing(session);
-	if (!IN_BROWSER) closeOnSignals();
+	if (!IN_BROWSER) {
+		closeOnSignals();
+		// a script in a terminal says where it runs and where to watch it (a page shows it)
+		console.log(`Virtual Prosthetics: scene ${name} on ${server}; watch at `
+			+ `${session.http.replace(/\/+$/, '')}/view?scene=${encodeURIComponent(name)}`);
+	}
 	return session;
 }
 

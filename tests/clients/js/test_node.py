@@ -51,6 +51,8 @@ def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
         node.kill()
     assert node.returncode == 0, err
     assert "Virtual Prosthetics 1.0" in out
+    # found: only the banner; it never said which scene it joined or where to watch
+    assert f"scene {scene_name} on {server.ws}; watch at {server.http}/view?scene={scene_name}" in out
     deadline = time.monotonic() + WAIT_SECONDS
     while server.robots(scene_name) and time.monotonic() < deadline:
         time.sleep(0.1)
