@@ -32,7 +32,7 @@ RUN apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends nodejs npm
 USER vp
 COPY --chown=vp:vp Makefile ./
-COPY --chown=vp:vp clients/js/package.json clients/js/package-lock.json clients/js/
+COPY --chown=vp:vp clients/js/package.json clients/js/package-lock.json clients/js/.npmrc clients/js/
 RUN make js-packages && rm -rf /home/vp/.npm
 
 FROM system AS server

@@ -25,6 +25,7 @@ from .cors import PageOrigins
 from .connection_limits import LoopErrorLog
 from .hub import DEFAULT_SCENE, Hubs, SceneSetup
 from .offload import CallerGone
+from .api_docs import mount_api_docs
 from .pages import mount_pages
 from .state_dir import StateDir
 
@@ -79,7 +80,8 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
         if temporary:
             shutil.rmtree(uploads, ignore_errors=True)
 
-    app = FastAPI(title="Virtual Prosthetics", version=rest.VERSION, lifespan=lifespan)
+    app = FastAPI(title="Virtual Prosthetics", version=rest.VERSION, lifespan=lifespan,
+                  docs_url=None, redoc_url=None)  # api_docs: offline
     app.state.hubs = hubs
     app.state.unsaved = []  # scenes whose last changes could not be saved (the exit code)
     app.state.access = access
@@ -92,6 +94,7 @@ def create_app(tick_rate: float = 60.0, setups: Mapping[str, SceneSetup] | None 
     app.include_router(socket.router)
     _answer_errors(app)
     mount_pages(app)
+    mount_api_docs(app)
     app.add_middleware(PageOrigins, policy=access)
     app.add_middleware(HostCheck, policy=access)  # outermost: a wrong Host gets nothing
     return app

@@ -20,7 +20,8 @@ log = logging.getLogger(__name__)
 
 WEB = Path(__file__).resolve().parents[2] / "web"
 CLIENT = WEB.parent / "clients" / "js"
-VENDOR = {name: CLIENT / "node_modules" / name for name in ("three", "lil-gui", "uplot")}
+VENDOR = {name: CLIENT / "node_modules" / name
+          for name in ("three", "lil-gui", "uplot", "swagger-ui-dist", "redoc")}
 
 
 def mount_pages(app: FastAPI) -> None:
