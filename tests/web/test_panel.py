@@ -55,16 +55,36 @@ def test_a_controller_moves_motors_and_every_viewer_follows(browser, pages, serv
     assert viewer.inner_text("#gesture") == "setAngles( 0, 0.5 );"
 
 
-def test_a_robot_without_addgui_has_no_panel(browser, pages, server, scene_name):
+TITLES = "() => [...document.querySelectorAll('.lil-gui.lil-root > .lil-title')].map((e) => e.textContent)"
+
+
+def test_a_controller_view_has_a_panel_for_every_robot_a_viewer_for_addguis(browser, pages, server,
+                                                                           scene_name):
+    """Found: `/view?scene=default&role=controller` showed no motor panels (no demo robot
+    called addGUI). A controller's view has one for every robot with motors, in one column,
+    closed when there are more than two; a viewer's only for robots that called addGUI."""
     with vp.Session(server.ws, scene=scene_name) as client:
-        robot = vp.Robot(scene=client)
-        robot.attach_chain(vp.MotorZ(scene=client))
+        robots = []
+        for k in range(3):
+            robot = vp.Robot(scene=client)
+            robot.attach_chain(vp.MotorZ(scene=client).set_name(f"m{k}"))
+            robots.append(robot)
+        vp.Robot(scene=client)  # no motors: no panel
         client.sync()
+        viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+        wait_until(viewer, "(id) => VP.objects.has(id) && VP.drawn()", robots[-1].id)
+        assert viewer.evaluate("() => document.querySelectorAll('.lil-gui').length") == 0
         page = open_viewer(browser, pages, server, f"scene={scene_name}&role=controller")
-        wait_until(page, "(id) => VP.objects.has(id) && VP.drawn()", robot.id)
-        assert page.evaluate("() => document.querySelectorAll('.lil-gui').length") == 0
-        robot.add_gui("Late")
-        wait_until(page, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Late'")
+        wait_until(page, f"() => ({TITLES})().length === 3")
+        assert sorted(page.evaluate(TITLES)) == sorted(r.id for r in robots)
+        assert page.evaluate("() => [...document.querySelectorAll('#motor-panels > .lil-gui')]"
+                             ".every((gui) => gui.classList.contains('lil-closed'))")
+        tops = page.evaluate("() => [...document.querySelectorAll('#motor-panels > .lil-gui')]"
+                             ".map((gui) => gui.getBoundingClientRect().top)")
+        assert len(set(tops)) == 3  # stacked, not over each other
+        robots[0].add_gui("Late")
+        wait_until(viewer, "() => document.querySelector('.lil-gui .lil-title')?.textContent === 'Late'")
+        wait_until(page, f"() => ({TITLES})().includes('Late')")
 
 
 def test_a_controller_page_cannot_steer_a_robot_not_shared(browser, pages, server, scene_name):

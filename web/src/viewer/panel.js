@@ -1,12 +1,16 @@
 // Motor panels: a robot whose script called addGUI(title) gets a lil-gui panel with one
-// slider per motor (its name, else its index). Where the page may steer the robot (a
-// controller, on its own robot or a shared one) the sliders move the motors on the server,
-// so every viewer sees it; elsewhere the panel follows the frames, read-only.
-// "Get gesture" shows the setAngles(...) call for the current pose.
+// slider per motor (its name, else its index); in a controller's view every robot with
+// motors does (titled by its name, else its id), the panels closed when there are more
+// than OPEN_AT_MOST. Where the page may steer the robot (a controller, on its own robot or
+// a shared one) the sliders move the motors on the server, so every viewer sees it;
+// elsewhere the panel follows the frames, read-only. The panels stack in one column (lil-gui
+// would place each at the same corner, over each other). "Get gesture" shows the
+// setAngles(...) call for the current pose.
 
 import GUI from 'lil-gui';
 
 const UNLIMITED = Math.PI;   // the slider range of an unlimited motor
+const OPEN_AT_MOST = 2;      // panels shown open; more are closed (a title bar each)
 
 function limit(value, fallback) {
 	return typeof value === 'number' ? value : fallback;
@@ -21,8 +25,12 @@ export class MotorPanels {
 	// editable(robotNode): may this page steer that robot? guiFor(robotId): a panel the
 	// page already made for that robot (the JavaScript client's robot.gui), filled here
 	// instead of a new one.
-	constructor(tree, { editable, setAngle, showGesture, guiFor = () => null }) {
+	// every: a panel for every robot with motors (a controller's view), not only addGUI's;
+	// container: where the panels stack.
+	constructor(tree, { editable, setAngle, showGesture, guiFor = () => null, every = false, container }) {
 		this.tree = tree;
+		this.every = every;
+		this.container = container;
 		this.guiFor = guiFor;
 		this.editable = editable;
 		this.setAngle = setAngle;
@@ -55,17 +63,22 @@ export class MotorPanels {
 			else gui.destroy();
 		}
 		this.panels.clear();
-		for (const object of this.tree.objects.values()) {
-			const node = object.userData.node;
-			if (node.type !== 'Slot' && node.gui != null && !node.parent) this.build(object);
-		}
+		const robots = [...this.tree.objects.values()].filter((object) => this.hasPanel(object.userData.node));
+		for (const robot of robots) this.build(robot, robots.length > OPEN_AT_MOST);
 	}
 
-	build(robot) {
-		const title = robot.userData.node.gui || 'Robot';
+	hasPanel(node) {
+		if (node.type === 'Slot' || node.parent) return false;
+		return node.gui != null || (this.every && (node.motors?.length ?? 0) > 0);
+	}
+
+	build(robot, closed) {
+		const node = robot.userData.node;
+		const title = node.gui || node.name || robot.name;
 		const owned = this.guiFor(robot.name);
-		const gui = owned ?? new GUI({ title });
+		const gui = owned ?? new GUI({ title, container: this.container });
 		if (owned) gui.title(title);
+		else if (closed) gui.close();
 		const values = {}, sliders = new Map();
 		const editable = this.editable(robot.userData.node);
 		motorsOf(robot, this.tree.objects).forEach((motor, index) => {

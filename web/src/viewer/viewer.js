@@ -77,6 +77,8 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 			callMessage(motorId, 'setAngle', [angle])).catch(() => {}),
 		showGesture: (text) => { gestureBox.textContent = text; gestureBox.hidden = false; },
 		guiFor,
+		every: options.role === 'controller',
+		container: element('motor-panels', 'div', 'motor-panels'),
 	});
 
 	// what the viewer itself put in the scene is not a page's mesh to share (meshes.js)
