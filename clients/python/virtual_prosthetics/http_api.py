@@ -10,13 +10,13 @@ from urllib.parse import quote
 
 from .errors import ConnectionLost, ServerError, Timeout
 from .session import Session
+from .viewer_cell import http_of
 from .waiting import bound
 
 
 def http_url(session: Session) -> str:
     """The session's server as http(s)://host:port."""
-    base = session.url
-    return "https" + base[3:] if base.startswith("wss") else "http" + base[2:]
+    return http_of(session.url)
 
 
 def scene_path(session: Session, *names: str) -> str:

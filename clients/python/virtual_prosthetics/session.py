@@ -14,6 +14,7 @@ from .codec import encode_arg
 from .connection import Connection
 from .errors import ConnectionLost, ServerError, Timeout, VPError
 from .mirror import Mirror
+from .viewer_cell import ViewerCell, viewer_url
 from .waiting import bound, wait_seconds
 from .wire_messages import Batch, Call, Create, Delete
 
@@ -329,6 +330,15 @@ class Session:
     def forget_state(self, state: str) -> None:
         """``forgetState``: the server frees a saved state."""
         self.call(SCENE_ID, "forgetState", (state,))
+
+    def viewer_url(self, role: str = "viewer") -> str:
+        """Where a browser watches this scene (``role="controller"``: with motor panels)."""
+        return viewer_url(self.url, self.name, role, self.token)
+
+    def show(self, width: int = 800, height: int = 500, role: str = "viewer") -> ViewerCell:
+        """The live viewer of this scene, for a Jupyter cell: ``session.show()`` as a cell's
+        last line draws it there (outside a notebook it prints the viewer's address)."""
+        return ViewerCell(self.viewer_url(role), width, height)
 
     def close(self) -> None:
         """Disconnect; the server deletes what this client made."""

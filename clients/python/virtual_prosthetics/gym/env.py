@@ -16,7 +16,7 @@ from typing import Any, Callable, Mapping
 import gymnasium
 import numpy as np
 
-from ..http_api import http_url, request, scene_path
+from ..http_api import request, scene_path
 from ..runtime import connect
 from ..tasks.controller import PHASES, prepare
 from ..tasks.grasp import FRICTION_SPREAD, MASS_SPREAD, PATTERNS, SOLVER_ITERATIONS
@@ -92,7 +92,7 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
     @property
     def viewer_url(self) -> str:
         """Where a browser watches this environment's scene."""
-        return f"{http_url(self.session)}/view?scene={self.session.name}"
+        return self.session.viewer_url()
 
     def _lay_out(self) -> Trial:
         """The trial every episode starts from, kept on the server (``saveState``)."""
