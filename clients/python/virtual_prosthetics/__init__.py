@@ -20,6 +20,7 @@ from .recordings import Recording, start_recording, stop_recording
 from .runtime import connect, get_time, run, set_animation
 from .sensor import Sensor
 from .session import Session, current_session
+from .viewer_cell import ViewerCell
 from .uploads import load_robot, upload_asset
 
 # The names of 0.x, when a session was called a scene: scripts that use them keep working.
@@ -79,6 +80,11 @@ def forget_state(state: str) -> None:
     current_session().forget_state(state)
 
 
+def show(width: int = 800, height: int = 500, role: str = "viewer") -> ViewerCell:
+    """The current scene's live viewer for a notebook cell (:meth:`Session.show`)."""
+    return current_session().show(width, height, role)
+
+
 def set_camera_target(*target: float) -> None:
     """Manual ``setCameraTarget(x, y, z)``: every viewer's camera turns towards it."""
     current_session().set_camera_target(*target)
@@ -90,5 +96,5 @@ __all__ = [
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor", "Slider",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
     "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset", "ImportedRobot", "load_robot",
-    "set_physics", "get_physics", "pause", "resume", "step", "save_state", "restore_state", "forget_state", "Recording", "start_recording", "stop_recording",
+    "set_physics", "get_physics", "pause", "resume", "step", "save_state", "restore_state", "forget_state", "show", "Recording", "start_recording", "stop_recording",
 ]

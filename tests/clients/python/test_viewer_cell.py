@@ -13,7 +13,7 @@ def test_a_cell_shows_the_scenes_live_viewer(scene, server, browser):  # noqa: F
     robot.attach_chain(vp.MotorZ(), vp.EdgedFinger())
     robot.add_gui("Arm")
     scene.sync()
-    cell = scene.show(width=640, height=400, role="controller")
+    cell = vp.show(width=640, height=400, role="controller")
     assert repr(cell) == f"watch at {server.http}/view?scene={scene.name}&role=controller"
     page = browser.new_page()
     try:
