@@ -75,6 +75,30 @@ def test_the_camera_follows_the_script_and_still_orbits(browser, pages, server, 
     wait_until(page, "() => Math.abs(VP.camera.position.x - 1) > 0.1")  # a person orbited
 
 
+def test_frame_all_brings_what_the_scene_holds_into_view(browser, pages, server, scene,
+                                                         scene_name):
+    """Found: a task's scene opened cropped (the hand half out of view, a wall in front).
+    "Frame all" (the button, or F) fits everything in, centred, from where the camera looks."""
+    far = vp.Box(1, 1, 1, "red")
+    far.set_position(25, 0.5, -12)  # out of the default camera's view
+    vp.Ball(0.3).set_position(-2, 0.3, 0)
+    scene.sync()
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(page, "(id) => VP.objects.has(id) && VP.drawn()", far.id)
+    assert Picture(page.screenshot()).share(lambda c: reddish(c)) == 0
+    page.keyboard.press("f")
+    wait_until(page, "() => VP.drawn()")
+    target = page.evaluate("() => VP.camera.position.toArray()")
+    red = Picture(page.screenshot()).share(lambda c: reddish(c))
+    assert red > 0.0005  # the far box is in the picture now
+    vp.set_camera_position(4, 4, 7.5)  # the scene's camera moves every viewer again
+    vp.set_camera_position(*DEFAULT_CAMERA[0])
+    wait_until(page, "() => Math.abs(VP.camera.position.z - 7) < 1e-9")
+    page.get_by_role("button", name="Frame all").click()
+    wait_until(page, "() => VP.drawn()")
+    assert page.evaluate("() => VP.camera.position.toArray()") == pytest.approx(target, abs=1e-6)
+
+
 def test_viewers_come_back_after_a_server_restart(browser, pages):
     own = start_server("--no-demo")
     try:

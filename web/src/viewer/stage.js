@@ -11,6 +11,7 @@ import { Quality, softwareWebGL } from './quality.js';
 import { setMeshDetail } from './meshes.js';
 
 const BACKGROUND = 'gainsboro';
+const FRAME_MARGIN = 1.15;   // frame(): room around what is framed
 
 export class Stage {
 	constructor(container = document.body) {
@@ -102,6 +103,26 @@ export class Stage {
 		this.camera.lookAt(this.controls.target);
 		this.controls.update();
 		this.invalidate();
+	}
+
+	// Frame all: the camera backs off along its line of sight, or comes closer, until
+	// ``object`` (what the scene holds) fills the view, centred; a page's own view of it,
+	// not the scene's camera (the next setCameraPosition moves it again).
+	frame(object) {
+		const box = new THREE.Box3().setFromObject(object);
+		if (box.isEmpty()) return false;
+		const sphere = box.getBoundingSphere(new THREE.Sphere());
+		const { camera, controls } = this;
+		const half = THREE.MathUtils.degToRad(camera.fov / 2);
+		const fitting = Math.min(half, Math.atan(Math.tan(half) * camera.aspect));  // the narrower
+		const distance = Math.max(sphere.radius, 0.01) / Math.sin(fitting) * FRAME_MARGIN;
+		const towards = camera.position.clone().sub(controls.target).normalize();
+		controls.target.copy(sphere.center);
+		camera.position.copy(sphere.center).addScaledVector(towards, distance);
+		camera.lookAt(controls.target);
+		controls.update();
+		this.invalidate();
+		return true;
 	}
 
 	draw(time) {

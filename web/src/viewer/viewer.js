@@ -68,6 +68,15 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		const plotButton = Object.assign(element('plot-button', 'button', 'plot-button'), { textContent: 'Plots' });
 		plotButton.addEventListener('click', () => plots.open());
 	}
+	const frameButton = Object.assign(element('frame-button', 'button', 'frame-button'),
+		{ textContent: 'Frame all', title: 'Frame what the scene holds (F)' });
+	const frameAll = () => stage.frame(tree.root);
+	frameButton.addEventListener('click', frameAll);
+	window.addEventListener('keydown', (event) => {
+		const typing = event.target instanceof HTMLInputElement || event.target instanceof HTMLTextAreaElement;
+		if (!typing && !event.ctrlKey && !event.metaKey && !event.altKey && event.key.toLowerCase() === 'f') frameAll();
+	});
+	Object.assign(view.hook, { frameAll });
 	const logo = new Logo(stage.scene);
 	const handlers = makeHandlers(view);
 	const panels = new MotorPanels(tree, {
