@@ -272,7 +272,6 @@ class Dynamics:
             solid = _SOLIDS[key] = (volume(geometry), centroid(geometry))
         return solid
 
-
     def _load_inertia(self, tree: Articulation) -> float:
         """A part-less base's inertia, in Bullet's units: that of its links' masses about
         it at rest. The mount holds the base's turn only through the solver, and a base of

@@ -170,14 +170,14 @@ class SceneBodies:
         """Every tree built again, at rest where it is, in a world of ``physics``."""
         staged = self.physics.dynamics is not None
         # trees not built yet are built once, in the new world, not in this one and moved
-        # (an import makes every tree anew: that halved the bodies a restore builds)
+        # (an import makes every tree anew: a restore built each three times, now once)
         self.sync(new_trees=LATER)
         self._mounts.clear()
         self.physics.rebuild(physics)
         self.tracker.crowding = not physics.dynamic
         self.tracker.made_again()
         self._unposed.update(self.physics.roots())
-        self.sync(new_trees=STAGED if staged else ALL)  # as this world would have built them
+        self.sync(new_trees=STAGED if staged else ALL)  # as the old world would have built them
         self._targets_due = physics.dynamic
         self._stirred = self._changed = True
 
