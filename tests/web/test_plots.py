@@ -67,6 +67,30 @@ def test_a_sensors_distance_and_a_motors_angle_are_plotted_live_and_given_as_csv
     (tmp_path / "plots.png").write_bytes(page.screenshot())
 
 
+def test_series_are_listed_by_name_and_a_filter_box_narrows_them(browser, pages, server, scene,
+                                                                 scene_name):
+    """Found: 124 unlabelled checkboxes named by id (`demo.EdgedHand-left/11 angle`), no search."""
+    sensor, box, motor = _sensor_over_a_moving_box(scene)
+    robot = vp.Robot()
+    robot.attach_chain(vp.MotorZ(-1, 1).set_name("shoulder"), vp.EdgedFinger(), vp.MotorX(-1, 1))
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    page.click("#plot-button")
+    for k in range(10):
+        robot.set_angles(k / 20, -k / 20)
+        motor.set_angle(k / 20)
+        scene.sync()
+        time.sleep(1 / 30)
+    labels = "() => [...document.querySelectorAll('#plots .series label')].map((l) => l.textContent.trim())"
+    named = [f"{robot.id} · shoulder angle", f"{robot.id} · 1 angle"]
+    wait_until(page, f"(named) => named.every((n) => ({labels})().includes(n))", named)
+    other = page.evaluate("(id) => VP.objects.get(id).parent.name", motor.id)  # its robot
+    assert f"{other} · 0 angle" in page.evaluate(labels)  # no name: its index
+    page.fill("#plots .series-filter", "shoulder")
+    wait_until(page, f"() => ({labels})().length === 1")
+    page.locator("#plots .series input").first.check()
+    wait_until(page, "() => document.querySelector('#plots .u-legend')?.textContent.includes('shoulder')")
+
+
 def test_over_a_recording_the_chart_follows_the_player(browser, pages, server, scene, scene_name):
     sensor, box, motor = _sensor_over_a_moving_box(scene)
     rec = vp.start_recording()

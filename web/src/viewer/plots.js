@@ -1,6 +1,7 @@
 // Plots of what the frames carry, drawn with uPlot (npm: made for streaming time series):
 // every watched sensor's distance, touch and force, and every motor's angle, any of them
-// on one chart against the scene's time. Live, the chart shows the last WINDOW seconds;
+// on one chart against the scene's time, listed by name ("hand · thumb angle") with a filter
+// box. Live, the chart shows the last WINDOW seconds;
 // over a recording (cursor(): the player's time) it shows what was played, with a line
 // where the player stands. CSV gives the chart's time window as a file.
 
@@ -17,9 +18,11 @@ const STYLESHEET = '/vendor/uplot/dist/uPlot.min.css';
 export class Plots {
 	// motorsOf(robotId): its motor ids in order; cursor(): the player's scene time (a
 	// recording) or null; span(): the recording's [start, end] in scene time (null live)
-	// heat(on): the heat map on the robots (heat.js) on or off
-	constructor({ motorsOf, cursor = () => null, span = () => null, heat = () => {} }) {
+	// heat(on): the heat map on the robots (heat.js) on or off; named(id): what a person
+	// calls a sensor or motor ("robot · motor", by names where they have them)
+	constructor({ motorsOf, cursor = () => null, span = () => null, heat = () => {}, named = (id) => id }) {
 		this.motorsOf = motorsOf;
+		this.named = named;
 		this.heat = heat;
 		this.cursor = cursor;
 		this.span = span;
@@ -66,6 +69,9 @@ export class Plots {
 			document.head.append(Object.assign(document.createElement('link'), { rel: 'stylesheet', href: STYLESHEET }));
 		}
 		this.element = Object.assign(document.createElement('div'), { id: 'plots', className: 'plots' });
+		this.filter = Object.assign(document.createElement('input'), {
+			type: 'search', className: 'series-filter', placeholder: 'filter: thumb, angle, force…' });
+		this.filter.addEventListener('input', () => this.listSeries(true));
 		this.list = Object.assign(document.createElement('div'), { className: 'series' });
 		this.chart = document.createElement('div');
 		const csv = Object.assign(document.createElement('button'), { textContent: 'CSV', title: 'the chart\'s time window as a CSV file' });
@@ -74,7 +80,7 @@ export class Plots {
 		heat.addEventListener('change', () => this.heat(heat.checked));
 		const heatLabel = Object.assign(document.createElement('label'), { title: 'parts glow red with the force on them, sensor pads with their touch' });
 		heatLabel.append(heat, ' heat map on the robots');
-		this.element.append(this.list, this.chart, csv, heatLabel);
+		this.element.append(this.filter, this.list, this.chart, csv, heatLabel);
 		document.body.append(this.element);
 		setInterval(() => this.draw(), DRAW_EVERY);
 		this.rebuild();
@@ -91,7 +97,7 @@ export class Plots {
 		this.plot = new uPlot({
 			width: 460, height: 220, legend: { live: false },
 			scales: { x: { time: false, range: (u, min, max) => this.span() ?? [min, max] } },
-			series: [{ label: 's' }, ...this.chosen.map((label, k) => ({ label, stroke: COLORS[k % COLORS.length], spanGaps: true }))],
+			series: [{ label: 's' }, ...this.chosen.map((name, k) => ({ label: this.label(name), stroke: COLORS[k % COLORS.length], spanGaps: true }))],
 			axes: [{ label: 'scene time (s)' }, {}],
 			hooks: { draw: [(u) => this.drawCursor(u)] },
 		}, this.data(), this.chart);
@@ -107,13 +113,23 @@ export class Plots {
 			this.chosen = [first];
 			return this.rebuild();
 		}
-		this.list.replaceChildren(...[...this.series.keys()].sort().map((name) => {
+		const wanted = (this.filter?.value ?? '').trim().toLowerCase();
+		const shown = [...this.series.keys()].map((name) => [this.label(name), name])
+			.filter(([label]) => label.toLowerCase().includes(wanted))
+			.sort(([a], [b]) => a.localeCompare(b, undefined, { numeric: true }));
+		this.list.replaceChildren(...shown.map(([text, name]) => {
 			const box = Object.assign(document.createElement('input'), { type: 'checkbox', checked: this.chosen.includes(name) });
 			box.addEventListener('change', () => this.choose(name, box.checked));
-			const label = document.createElement('label');
-			label.append(box, ` ${name}`);
+			const label = Object.assign(document.createElement('label'), { title: name });
+			label.append(box, ` ${text}`);
 			return label;
 		}));
+	}
+
+	// A series' name as a person reads it: "<what> <field>", the id named (named()).
+	label(name) {
+		const cut = name.lastIndexOf(' ');
+		return `${this.named(name.slice(0, cut))} ${name.slice(cut + 1)}`;
 	}
 
 	// [times, ...values] for uPlot: every time any chosen series has, in order, within the window.

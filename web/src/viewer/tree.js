@@ -21,6 +21,24 @@ export class SceneTree {
 
 	on(event, listener) { this.listeners[event].push(listener); }
 
+	// What a person calls a node: "robot · motor" below a robot (each by its name, else the
+	// robot's id and the motor's index; a name shared by several motors with the index too),
+	// else its name or id.
+	named(id) {
+		const node = this.objects.get(id)?.userData.node;
+		if (!node) return id;
+		let top = node;
+		while (top.parent && this.objects.has(top.parent)) top = this.objects.get(top.parent).userData.node;
+		if (top === node) return node.name ?? id;
+		const index = top.motors?.indexOf(id) ?? -1;
+		// a name other motors of the robot share too (a hand's five "distal") takes the index
+		const twins = (top.motors ?? []).filter((m) => this.objects.get(m)?.userData.node.name === node.name);
+		const own = node.name === undefined || node.name === null
+			? (index >= 0 ? String(index) : id.slice(id.lastIndexOf('/') + 1))
+			: twins.length > 1 && index >= 0 ? `${node.name} #${index}` : node.name;
+		return `${top.name ?? top.id} · ${own}`;
+	}
+
 	emit(event, ...args) { for (const listener of this.listeners[event]) listener(...args); }
 
 	// Forget everything (a new snapshot follows); listeners hear of every removal.

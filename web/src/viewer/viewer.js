@@ -62,7 +62,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 	};
 	const heat = new Heat(tree, () => stage.invalidate());
 	const plots = new Plots({ motorsOf: (robot) => tree.objects.get(robot)?.userData.node.motors, cursor, span,
-		heat: (on) => heat.toggle(on) });
+		heat: (on) => heat.toggle(on), named: (id) => tree.named(id) });
 	Object.assign(view.hook, { plots, heat });
 	if (plotting) {
 		const plotButton = Object.assign(element('plot-button', 'button', 'plot-button'), { textContent: 'Plots' });
