@@ -111,6 +111,10 @@ def test_over_a_recording_the_chart_follows_the_player(browser, pages, server, s
     assert start <= times[0] and times[-1] <= cursor + 1e-9  # (the cursor is a sum: rounding)
     page.evaluate("(t) => VP.replay.seek(t)", 0.2)
     wait_until(page, "(t) => Math.abs(VP.plots.cursor() - VP.plots.span()[0] - t) < 1e-9", 0.2)
+    # found: the axis showed scene time (474-485 s) while the timeline showed 0.00-11.72 s
+    shown = page.evaluate("([a, b]) => VP.plots.plot.axes[0].values(VP.plots.plot, [a, b])", [start, end])
+    assert shown == pytest.approx([0, round(end - start, 3)])  # what the axis writes at its ends
+    assert page.evaluate("() => VP.plots.plot.axes[0].label") == "time in the recording (s)"
 
 
 def test_the_heat_map_makes_a_pressed_part_glow_and_only_it(browser, pages, server, scene, scene_name):

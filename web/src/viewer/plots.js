@@ -98,10 +98,18 @@ export class Plots {
 			width: 460, height: 220, legend: { live: false },
 			scales: { x: { time: false, range: (u, min, max) => this.span() ?? [min, max] } },
 			series: [{ label: 's' }, ...this.chosen.map((name, k) => ({ label: this.label(name), stroke: COLORS[k % COLORS.length], spanGaps: true }))],
-			axes: [{ label: 'scene time (s)' }, {}],
+			axes: [this.timeAxis(), {}],
 			hooks: { draw: [(u) => this.drawCursor(u)] },
 		}, this.data(), this.chart);
 		this.listSeries(true);
+	}
+
+	// Over a recording the axis counts from its start, as the player's timeline does (the
+	// data stay in scene time: the CSV's too); live, the scene's time.
+	timeAxis() {
+		const span = this.span();
+		if (!span) return { label: 'scene time (s)' };
+		return { label: 'time in the recording (s)', values: (u, splits) => splits.map((at) => +(at - span[0]).toFixed(3)) };
 	}
 
 	// The ticks: one per series seen so far (new ones appear as frames bring them).
