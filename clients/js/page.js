@@ -3,7 +3,7 @@
 // page, fed by the client's own connection.
 
 import { GUI } from 'lil-gui';
-import { connect, useScene } from './runtime.js';
+import { connect, useScene, watchUrl } from './runtime.js';
 
 function freshName() {
 	return `page-${Math.random().toString(36).slice(2, 10)}`;
@@ -17,7 +17,7 @@ export async function startPage(moduleUrl) {
 	const scene = params.get('scene') || freshName();
 	const options = { ...readOptions(), scene, role: params.get('role') === 'viewer' ? 'viewer' : 'controller' };
 	const guis = new Map();   // robot id -> the page's lil-gui panel
-	const watchLink = params.get('scene') ? null : new URL(`/view?scene=${encodeURIComponent(scene)}`, server).href;
+	const watchLink = params.get('scene') ? null : watchUrl(server, scene);
 	let session = null;
 	const viewer = mountViewer({
 		options, watchLink,

@@ -62,10 +62,14 @@ export async function connect({ url, scene: name = 'default', role = 'controller
 	if (!IN_BROWSER) {
 		closeOnSignals();
 		// a script in a terminal says where it runs and where to watch it (a page shows it)
-		console.log(`Virtual Prosthetics: scene ${name} on ${server}; watch at `
-			+ `${session.http.replace(/\/+$/, '')}/view?scene=${encodeURIComponent(name)}`);
+		console.log(`Virtual Prosthetics: scene ${name} on ${server}; watch at ${watchUrl(session.http, name)}`);
 	}
 	return session;
+}
+
+// Where a browser watches a scene of the server at `http` (http://host:port).
+export function watchUrl(http, scene) {
+	return new URL(`/view?scene=${encodeURIComponent(scene)}`, http).href;
 }
 
 // Ctrl-C (or a TERM) closes the connection properly and ends the process with 0.

@@ -3,8 +3,8 @@ busy worker with room, which claims the lease (:mod:`.worker_host`).
 
 How busy each worker is (its scenes with a client: WorkerHost.attended) comes from asking
 them all every second, from each worker's answer to a placement (its count then), and
-from the placements this gateway has under way; so scenes placed at the same moment spread instead of all going where there were
-fewest a second ago. When every worker on the bus, asked afresh, has no room, the scene
+from the placements this gateway has under way; so scenes placed at the same moment
+spread instead of all going where there were fewest a second ago. When every worker on the bus, asked afresh, has no room, the scene
 is refused at once (``limit_exceeded``, naming each worker's limit), as a single server
 refuses past ``--limit scenes``: waiting would not make room, and the client is told which
 flag does.

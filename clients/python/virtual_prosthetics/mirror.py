@@ -51,8 +51,8 @@ class Mirror:
             self.forces = dict(message.get("forces", {}))  # pressing now (frames: changes)
             self._add(message["nodes"])
             self.contacts = {tuple(pair) for pair in message["contacts"]}  # type: ignore[misc]
-            self.readings = {sensor_id: _reading(reading)  # none of a world gone (a restore)
-                             for sensor_id, reading in message.get("sensors", {}).items()}
+            self.readings = {}  # none of a world that may be gone (a restore)
+            self._read_sensors(message)
             self._clock(message)
         elif op == "added":
             self._add(message["nodes"])
@@ -61,8 +61,7 @@ class Mirror:
         elif op == "frame":
             self.apply_changes(message)
             self._contacts(message.get("contacts"))
-            for sensor_id, reading in message.get("sensors", {}).items():
-                self.readings[sensor_id] = _reading(reading)
+            self._read_sensors(message)
             self._clock(message)
 
     def apply_changes(self, changes: dict[str, Any]) -> None:
@@ -115,6 +114,10 @@ class Mirror:
         for node_id in ids:
             self.nodes.pop(node_id, None)
             self.readings.pop(node_id, None)
+
+    def _read_sensors(self, message: dict[str, Any]) -> None:
+        for sensor_id, reading in message.get("sensors", {}).items():
+            self.readings[sensor_id] = _reading(reading)
 
     def _clock(self, message: dict[str, Any]) -> None:
         self.time, self.seq = message["time"], message["seq"]

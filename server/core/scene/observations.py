@@ -21,15 +21,21 @@ def observe(bodies: SceneBodies, watches: Watches, nodes: Mapping[str, Node]) ->
     forces = bodies.forces_changed()
     if forces:
         out["forces"] = forces
-    readings = watched_readings(bodies, watches, nodes)
+    readings = watched_wire(bodies, watches, nodes)
     if readings:
-        out["sensors"] = {i: reading.wire() for i, reading in readings.items()}
+        out["sensors"] = readings
     tracker, dynamics = bodies.tracker, bodies.physics.dynamics
     steps, iterations = (0, 0) if dynamics is None else \
         (dynamics.held_back, dynamics.physics.solverIterations - dynamics.iterations)
     out.update(frames.held_back(contactTests=tracker.deferred, contactPairs=tracker.unrecorded,
                                 physicsSteps=steps, solverIterations=iterations))
     return out
+
+
+def watched_wire(bodies: SceneBodies, watches: Watches,
+                 nodes: Mapping[str, Node]) -> dict[str, dict[str, Any]]:
+    """The readings of every watched sensor as frames and snapshots carry them."""
+    return {i: reading.wire() for i, reading in watched_readings(bodies, watches, nodes).items()}
 
 
 def watched_readings(bodies: SceneBodies, watches: Watches,

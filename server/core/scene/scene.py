@@ -30,7 +30,7 @@ from .changes import ChangeSet
 from .clock import Clock
 from .couplings import Couplings
 from .feed import ChangeFeed
-from .observations import observe, watched_readings
+from .observations import observe, watched_readings, watched_wire
 from .registry import Registry
 
 log = logging.getLogger(__name__)
@@ -341,9 +341,9 @@ class Scene:
         forces = self.bodies.forces_told()
         if forces:
             snapshot["forces"] = forces
-        readings = watched_readings(self.bodies, self.watches, self.nodes)
+        readings = watched_wire(self.bodies, self.watches, self.nodes)
         if readings:
-            snapshot["sensors"] = {i: reading.wire() for i, reading in readings.items()}
+            snapshot["sensors"] = readings
         return snapshot
 
     # --- scene calls (the manual's Scene API) --------------------------------------------

@@ -30,13 +30,12 @@ export class SceneTree {
 		let top = node;
 		while (top.parent && this.objects.has(top.parent)) top = this.objects.get(top.parent).userData.node;
 		if (top === node) return node.name ?? id;
+		const robot = top.name ?? top.id;
 		const index = top.motors?.indexOf(id) ?? -1;
+		if (node.name == null) return `${robot} · ${index >= 0 ? index : id.slice(id.lastIndexOf('/') + 1)}`;
 		// a name other motors of the robot share too (a hand's five "distal") takes the index
 		const twins = (top.motors ?? []).filter((m) => this.objects.get(m)?.userData.node.name === node.name);
-		const own = node.name === undefined || node.name === null
-			? (index >= 0 ? String(index) : id.slice(id.lastIndexOf('/') + 1))
-			: twins.length > 1 && index >= 0 ? `${node.name} #${index}` : node.name;
-		return `${top.name ?? top.id} · ${own}`;
+		return `${robot} · ${node.name}${twins.length > 1 && index >= 0 ? ` #${index}` : ''}`;
 	}
 
 	emit(event, ...args) { for (const listener of this.listeners[event]) listener(...args); }
