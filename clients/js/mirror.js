@@ -28,6 +28,7 @@ export class Mirror {
 		this.events = [];          // [kind, a, b] contact changes not yet dispatched
 		this.listeners = [];       // (kind, id, fields) for every node change
 		this.held = new Map();     // id -> {until, known, fields, server}, by until: see predict
+		this.physicsHeld = null;   // {until, server}: this client's setPhysics, not yet answered
 	}
 
 	// Fold one server message (snapshot, added, removed, frame) into the mirror.
@@ -41,7 +42,7 @@ export class Mirror {
 					if (!fresh.has(id) && this.held.get(id)?.known !== false) this.forget(id);
 				}
 				this.camera = message.camera;
-				this.physics = message.physics ?? this.physics;
+				if (message.physics) this.serverPhysics(message.physics);
 				this.forces = new Map(Object.entries(message.forces ?? {}));   // pressing now (frames: changes)
 				for (const node of message.nodes) {
 					if (this.nodes.has(node.id)) this.change(node.id, node);
@@ -79,7 +80,7 @@ export class Mirror {
 			this.change(id, { position: pose.slice(0, 3), quaternion: pose.slice(3) });
 		}
 		if (changes.camera) this.camera = changes.camera;
-		if (changes.physics) this.physics = changes.physics;
+		if (changes.physics) this.serverPhysics(changes.physics);
 		for (const [id, force] of Object.entries(changes.forces ?? {})) {
 			if (force) this.forces.set(id, force);
 			else this.forces.delete(id);
@@ -148,9 +149,26 @@ export class Mirror {
 		}
 	}
 
+	// The scene's physics as the server sent it: put aside while a setPhysics of this
+	// client's is unanswered, as a node's predicted fields are.
+	serverPhysics(physics) {
+		if (this.physicsHeld) this.physicsHeld.server = physics;
+		else this.physics = physics;
+	}
+
+	// This client's request `until` (a setPhysics) will make the scene's physics `physics`.
+	predictPhysics(physics, until) {
+		this.physicsHeld = { until, server: this.physicsHeld?.server ?? this.physics };
+		this.physics = physics;
+	}
+
 	// The server answered every request up to `id`: predictions made for them give way
 	// to what it said (a node it never made goes).
 	release(id) {
+		if (this.physicsHeld && this.physicsHeld.until <= id) {
+			this.physics = this.physicsHeld.server;
+			this.physicsHeld = null;
+		}
 		for (const [nodeId, hold] of this.held) {
 			if (hold.until > id) break;   // and every later one
 			this.held.delete(nodeId);

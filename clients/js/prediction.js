@@ -14,9 +14,11 @@ import { SKELETONS } from './skeletons.js';
 
 export class Prediction {
 	// slots: type -> the numbered slots a new part has (hello); classes: type -> class.
-	constructor(mirror, { slots, classes }) {
+	// physics: setPhysics's defaults (hello).
+	constructor(mirror, { slots, classes, physics = {} }) {
 		this.mirror = mirror;
 		this.slots = slots;
+		this.physics = physics;
 		this.classes = classes;
 		this.built = new Map();   // hand type -> id suffixes of the motors it is built with
 	}
@@ -40,8 +42,32 @@ export class Prediction {
 			case 'setAngle': case 'setAngles':
 				this.turn(this.angleTurns(id, message.method, args), until); break;
 			case 'flexFinger': case 'flexFingers': case 'spreadFinger': case 'spreadFingers':
-				this.turn(this.fingerTurns(id, message.method, args), until);
+				this.turn(this.fingerTurns(id, message.method, args), until); break;
+			case 'setName': case 'setMaxTorque': case 'setMaxSpeed':
+				this.motorField(id, message.method, args[0], until); break;
+			case 'setPhysics': this.physicsSet(args, until);
 		}
+	}
+
+	// motor.setName(name), setMaxTorque(newtonMetres), setMaxSpeed(radPerS) as the
+	// motor's fields (server/core/model/motor.py); a value the server refuses changes nothing.
+	motorField(id, method, value, until) {
+		if (this.mirror.nodes.get(id)?.axis === undefined) return;
+		const number = typeof value === 'number' && value >= 0;
+		const field = {
+			setName: () => (typeof value === 'string' ? { name: value } : null),
+			setMaxTorque: () => (number && Number.isFinite(value) ? { maxTorque: value } : null),
+			setMaxSpeed: () => (number && value > 0 ? { maxSpeed: wireNumber(value) } : null),
+		}[method]();
+		if (field) this.mirror.predict(id, field, until);
+	}
+
+	// setPhysics(mode, options): the options left out take their defaults, not the
+	// scene's earlier values (server/core/physics/dynamics.py, Physics.of).
+	physicsSet([mode, options], until) {
+		if (mode !== 'kinematic' && mode !== 'dynamic') return;
+		if (options !== undefined && options !== null && typeof options !== 'object') return;
+		this.mirror.predictPhysics({ ...this.physics, ...(options ?? {}), mode }, until);
 	}
 
 	// `new type(...args)` as object `id`, made by request `until`.

@@ -79,7 +79,7 @@ export class Session {
 	heard(message) {
 		if (message.op === 'hello') {
 			this.hello = message;
-			this.prediction = new Prediction(this.mirror, { slots: message.slots, classes: this.classes });
+			this.prediction = new Prediction(this.mirror, { slots: message.slots, classes: this.classes, physics: message.physics });
 		} else if (message.op !== 'error') {
 			this.mirror.apply(message);
 		}

@@ -53,6 +53,7 @@
  * @property {Object<string, number>} limits
  * @property {string} engine
  * @property {Object<string, number>} slots
+ * @property {Object<string, *>} physics
  * @property {string} [resume]
  */
 

@@ -55,6 +55,7 @@ class Hello(TypedDict):
     limits: dict[str, int]
     engine: str
     slots: dict[str, int]
+    physics: dict[str, Any]
     resume: NotRequired[str]
 
 

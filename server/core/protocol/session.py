@@ -14,6 +14,7 @@ from typing import Any, Callable
 from ...errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
 from ..kit.rates import TokenBucket
 from ..kit.wire_messages import Hello, Ok
+from ..physics.dynamics import Physics
 from ..physics.engine import ENGINE
 from ..scene.scene import Scene
 from . import api
@@ -52,7 +53,7 @@ class Session:
         hello = Hello(op="hello", protocol=PROTOCOL_VERSION, client=self.client_id,
                       role=self.role, scene=self.scene.name, time=self.scene.time,
                       tickRate=tick_rate, limits=self.scene.limits.wire(), engine=ENGINE,
-                      slots=api.slot_counts())
+                      slots=api.slot_counts(), physics=Physics().wire())
         if self.resume:
             hello["resume"] = self.resume
         return hello

@@ -90,6 +90,39 @@ def test_the_physics_read_right_after_it_was_set_is_what_was_set(scene):
     assert vp.get_physics()["mode"] == "kinematic"
 
 
+def _motor_on_robot() -> tuple[vp.Robot, vp.MotorZ]:
+    robot, motor = vp.Robot(), vp.MotorZ(-1, 1)
+    robot.attach_chain(motor, vp.EdgedFinger())
+    return robot, motor
+
+
+# read kind: (write, read, expected), each on a fresh robot with one motor
+READS_AFTER_WRITES = {
+    "angle": (lambda r, m: m.set_angle(5), lambda r, m: m.get_angle(), 1),
+    "angles": (lambda r, m: r.set_angles(-0.25), lambda r, m: r.get_angles(), [-0.25]),
+    "name": (lambda r, m: m.set_name("Index"), lambda r, m: m.get_name(), "Index"),
+    "max torque": (lambda r, m: m.set_max_torque(0.4), lambda r, m: m.get_max_torque(), 0.4),
+    "max speed": (lambda r, m: m.set_max_speed(2.5), lambda r, m: m.get_max_speed(), 2.5),
+    "no speed limit": (lambda r, m: m.set_max_speed(math.inf), lambda r, m: m.get_max_speed(),
+                       math.inf),
+    "position": (lambda r, m: r.set_position(1, 2, 3), lambda r, m: r.get_position(),
+                 [1, 2, 3]),
+    "motors": (lambda r, m: r.attach_chain(vp.MotorX()), lambda r, m: len(r.get_motors()), 2),
+    "mass": (lambda r, m: m.set_mass(0.25), lambda r, m: m.get_mass(), 0.25),
+    "physics": (lambda r, m: vp.set_physics("dynamic", gravity=3),
+                lambda r, m: (vp.get_physics()["mode"], vp.get_physics()["gravity"]),
+                ("dynamic", 3)),
+}
+
+
+@pytest.mark.parametrize("kind", READS_AFTER_WRITES)
+def test_every_read_kind_answers_the_write_just_before_it(scene, kind):
+    write, read, expected = READS_AFTER_WRITES[kind]
+    robot, motor = _motor_on_robot()
+    write(robot, motor)
+    assert read(robot, motor) == expected
+
+
 def test_a_script_switches_the_scene_to_dynamic_and_things_fall_and_are_felt(scene):
     pad = vp.Box(2, 0.2, 2).set_static()
     sensor = vp.Sensor().watch()
