@@ -19,6 +19,7 @@ export class Mirror {
 		this.wants = wants;
 		this.nodes = new Map();    // id -> description (fields as the server sends them)
 		this.camera = null;
+		this.caption = '';         // what viewers show in a corner (setCaption)
 		this.physics = { mode: 'kinematic' };
 		this.forces = new Map();   // dynamic mode: part id -> newtons pressing on it
 		this.time = 0;
@@ -42,6 +43,7 @@ export class Mirror {
 					if (!fresh.has(id) && this.held.get(id)?.known !== false) this.forget(id);
 				}
 				this.camera = message.camera;
+				this.caption = message.caption ?? '';
 				if (message.physics) this.serverPhysics(message.physics);
 				this.forces = new Map(Object.entries(message.forces ?? {}));   // pressing now (frames: changes)
 				for (const node of message.nodes) {
@@ -80,6 +82,7 @@ export class Mirror {
 			this.change(id, { position: pose.slice(0, 3), quaternion: pose.slice(3) });
 		}
 		if (changes.camera) this.camera = changes.camera;
+		if (changes.caption !== undefined) this.caption = changes.caption;
 		if (changes.physics) this.serverPhysics(changes.physics);
 		for (const [id, force] of Object.entries(changes.forces ?? {})) {
 			if (force) this.forces.set(id, force);

@@ -211,6 +211,12 @@ export function setCameraTarget(...target) {
 	currentSession().call(SCENE_ID, 'setCameraTarget', target);
 }
 
+// Not in 1.0: words every viewer shows in a corner (a task's name, trial, time and score;
+// at most 200 characters, lines split at \n); '' hides them.
+export function setCaption(text) {
+	currentSession().call(SCENE_ID, 'setCaption', [text]);
+}
+
 // Not in 1.0: setPhysics('dynamic', {unit, gravity, substeps, solverIterations,
 // solverTolerance, friction, density, warmStart}) (options left out take their defaults; unit: metres
 // per scene unit, masses, forces and torques are SI) or setPhysics('kinematic').

@@ -15,7 +15,7 @@ export { Sensor } from './sensor.js';
 export { ConnectionLost, ProtocolError, ServerError, Timeout, VPError } from './errors.js';
 export { Recording, startRecording, stopRecording } from './recordings.js';
 export { VERSION, close, connect, getPhysics, getScene, getTime, pause, resume, setAnimation,
-	setCameraPosition, setCameraTarget, setPhysics, step, sync, saveState, restoreState, forgetState } from './runtime.js';
+	setCameraPosition, setCameraTarget, setCaption, setPhysics, step, sync, saveState, restoreState, forgetState } from './runtime.js';
 
 import { IN_BROWSER, VERSION } from './runtime.js';
 

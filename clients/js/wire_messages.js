@@ -65,6 +65,7 @@
  * @property {number} time
  * @property {Object<string, *>} camera
  * @property {Object<string, *>} physics
+ * @property {string} [caption]
  * @property {Array<Object<string, *>>} nodes
  * @property {Array<Array<string>>} contacts
  * @property {Object<string, number>} [forces]
@@ -100,6 +101,7 @@
  * @property {*} [updates]
  * @property {Object<string, *>} [camera]
  * @property {Object<string, *>} [physics]
+ * @property {string} [caption]
  * @property {Object<string, *>} [contacts]
  * @property {Object<string, Object<string, *>>} [sensors]
  * @property {Object<string, number>} [forces]

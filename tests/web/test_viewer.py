@@ -82,6 +82,7 @@ def test_frame_all_brings_what_the_scene_holds_into_view(browser, pages, server,
     far = vp.Box(1, 1, 1, "red")
     far.set_position(25, 0.5, -12)  # out of the default camera's view
     vp.Ball(0.3).set_position(-2, 0.3, 0)
+    vp.set_camera_position(*DEFAULT_CAMERA[0])  # placed by the script: kept on opening
     scene.sync()
     page = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(page, "(id) => VP.objects.has(id) && VP.drawn()", far.id)
@@ -97,6 +98,41 @@ def test_frame_all_brings_what_the_scene_holds_into_view(browser, pages, server,
     page.get_by_role("button", name="Frame all").click()
     wait_until(page, "() => VP.drawn()")
     assert page.evaluate("() => VP.camera.position.toArray()") == pytest.approx(target, abs=1e-6)
+
+
+def test_a_viewer_frames_what_a_scene_holds_when_no_script_placed_the_camera(
+        browser, pages, server, scene, scene_name):
+    """Found: a task's scene opened cropped. A camera nobody placed frames everything
+    when something is out of view, on opening and as things are added, until a person
+    orbits; a scene that fits stays in the manual's view."""
+    vp.Ball(0.3).set_position(-2, 0.3, 0)
+    scene.sync()
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    wait_until(page, "() => VP.objects.size === 1 && VP.drawn()")
+    assert page.evaluate("() => VP.camera.position.toArray()") == pytest.approx(DEFAULT_CAMERA[0])
+    far = vp.Box(1, 1, 1, "red")
+    far.set_position(25, 0.5, -12)
+    scene.sync()
+    wait_until(page, "(id) => VP.objects.has(id) && VP.drawn()", far.id)
+    assert Picture(page.screenshot()).share(lambda c: reddish(c)) > 0.0005
+    other = open_viewer(browser, pages, server, f"scene={scene_name}")  # framed on opening
+    wait_until(other, "() => VP.objects.size === 2 && VP.drawn()")
+    assert Picture(other.screenshot()).share(lambda c: reddish(c)) > 0.0005
+
+
+def test_a_scripts_caption_shows_in_a_corner_of_every_viewer(browser, pages, server, scene,
+                                                             scene_name):
+    vp.set_caption("grasp edged · 1.5 of 96 scene-s\nspherical · trials 1-10 of 20")
+    scene.sync()
+    page = open_viewer(browser, pages, server, f"scene={scene_name}")
+    caption = page.locator("#caption")
+    wait_until(page, "() => !document.getElementById('caption').hidden")
+    assert caption.inner_text() == "grasp edged · 1.5 of 96 scene-s\nspherical · trials 1-10 of 20"
+    box = caption.bounding_box()
+    size = page.viewport_size
+    assert box["x"] + box["width"] > size["width"] - 20 and box["y"] + box["height"] > size["height"] - 20
+    vp.set_caption("")
+    wait_until(page, "() => document.getElementById('caption').hidden")
 
 
 def test_viewers_come_back_after_a_server_restart(browser, pages):

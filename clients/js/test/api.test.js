@@ -8,7 +8,7 @@ import { READS } from '../exact.js';
 
 const api = JSON.parse(readFileSync(new URL('../../../protocol/api.json', import.meta.url)));
 const pkg = JSON.parse(readFileSync(new URL('../package.json', import.meta.url)));
-const SCENE_FUNCTIONS = ['setAnimation', 'getTime', 'getScene', 'setCameraPosition', 'setCameraTarget',
+const SCENE_FUNCTIONS = ['setAnimation', 'getTime', 'getScene', 'setCameraPosition', 'setCameraTarget', 'setCaption',
 	'setPhysics', 'getPhysics', 'pause', 'resume', 'step', 'startRecording', 'stopRecording', 'saveState', 'restoreState', 'forgetState'];
 // not manual methods: how the client sends what a page writes to `quaternion`/`rotation`,
 // `scale` and `visible` (pages write the three.js properties)

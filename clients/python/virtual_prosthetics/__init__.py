@@ -90,11 +90,16 @@ def set_camera_target(*target: float) -> None:
     current_session().set_camera_target(*target)
 
 
+def set_caption(text: str) -> None:
+    """Words every viewer of the current scene shows in a corner (:meth:`Session.set_caption`)."""
+    current_session().set_caption(text)
+
+
 __all__ = [
     "AnthroHand", "AnthroPalm", "AnthroThumb", "GLTFPart", "RoundFinger", "RoundHand",
     "RoundPalm", "Ball", "Box", "ConnectionLost", "EdgedFinger", "EdgedHand", "EdgedPalm", "EdgedTip",
     "Motor", "MotorX", "MotorY", "MotorZ", "Node", "Part", "Robot", "Scene", "Session", "Sensor", "Slider",
     "ProtocolError", "ServerError", "ServerWarning", "Slot", "Timeout", "VPError", "connect", "current_scene", "current_session", "get_time", "run",
-    "set_animation", "set_camera_position", "set_camera_target", "set_transforms", "SceneMesh", "upload_asset", "ImportedRobot", "load_robot",
+    "set_animation", "set_camera_position", "set_camera_target", "set_caption", "set_transforms", "SceneMesh", "upload_asset", "ImportedRobot", "load_robot",
     "set_physics", "get_physics", "pause", "resume", "step", "save_state", "restore_state", "forget_state", "show", "Recording", "start_recording", "stop_recording",
 ]

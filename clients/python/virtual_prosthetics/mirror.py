@@ -31,6 +31,7 @@ class Mirror:
         self.clock = clock
         self.nodes: dict[str, NodeState] = {}
         self.camera: dict[str, list[float]] = {}
+        self.caption = ""  # what viewers show in a corner (setCaption)
         self.physics: dict[str, Any] = {"mode": "kinematic"}
         self.forces: dict[str, float] = {}  # dynamic mode: newtons on each part in contact
         self.time = 0.0
@@ -47,6 +48,7 @@ class Mirror:
         if op == "snapshot":
             self.nodes.clear()
             self.camera = message["camera"]
+            self.caption = message.get("caption", "")
             self.physics = message["physics"]
             self.forces = dict(message.get("forces", {}))  # pressing now (frames: changes)
             self._add(message["nodes"])
@@ -76,10 +78,9 @@ class Mirror:
         for node_id, pose in changes.get("poses", {}).items():
             if node_id in self.nodes:
                 self.nodes[node_id].update(position=pose[:3], quaternion=pose[3:])
-        if "camera" in changes:
-            self.camera = changes["camera"]
-        if "physics" in changes:
-            self.physics = changes["physics"]
+        for field in ("camera", "caption", "physics"):  # the scene's own, each sent whole
+            if field in changes:
+                setattr(self, field, changes[field])
         for node_id, force in changes.get("forces", {}).items():
             if force:
                 self.forces[node_id] = force

@@ -212,6 +212,12 @@ class Session:
         """Manual ``setCameraTarget``: turn every viewer's camera."""
         self.call(SCENE_ID, "setCameraTarget", target)
 
+    def set_caption(self, text: str) -> None:
+        """Show ``text`` in a corner of every viewer of the scene (a task's name, trial, time
+        and score; at most 200 characters, lines split at ``\\n``); "" hides it (not in the
+        manual)."""
+        self.call(SCENE_ID, "setCaption", (text,))
+
     def set_transforms(self, transforms: dict[Any, list[float]]) -> None:
         """Place many objects in one request: ``{obj: [px, py, pz, qx, qy, qz, qw]}``, with
         ``sx, sy, sz`` after to scale too (not in the manual)."""

@@ -66,6 +66,7 @@ class Snapshot(TypedDict):
     time: float
     camera: dict[str, Any]
     physics: dict[str, Any]
+    caption: NotRequired[str]
     nodes: list[dict[str, Any]]
     contacts: list[list[str]]
     forces: NotRequired[dict[str, float]]
@@ -98,6 +99,7 @@ class Frame(TypedDict):
     updates: NotRequired[Any]
     camera: NotRequired[dict[str, Any]]
     physics: NotRequired[dict[str, Any]]
+    caption: NotRequired[str]
     contacts: NotRequired[dict[str, Any]]
     sensors: NotRequired[dict[str, dict[str, Any]]]
     forces: NotRequired[dict[str, float]]

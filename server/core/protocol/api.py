@@ -134,6 +134,8 @@ TYPES: dict[str, TypeSpec] = {t.name: t for t in (
     TypeSpec("Scene", None, creatable=False, methods=(
         Method("setCameraPosition", (Param("position", "point"),)),
         Method("setCameraTarget", (Param("target", "point"),)),
+        # not in the manual: words every viewer shows in a corner (server.core.scene.caption)
+        Method("setCaption", (Param("text", "string"),)),
         Method("getTime", returns="number", mutates=False),
         Method("setTransforms", (Param("transforms", "transforms"),)),
         # not in the manual: dynamic mode (server.core.physics.dynamics)

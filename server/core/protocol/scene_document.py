@@ -113,8 +113,9 @@ def export_scene(scene: Scene, embed_assets: bool = True) -> dict[str, Any]:
     """The scene as a document; uploaded mesh files by content hash, with their bytes
     (base64) when ``embed_assets`` (a document another server can import)."""
     physics = {"physics": scene.physics.wire()} if scene.physics != Physics() else {}
+    caption = {"caption": scene.caption.text} if scene.caption.text else {}
     return {"format": FORMAT, "version": VERSION, "scene": scene.name,
-            "camera": scene.camera.wire(), **physics,
+            "camera": scene.camera.wire(), **caption, **physics,
             "ids": scene.ids.wire(),
             "assets": [_asset_entry(scene.assets, name, embed_assets)
                        for name in uploaded_assets(scene)],
@@ -254,8 +255,13 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
         _restore_state(scene, entry, later=True)
     scene.bodies.check_trees()  # a tree the engine cannot hold: the document is refused
     scene.ids.absorb(document["ids"])
-    scene.set_camera_position(tuple(document["camera"]["position"]))
-    scene.set_camera_target(tuple(document["camera"]["target"]))
+    camera = document["camera"]
+    if camera.get("placed", True):
+        scene.set_camera_position(tuple(camera["position"]))
+        scene.set_camera_target(tuple(camera["target"]))
+    else:  # one no script placed stays so: viewers frame the scene
+        scene.camera.reset()
+    scene.set_caption(document.get("caption", ""))
     return {"scene": scene.name, "objects": len(scene.nodes),
             "owners": sorted({owner_of(i) for i in wanted})}
 

@@ -17,8 +17,7 @@ class ChangeSet:
         self.angles: dict[str, None] = {}
         self.poses: dict[str, None] = {}
         self.updates: dict[str, set[str]] = {}
-        self.camera = False
-        self.physics = False
+        self.scene: set[str] = set()  # scene-level fields changed: camera, physics, caption
         self.warnings: list[str] = []  # what the requester should know, though nothing failed
 
     def update(self, node_id: str, field: str) -> None:
@@ -28,7 +27,7 @@ class ChangeSet:
     def __bool__(self) -> bool:
         """True once anything changed (warnings aside)."""
         return bool(self.born or self.died or self.angles or self.poses or self.updates
-                    or self.camera or self.physics)
+                    or self.scene)
 
     def clear(self) -> None:
         """Forget everything noted so far."""

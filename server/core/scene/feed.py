@@ -53,15 +53,10 @@ class ChangeFeed:
             for robot_id in robot_ids:
                 changes.update(robot_id, "motors")
 
-    def camera_moved(self) -> None:
-        """The scene's camera moved."""
+    def scene_changed(self, field: str) -> None:
+        """A scene-level field (``camera``, ``physics``, ``caption``) changed."""
         for changes in self._recorders:
-            changes.camera = True
-
-    def physics_changed(self) -> None:
-        """The scene's physics (mode or options) changed."""
-        for changes in self._recorders:
-            changes.physics = True
+            changes.scene.add(field)
 
     def warn(self, message: str) -> None:
         """Tell the open recordings' requesters; the tick's own set has no one to tell."""

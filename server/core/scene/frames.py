@@ -6,7 +6,7 @@ robot's angles as one array in the order of its ``motors``, by the robot's id; a
 that is no robot's, by its own id), ``poses`` (node id -> value), ``updates`` (node id ->
 fields), ``sensors`` (watched sensor id -> reading), ``contacts`` (``begin``/``end`` lists
 of pairs, events), ``forces`` (dynamic mode: part id -> newtons pressing on it, for the
-parts whose force changed; 0 once it ends), ``camera``, ``physics`` and ``limited`` (limit name -> how much work it held back in
+parts whose force changed; 0 once it ends), ``camera``, ``physics``, ``caption`` and ``limited`` (limit name -> how much work it held back in
 the tick). New nodes travel before it in ``added``, removed ones after it in ``removed``.
 """
 
@@ -20,6 +20,7 @@ from ..model.node import Node
 from .changes import ChangeSet
 
 _LATEST_WINS = ("angles", "poses", "sensors", "forces")
+SCENE_FIELDS = ("camera", "physics", "caption")  # the scene's own, each sent whole
 
 
 def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[Added | Frame | Removed]:
@@ -31,11 +32,11 @@ def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[Added 
             *([Removed(op="removed", seq=seq, ids=removed)] if removed else [])]
 
 
-def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet, camera: dict[str, list[float]],
-                 physics: dict[str, Any] | None = None) -> dict[str, Any]:
-    """What a change set amounts to now, in wire form (empty parts left out): a frame's
-    ``angles``, ``poses``, ``updates``, ``camera`` and ``physics``, with ``added`` and
-    ``removed``."""
+def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet,
+                 scene_fields: Mapping[str, Any]) -> dict[str, Any]:
+    """What a change set amounts to now, in wire form (empty parts left out but a caption
+    made empty): a frame's ``angles``, ``poses``, ``updates`` and the changed scene-level
+    ``scene_fields`` (``camera``, ``physics``, ``caption``), with ``added`` and ``removed``."""
     born = changes.born
     out: dict[str, Any] = {
         "added": [encode_numbers(nodes[i].describe()) for i in born if i in nodes],
@@ -46,11 +47,7 @@ def changes_wire(nodes: Mapping[str, Node], changes: ChangeSet, camera: dict[str
                     for i, fields in changes.updates.items() if i in nodes and i not in born},
         "removed": [i for i in changes.died if i not in nodes and i not in born],
     }
-    if changes.camera:
-        out["camera"] = camera
-    if changes.physics:
-        out["physics"] = physics
-    return {k: v for k, v in out.items() if v}
+    return {**{k: v for k, v in out.items() if v}, **scene_fields}
 
 
 def _angles(nodes: Mapping[str, Node], changes: ChangeSet) -> dict[str, Any]:
@@ -114,7 +111,7 @@ def merge_frames(older: dict[str, Any], newer: dict[str, Any]) -> dict[str, Any]
     if "contacts" in older:  # events: every one is kept, in order
         later = newer.get("contacts", {"begin": [], "end": []})
         merged["contacts"] = _merge_contacts(older["contacts"], later)
-    for key in ("camera", "physics"):
+    for key in SCENE_FIELDS:
         if key in older and key not in newer:
             merged[key] = older[key]
     if "limited" in older:  # what the limits held back in the worse of the two ticks

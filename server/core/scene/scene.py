@@ -26,6 +26,7 @@ from ..physics.dynamics import Physics
 from . import frames
 from .bodies import SceneBodies
 from .camera import Camera
+from .caption import Caption
 from .changes import ChangeSet
 from .clock import Clock
 from .couplings import Couplings
@@ -64,7 +65,8 @@ class Scene:
         self.recorder: RecordingControl | None = None  # set by the process serving it
         self.bodies = SceneBodies(self.nodes, limits, self.assets, name)
         self.feed = ChangeFeed()
-        self.camera = Camera(self.journal, self.feed.camera_moved)
+        self.camera = Camera(self.journal, lambda: self.feed.scene_changed("camera"))
+        self.caption = Caption(self.journal, lambda: self.feed.scene_changed("caption"))
         self.watches = Watches(self.journal, limits.watched_sensors)
         self.time = 0.0
         self.clock = Clock(self.journal)  # running with the wall clock until a script pauses it
@@ -218,7 +220,7 @@ class Scene:
             for motor, _ in aims:
                 motor.target = motor.angle  # type: ignore[attr-defined]
         self.bodies.remake(physics)
-        self.feed.physics_changed()
+        self.feed.scene_changed("physics")
         self.moving = physics.dynamic
 
     def get_physics(self) -> dict[str, Any]:
@@ -255,9 +257,14 @@ class Scene:
 
     def delta(self, changes: ChangeSet) -> dict[str, Any]:
         """What a change set amounts to now, in wire form (empty parts left out)."""
-        # the physics' wire form only when it changed: every tick's delta asks
-        physics = self.physics.wire() if changes.physics else None
-        return frames.changes_wire(self.nodes, changes, self.camera.wire(), physics)
+        # scene-level fields' wire forms only when they changed: every tick's delta asks
+        return frames.changes_wire(self.nodes, changes, {
+            field: self._scene_field(field) for field in changes.scene})
+
+    def _scene_field(self, field: str) -> Any:
+        if field == "camera":
+            return self.camera.wire()
+        return self.physics.wire() if field == "physics" else self.caption.text
 
     # --- time ----------------------------------------------------------------------------
 
@@ -338,6 +345,8 @@ class Scene:
         snapshot = Snapshot(op="snapshot", scene=self.name, seq=self.seq, time=self.time,
                             camera=self.camera.wire(), physics=self.physics.wire(), nodes=nodes,
                             contacts=self.bodies.contacts.wire())
+        if self.caption.text:
+            snapshot["caption"] = self.caption.text
         forces = self.bodies.forces_told()
         if forces:
             snapshot["forces"] = forces
@@ -355,6 +364,11 @@ class Scene:
     def set_camera_target(self, target: Vec3) -> None:
         """Manual ``setCameraTarget``: every viewer's camera turns towards it."""
         self.camera.set("target", target)
+
+    def set_caption(self, text: str) -> None:
+        """``setCaption(text)`` (not in the manual): every viewer shows ``text`` in a corner
+        ("" hides it)."""
+        self.caption.set(text)
 
     def set_transforms(self, transforms: list[tuple[Node, Vec3, Quat, Vec3 | None]]) -> None:
         """Place many objects at once: local position, rotation and (when given) scale

@@ -5,7 +5,7 @@ import { eachAngle } from '/client/pose.js';
 const QUIET_FRAME = new Set(['op', 'seq', 'time', 'sensors', 'forces']);  // readings: see lasers
 
 export function makeHandlers(view) {
-	const { tree, motion, overlays, lasers, stage, hook, status } = view;
+	const { tree, motion, overlays, lasers, stage, hook, status, caption } = view;
 	return {
 		hello(message) {
 			motion.period = 1 / message.tickRate;
@@ -18,6 +18,7 @@ export function makeHandlers(view) {
 			tree.add(message.nodes);
 			overlays.reset(message.contacts);
 			stage.setCamera(message.camera);
+			caption(message.caption ?? '');
 			status.physics(message.physics?.mode);
 			hook.frame(message);
 		},
@@ -44,6 +45,7 @@ export function makeHandlers(view) {
 			}
 			if (message.contacts) overlays.contacts(message.contacts);
 			if (message.camera) stage.setCamera(message.camera);
+			if (message.caption !== undefined) caption(message.caption);
 			if (message.physics) status.physics(message.physics.mode);
 		},
 		error(message) {

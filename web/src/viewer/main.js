@@ -11,14 +11,14 @@ const options = readOptions();
 if (options.recording) {   // a recording, played here (read-only: motor panels change nothing)
 	let replay = null;
 	const viewer = mountViewer({ options, request: () => Promise.reject(new Error('a recording cannot be changed')),
-		cursor: () => replay?.sceneTime() ?? null, span: () => replay?.span() ?? null, plotting: true });
+		cursor: () => replay?.sceneTime() ?? null, span: () => replay?.span() ?? null, plotting: true, framing: true });
 	replay = new Replay(options.recording, (message) => viewer.receive(message));
 	mountTimeline(replay);
 	window.VP.replay = replay;
 	replay.open().then(() => viewer.setState('replay'), (error) => viewer.setState(`replay failed: ${error.message}`));
 } else {
 	let connection = null;
-	const viewer = mountViewer({ options, request: (message) => connection.request(message), plotting: true });
+	const viewer = mountViewer({ options, request: (message) => connection.request(message), plotting: true, framing: true });
 	connection = new Connection(socketUrl(options), {
 		onMessage: (message) => viewer.receive(message),
 		onState: (state) => viewer.setState(state),

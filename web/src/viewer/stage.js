@@ -33,6 +33,9 @@ export class Stage {
 		this.controls.target.set(0, 1, 0);
 		this.controls.update();
 		this.controls.addEventListener('change', () => this.invalidate());
+		this.placed = true;     // the scene's camera was set by a script (else: camera.placed false)
+		this.orbited = false;   // a person moved this page's camera
+		this.controls.addEventListener('start', () => { this.orbited = true; });
 
 		this.beforeRender = [];
 		this.afterRender = [];
@@ -96,8 +99,10 @@ export class Stage {
 		this.needsRender = true;
 	}
 
-	// The scene's camera, as a script set it (setCameraPosition / setCameraTarget).
-	setCamera({ position, target }) {
+	// The scene's camera, as a script set it (setCameraPosition / setCameraTarget), or the
+	// default one nobody placed (`placed: false`).
+	setCamera({ position, target, placed = true }) {
+		this.placed = placed;
 		this.controls.target.set(...target);
 		this.camera.position.set(...position);
 		this.camera.lookAt(this.controls.target);
@@ -122,6 +127,28 @@ export class Stage {
 		camera.lookAt(controls.target);
 		controls.update();
 		this.invalidate();
+		return true;
+	}
+
+	// On its own, a viewer frames `object` when part of it lies out of view, as long as
+	// no script placed the scene's camera and nobody here moved it.
+	frameIfCut(object) {
+		if (this.placed || this.orbited) return false;
+		const box = new THREE.Box3().setFromObject(object);
+		if (box.isEmpty() || this.sees(box)) return false;
+		return this.frame(object);
+	}
+
+	sees(box) {
+		const { camera } = this;
+		camera.updateMatrixWorld();
+		const frustum = new THREE.Frustum().setFromProjectionMatrix(
+			new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse));
+		const corner = new THREE.Vector3();
+		for (let k = 0; k < 8; k++) {
+			corner.set(k & 1 ? box.max.x : box.min.x, k & 2 ? box.max.y : box.min.y, k & 4 ? box.max.z : box.min.z);
+			if (!frustum.containsPoint(corner)) return false;
+		}
 		return true;
 	}
 

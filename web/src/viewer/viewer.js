@@ -39,11 +39,15 @@ function linkStylesheet() {
 // status line (a page's own scene); drawnElsewhere(id): true for the SceneMeshes a page draws itself.
 // cursor(), span(): where a recording's player stands and the recording's [start, end]
 // (scene time), for the plots; null live.
-// plotting: a Plots button (the viewer page's; a 1.0 page keeps its own look).
+// plotting: a Plots button; framing: frame what the scene holds when part of it is out of
+// view and no script placed the camera (both the viewer page's; a 1.0 page keeps the
+// manual's camera and look).
 export function mountViewer({ options, request, guiFor, watchLink = null, drawnElsewhere, cursor = () => null,
-	span = () => null, plotting = false }) {
+	span = () => null, plotting = false, framing = false }) {
 	linkStylesheet();
 	const status = element('status', 'div', 'status');
+	const caption = element('caption', 'div', 'caption');
+	caption.hidden = true;
 	const gestureBox = element('gesture', 'pre', 'gesture');
 	gestureBox.hidden = true;
 	const stage = new Stage();
@@ -59,6 +63,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		lasers: new Lasers(tree, stage.scene),
 		hook: installInspection(stage, tree, motion),
 		status: new StatusLine(status, options.scene, watchLink, () => stage.pictures, options.recording),
+		caption: (text) => { caption.textContent = text; caption.hidden = !text; },
 	};
 	const heat = new Heat(tree, () => stage.invalidate());
 	const plots = new Plots({ motorsOf: (robot) => tree.objects.get(robot)?.userData.node.motors, cursor, span,
@@ -92,7 +97,8 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 
 	// what the viewer itself put in the scene is not a page's mesh to share (meshes.js)
 	for (const child of stage.scene.children) child.userData.vpLocal = true;
-	tree.on('loaded', () => stage.invalidate());
+	const reframe = () => framing && stage.frameIfCut(tree.root);
+	tree.on('loaded', () => { stage.invalidate(); reframe(); });
 	stage.beforeRender.push((now) => {
 		if (motion.step(now / 1000)) stage.invalidate();
 		if (logo.step(now, tree.objects.size === 0)) stage.invalidate();
@@ -105,6 +111,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		stage,
 		receive: (message) => {
 			dispatch(handlers, message);
+			if (message.op === 'snapshot' || message.op === 'added' || message.camera) reframe();
 			view.hook.handled(message);
 			plots.receive(message);
 			heat.receive(message);

@@ -242,9 +242,13 @@ def run(stage: Stage, hand: Callable[[float], None], seconds: float) -> tuple[Ta
 
     def step(t: float) -> None:
         hand(t)
+        counted(t)
+
+    def counted(t: float) -> None:
         tally.step(stage)
+        progress.tell(f"blocks moved: {tally.blocks}")
     drive(session, seconds, step)
-    drive(session, 1.0, lambda t: tally.step(stage))
+    drive(session, 1.0, counted)
     moved = stage.moved() - before
     stage.remove()
     return tally, moved

@@ -101,18 +101,42 @@ def rows(trials: int, side_by_side: int, hands: TaskHand) -> int:
     return -(-trials // per_row(side_by_side, hands))
 
 
+@dataclass(frozen=True)
+class Score:
+    """How the caption counts a task's trials: ``label`` (what runs), ``verb`` ("held") and
+    whether a trial counts."""
+
+    label: str
+    verb: str = "held"
+    counts: Callable[[Trial], bool] = succeeded
+
+    def line(self, done: list[Trial], running: int, planned: int) -> str:
+        """The caption's line: the trials running (none: the results) and the score so far."""
+        scored = f"{self.verb} {sum(map(self.counts, done))} of {len(done)}"
+        if not running:
+            return f"{self.label} · {scored}"
+        now = f"{self.label} · trials {len(done) + 1}-{len(done) + running} of {planned}"
+        return f"{now} · {scored} so far" if done else now
+
+
 def run_trials(session: Session, hands: TaskHand, item: TestObject, every: Sequence[tuple[float, float]],
                mass: float, grip: Grip, arm: Arm, controller: Callable[[Grip], HandController],
-               side_by_side: int, seconds: float = PHASES.end) -> list[Trial]:
+               side_by_side: int, seconds: float = PHASES.end, score: Score | None = None) -> list[Trial]:
     """A trial per draw of ``every``, ``side_by_side`` at a time in a row (one: a robot
-    already in the scene), each row cleared away when it is done; the trials, observed."""
+    already in the scene), each row cleared away when it is done; the trials, observed
+    (and counted in the scene's caption by ``score``, the object's name and held trials
+    by default)."""
+    score = score or Score(item.name)
     done: list[Trial] = []
     for batch in _batches(every, per_row(side_by_side, hands)):
+        progress.tell(score.line(done, len(batch), len(every)))
         row = lay_out(session, hands, item, batch, mass, grip)
         run_batch(row, grip, arm, controller, seconds)
         done += row
         for trial in row:
             trial.remove()
+    progress.tell(score.line(done, 0, len(every)))
+    progress.caption_to(session)
     return done
 
 
@@ -134,7 +158,8 @@ def grasp(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_
             for pattern in chosen:
                 for weight, mass in (("light", pattern.item.light), ("heavy", pattern.item.heavy)):
                     done = run_trials(session, hands, pattern.item, draws(rng, trials), mass,
-                                      pattern.grip, approach(), controller, side_by_side)
+                                      pattern.grip, approach(), controller, side_by_side,
+                                      score=Score(f"{pattern.name}, {weight} {pattern.item.name}"))
                     results.append(summary(pattern, weight, done))
         return {"task": "grasp", "hand": hands.source.name, "seed": seed, "scale": scale.factor,
                 "unit": scale.unit, "results": results}

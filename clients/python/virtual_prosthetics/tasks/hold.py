@@ -11,7 +11,7 @@ from ..session import Session
 from . import progress
 from .controller import PHASES, Arm, Grip, approach, baseline
 from .observation import HandController
-from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, drawn, draws, rows, run_trials
+from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, Score, drawn, draws, rows, run_trials
 from .scale import Scale
 from .trial import TaskHand, Trial
 
@@ -65,7 +65,9 @@ def hold(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_s
         with progress.shown(rows(trials, side_by_side, hands) * seconds, f"hold {hands.source.name}"):
             done = run_trials(session, hands, pattern.item, draws(random.Random(seed), trials),
                               pattern.item.light, grip, carry(scale, approach()), controller,
-                              side_by_side, seconds)
+                              side_by_side, seconds,
+                              Score(f"carrying the {pattern.item.name}", "kept",
+                                    lambda trial: not dropped(trial)))
         return {"task": "hold", "hand": hands.source.name, "seed": seed, "trials": trials,
                 "object": pattern.item.name, "path": {"radiusM": RADIUS, "periodS": PERIOD,
                                                       "rounds": ROUNDS},

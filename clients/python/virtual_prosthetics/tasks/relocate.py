@@ -15,7 +15,7 @@ from typing import Any, Callable
 from ..session import Session
 from . import progress
 from .controller import PHASES, Arm, Grip, approach, baseline, smooth
-from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, drawn, draws, rows, run_trials
+from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, Score, drawn, draws, rows, run_trials
 from .observation import HandController, conjugate, product, rotate
 from .scale import Scale
 from .trial import TaskHand, Trial
@@ -118,7 +118,9 @@ def relocate(session: Session, hands: TaskHand, trials: int, seed: int, *, side_
         with progress.shown(planned, f"relocate {hands.source.name}"):
             for pattern in chosen:
                 done = run_trials(session, hands, pattern.item, draws(rng, trials), pattern.item.light,
-                                  pattern.grip, steer(approach()), controller, side_by_side, seconds)
+                                  pattern.grip, steer(approach()), controller, side_by_side, seconds,
+                                  Score(f"{pattern.item.name} to its target", "placed",
+                                        lambda trial: judge(trial)["success"]))
                 judged = [{**drawn(trial), **judge(trial)} for trial in done]
                 results.append({"grip": pattern.name, "object": pattern.item.name, "trials": len(done),
                                 "successes": sum(j["success"] for j in judged),

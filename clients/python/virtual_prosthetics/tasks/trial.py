@@ -203,9 +203,12 @@ def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> Non
     tick. A controller driven so sees the same world however loaded the server is, and a
     trial runs as fast as the server computes it."""
     period = 1.0 / session.tick_rate
+    last = round(seconds / period)
     with session.paused():
-        for tick in range(round(seconds / period) + 1):
+        for tick in range(last + 1):
             with session.connection.gathering():
                 step(tick * period)
+                if tick % progress.CAPTION_TICKS == 0 or tick == last:
+                    progress.caption_to(session)
             session.step()
             progress.advance(period)

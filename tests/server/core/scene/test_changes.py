@@ -15,6 +15,7 @@ def test_a_change_set_is_empty_until_something_changes_and_warnings_do_not_count
 def test_clearing_forgets_everything():
     changes = ChangeSet()
     changes.born["a"] = None
-    changes.camera = True
+    changes.scene.add("camera")
+    assert changes
     changes.clear()
-    assert not changes and changes.born == {} and not changes.camera
+    assert not changes and changes.born == {} and not changes.scene

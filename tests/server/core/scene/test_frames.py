@@ -17,6 +17,12 @@ def test_merge_keeps_latest_values_and_all_keys():
     assert older["angles"] == {"a": 1, "b": 2}  # inputs untouched
 
 
+def test_merge_keeps_a_caption_and_the_one_that_cleared_it():
+    older = {"op": "frame", "seq": 1, "time": 0.1, "caption": "grasp · trial 1"}
+    assert merge_frames(older, {"op": "frame", "seq": 2, "time": 0.2})["caption"] == "grasp · trial 1"
+    assert merge_frames(older, {"op": "frame", "seq": 2, "time": 0.2, "caption": ""})["caption"] == ""
+
+
 def test_merge_keeps_every_contact_change_and_the_latest_readings():
     older = {"op": "frame", "seq": 1, "time": 0.1,
              "contacts": {"begin": [["a", "b"], ["c", "d"]], "end": [["e", "f"]]},
