@@ -51,18 +51,20 @@ def test_a_sensors_distance_and_a_motors_angle_are_plotted_live_and_given_as_csv
     page.click("#plot-button")
     _move(scene, box, motor)
     wait_until(page, "(name) => VP.plots.series.has(name)", f"{sensor.id} distance")
-    page.evaluate("(name) => VP.plots.choose(name)", f"{motor.id} angle")
+    # a robot's motors are plotted until someone chooses
+    wait_until(page, "(name) => VP.plots.chosen.join() === name", f"{motor.id} angle")
+    page.evaluate("(name) => VP.plots.choose(name)", f"{sensor.id} distance")
     page.wait_for_timeout(300)
     chosen = page.evaluate("() => VP.plots.chosen")
-    assert chosen == [f"{sensor.id} distance", f"{motor.id} angle"]
+    assert chosen == [f"{motor.id} angle", f"{sensor.id} distance"]
     distances = page.evaluate("(name) => [...VP.plots.series.get(name).values()]", f"{sensor.id} distance")
     assert len(set(distances)) > 5 and distances == sorted(distances, reverse=True)  # it came closer
     assert distances[-1] == pytest.approx(sensor.sense_distance(), abs=1e-9)
     drawn = page.evaluate("() => VP.plots.plot.data")
     assert len(drawn) == 3 and len(drawn[0]) > 5  # times and the two series, drawn
     csv = page.evaluate("() => VP.plots.csv()").splitlines()
-    assert csv[0] == f"time,{sensor.id} distance,{motor.id} angle" and len(csv) > 5
-    angles = [float(row.split(",")[2]) for row in csv[1:] if row.split(",")[2]]
+    assert csv[0] == f"time,{motor.id} angle,{sensor.id} distance" and len(csv) > 5
+    angles = [float(row.split(",")[1]) for row in csv[1:] if row.split(",")[1]]
     assert angles[-1] == pytest.approx(29 / 30)
     (tmp_path / "plots.png").write_bytes(page.screenshot())
 
@@ -98,6 +100,15 @@ def test_over_a_recording_the_chart_follows_the_player(browser, pages, server, s
     rec.stop()
     page = open_viewer(browser, pages, server, f"recording={rec.id}")
     page.click("#plot-button")
+    # found: nothing listed until played; then only what was played. The whole recording
+    # is plotted at once, the robot's motor chosen
+    angle, distance = f"{motor.id} angle", f"{sensor.id} distance"
+    wait_until(page, "(name) => VP.plots.series.get(name)?.size >= 25", angle)
+    assert page.evaluate("() => VP.replay.time") == 0
+    assert page.evaluate("() => VP.plots.chosen") == [angle]
+    wait_until(page, "() => VP.plots.plot.data[0].length >= 25")
+    recorded = page.evaluate("(name) => [...VP.plots.series.get(name).values()]", angle)
+    assert recorded[-1] == pytest.approx(29 / 30)  # the last angle, never played
     page.select_option("#timeline select", "5")
     page.click("#timeline button[title='play / pause']")
     wait_until(page, "() => !VP.replay.playing && VP.replay.time === VP.replay.duration")

@@ -15,7 +15,10 @@ if (options.recording) {   // a recording, played here (read-only: motor panels 
 	replay = new Replay(options.recording, (message) => viewer.receive(message));
 	mountTimeline(replay);
 	window.VP.replay = replay;
-	replay.open().then(() => viewer.setState('replay'), (error) => viewer.setState(`replay failed: ${error.message}`));
+	replay.open().then(() => {
+		viewer.setState('replay');
+		return replay.readAll((ticks) => viewer.plots.preload(ticks));
+	}).catch((error) => viewer.setState(`replay failed: ${error.message}`));
 } else {
 	let connection = null;
 	const viewer = mountViewer({ options, request: (message) => connection.request(message), plotting: true, framing: true });

@@ -1,15 +1,18 @@
 // Plots of what the frames carry, drawn with uPlot (npm: made for streaming time series):
 // every watched sensor's distance, touch and force, and every motor's angle, any of them
 // on one chart against the scene's time, listed by name ("hand · thumb angle") with a filter
-// box. Live, the chart shows the last WINDOW seconds;
-// over a recording (cursor(): the player's time) it shows what was played, with a line
-// where the player stands. CSV gives the chart's time window as a file.
+// box; a robot's motors are plotted until someone ticks a series. Live, the chart shows
+// the last WINDOW seconds; over a recording (cursor(): the player's time) the whole
+// recording (preload: replay.js reads every tick of it), with a line where the player
+// stands. CSV gives the chart's time window as a file.
 
 import uPlot from 'uplot';
 import { eachAngle } from '/client/pose.js';
 
 const WINDOW = 30;          // s of scene time shown live
-const KEEP = 20000;         // samples kept a series (older ones go)
+const KEEP = 20000;         // samples kept a series live (older ones go)
+const KEEP_RECORDED = 360000;  // over a recording: an hour at 60 Hz
+const DEFAULT_MOTORS = 8;   // plotted at first: a robot's first motors
 const DRAW_EVERY = 100;     // ms between redraws (a chart redrawn at 60 Hz costs the picture)
 const READINGS = ['distance', 'touch', 'force'];
 const COLORS = ['#d62728', '#1f77b4', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2', '#17becf'];
@@ -32,12 +35,28 @@ export class Plots {
 		this.plot = null;
 		this.dirty = false;
 		this.listed = 0;
-		this.touched = false;      // until someone ticks a series, the first distance is plotted
+		this.touched = false;      // until someone ticks a series, a robot's motors are plotted
+		this.motorLists = new Map();   // robot id -> motor ids, as the messages plotted said
 	}
 
 	// Called with every message the viewer gets.
 	receive(message) {
 		if (message.op === 'snapshot' && this.cursor() === null) this.clear();
+		this.take(message);
+	}
+
+	// Ticks of a recording ([time, messages] each), all of them whatever the player shows
+	// (a sample at a time already had is the same sample).
+	preload(ticks) {
+		for (const [, messages] of ticks) for (const message of messages) this.take(message);
+	}
+
+	take(message) {
+		const nodes = message.op === 'snapshot' || message.op === 'added' ? message.nodes : [];
+		for (const node of nodes) if (node.motors) this.motorLists.set(node.id, node.motors);
+		for (const [id, fields] of Object.entries(message.updates ?? {})) {
+			if (fields.motors) this.motorLists.set(id, fields.motors);
+		}
 		if (message.op !== 'frame') return;
 		const at = message.time;
 		for (const [sensor, reading] of Object.entries(message.sensors ?? {})) {
@@ -46,14 +65,15 @@ export class Plots {
 				if (value !== undefined) this.add(`${sensor} ${field}`, at, typeof value === 'number' ? value : null);
 			}
 		}
-		for (const [motor, angle] of eachAngle(message.angles, this.motorsOf)) this.add(`${motor} angle`, at, angle);
+		const motorsOf = (robot) => this.motorLists.get(robot) ?? this.motorsOf(robot);
+		for (const [motor, angle] of eachAngle(message.angles, motorsOf)) this.add(`${motor} angle`, at, angle);
 	}
 
 	add(name, at, value) {
 		let samples = this.series.get(name);
 		if (!samples) this.series.set(name, samples = new Map());
 		samples.set(at, value);
-		if (samples.size > KEEP) samples.delete(samples.keys().next().value);
+		if (samples.size > (this.cursor() === null ? KEEP : KEEP_RECORDED)) samples.delete(samples.keys().next().value);
 		this.dirty = true;
 	}
 
@@ -116,9 +136,9 @@ export class Plots {
 	listSeries(force = false) {
 		if (!force && this.series.size === this.listed) return;
 		this.listed = this.series.size;
-		const first = [...this.series.keys()].sort().find((name) => name.endsWith(' distance'));
-		if (!this.touched && !this.chosen.length && first) {
-			this.chosen = [first];
+		const first = this.touched ? [] : this.firstChoice();
+		if (first.length && first.join() !== this.chosen.join()) {
+			this.chosen = first;
 			return this.rebuild();
 		}
 		const wanted = (this.filter?.value ?? '').trim().toLowerCase();
@@ -132,6 +152,17 @@ export class Plots {
 			label.append(box, ` ${text}`);
 			return label;
 		}));
+	}
+
+	// What is plotted before anyone chooses: the first robot's motors (robots in the order
+	// the scene made them), else the first sensor's distance.
+	firstChoice() {
+		for (const motors of this.motorLists.values()) {
+			const angles = motors.map((id) => `${id} angle`).filter((name) => this.series.has(name));
+			if (angles.length) return angles.slice(0, DEFAULT_MOTORS);
+		}
+		const distance = [...this.series.keys()].sort().find((name) => name.endsWith(' distance'));
+		return distance ? [distance] : [];
 	}
 
 	// A series' name as a person reads it: "<what> <field>", the id named (named()).

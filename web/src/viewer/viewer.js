@@ -109,6 +109,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 	return {
 		scene: stage.scene,
 		stage,
+		plots,
 		receive: (message) => {
 			dispatch(handlers, message);
 			if (message.op === 'snapshot' || message.op === 'added' || message.camera) reframe();
