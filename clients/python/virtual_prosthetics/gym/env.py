@@ -23,6 +23,7 @@ from ..tasks.grasp import FRICTION_SPREAD, MASS_SPREAD, PATTERNS, SOLVER_ITERATI
 from ..tasks.hands import hand_source
 from ..tasks.observation import apply
 from ..tasks.relocate import turn_between
+from ..tasks.progress import CAPTION_TICKS
 from ..tasks.scale import Scale
 from ..tasks.trial import TaskHand, Trial, lay_out
 from .actions import action_map
@@ -88,6 +89,8 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         self._sent: dict[int, float] = {}
         self.grasped: Grasped | None = None  # where the object and the wrist were at the hold
         self._shown = False
+        self.episodes = 0
+        self.score = 0.0  # the episode's return so far (the caption's)
 
     @property
     def viewer_url(self) -> str:
@@ -126,6 +129,7 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         self.arm = self.task.arm(self.scale)  # a path keeps what it aimed at: a new one
         self.watcher.reset()
         self.t, self._sent, self.grasped = 0.0, {}, None
+        self.episodes, self.score = self.episodes + 1, 0.0
         self._show()
         return self._observe(motion), self._info(self._judge()[:3])
 
@@ -140,6 +144,7 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
                 self.arm(self.trial, self.t)
                 if tick == 0:
                     apply(self.trial, targets, self._sent)
+                    self._caption()
                 if tick == self.ticks_per_step - 1:
                     motion = self._reading(self.session.step_reading)
                 else:
@@ -154,6 +159,7 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         truncated = self.t >= self.task.seconds - 1e-9
         # scored from the lift on (episodes.py): before it there is nothing to hold yet
         reward = self.task.reward(distance, turn, dropped) if self.t >= PHASES.lifting else 0.0
+        self.score += reward
         return (self._observe(motion), reward, dropped, truncated,
                 self._info((distance, turn, dropped), success))
 
@@ -184,6 +190,16 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
         distance, turn, dropped = judged
         return {"success": success, "is_success": success, "distance": distance, "turn": turn,
                 "dropped": dropped, "time": self.t, "massKg": self.trial.mass if self.trial else None}
+
+    def _caption(self) -> None:
+        """Watched (``human``): the episode, its time and return in the viewers' corner,
+        a quarter of a second at a time (sent with the step)."""
+        tick = round(self.t / self.period) * self.ticks_per_step
+        if self.render_mode != "human" or tick % CAPTION_TICKS >= self.ticks_per_step:
+            return
+        self.session.set_caption(f"{self.task.name}-v0 {self.hands.source.name} · episode "
+                                 f"{self.episodes} · {self.t:.2f} of {self.task.seconds:.1f} s "
+                                 f"· return {self.score:.1f}")
 
     def _show(self) -> None:
         if self.render_mode == "human" and not self._shown:

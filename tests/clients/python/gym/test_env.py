@@ -124,6 +124,12 @@ def test_a_human_render_says_where_to_watch(make, capsys):
     env.reset(seed=0)
     env.render()
     assert capsys.readouterr().out.count(f"/view?scene={env.unwrapped.session.name}") == 1
+    for _ in range(16):  # watched: the episode, its time and return in the viewers' corner
+        env.step(env.action_space.sample())
+    session = env.unwrapped.session
+    session.sync()
+    caption = session.read(lambda mirror: mirror.caption)
+    assert caption.startswith("Hold-v0 edged · episode 1 · 0.25 of ") and " · return " in caption
 
 
 def test_an_rgb_array_render_is_the_trial_from_the_scenes_camera(make):
