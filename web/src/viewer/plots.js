@@ -129,7 +129,16 @@ export class Plots {
 	timeAxis() {
 		const span = this.span();
 		if (!span) return { label: 'scene time (s)' };
-		return { label: 'time in the recording (s)', values: (u, splits) => splits.map((at) => +(at - span[0]).toFixed(3)) };
+		return {
+			label: 'time in the recording (s)',
+			// ticks at round times of the recording (uPlot's increment), not of the scene
+			splits: (u, axis, min, max, increment) => {
+				const ticks = [];
+				for (let at = span[0] + Math.ceil((min - span[0]) / increment - 1e-9) * increment; at <= max + 1e-9; at += increment) ticks.push(at);
+				return ticks;
+			},
+			values: (u, splits) => splits.map((at) => +(at - span[0]).toFixed(3)),
+		};
 	}
 
 	// The ticks: one per series seen so far (new ones appear as frames bring them).
