@@ -6,8 +6,9 @@ robot's angles as one array in the order of its ``motors``, by the robot's id; a
 that is no robot's, by its own id), ``poses`` (node id -> value), ``updates`` (node id ->
 fields), ``sensors`` (watched sensor id -> reading), ``contacts`` (``begin``/``end`` lists
 of pairs, events), ``forces`` (dynamic mode: part id -> newtons pressing on it, for the
-parts whose force changed; 0 once it ends), ``camera``, ``physics``, ``caption`` and ``limited`` (limit name -> how much work it held back in
-the tick). New nodes travel before it in ``added``, removed ones after it in ``removed``.
+parts whose force changed; 0 once it ends), ``camera``, ``physics``, ``caption`` and
+``limited`` (limit name -> how much work it held back in the tick). New nodes travel
+before it in ``added``, removed ones after it in ``removed``.
 """
 
 from __future__ import annotations
