@@ -105,10 +105,14 @@ class Placement:
                             value=first.value, flag=first.flag, scene=scene)
 
     async def survey(self) -> None:
-        """Ask every worker how busy it is."""
+        """Ask every worker how busy it is. A worker's answer to a placement made while the
+        survey gathered is newer than its answer to the survey, and stays (the survey's
+        hid a scene just placed: a vector's two scenes went to one worker)."""
+        asked = time.monotonic()
         answers = await self.bus.gather(PLACE, None, GATHER_SECONDS)
         for name, scenes, full in answers:
-            self._heard(name, scenes, full)
+            if self._loads.get(name, (0, None, float("-inf")))[2] < asked:
+                self._heard(name, scenes, full)
         self._surveyed = time.monotonic()
 
     async def keep_surveying(self) -> None:

@@ -43,6 +43,9 @@ NEW_SCENE_CORES = 0.05
 # a gateway not heard of this long (its heartbeat comes each second) is asked whether it
 # lives: one that has left the bus (died) loses its attachments; a swamped one keeps them
 SILENT_SECONDS = 5.0
+# a scene made for a client that has not joined yet counts as attended this long (on a
+# loaded machine a survey came between a placement and its client's joining)
+JOINING_SECONDS = 30.0
 
 
 class HostedScene:
@@ -55,6 +58,7 @@ class HostedScene:
         self.heard: dict[str, float] = {}  # attachment -> when it was last heard of
         self.connections: dict[str, set[int]] = {}  # attachment -> its connections' numbers
         self.alone_since: float | None = None
+        self.joining_until: float | None = time.monotonic() + JOINING_SECONDS  # (None: joined)
         self.owners: list[str] | None = None  # from "ready": the scene is made
         self.asleep = False  # it last said "idle": a newcomer must not take silence for death
         self.saving: dict[str, Any] = {}
@@ -70,11 +74,15 @@ class HostedScene:
         self.heard[attachment] = time.monotonic()
         self.connections.setdefault(attachment, set())
         self.alone_since = None
-        joining = not any(self.connections.values())  # its client joins next: counted now
         return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
                 "saving": self.saving, "asleep": self.asleep,
-                "scenes": self.host.attended() + joining,
+                "scenes": self.host.attended(),  # this one included
                 "room": self.host.room()}
+
+    def attended(self) -> bool:
+        """Whether a client uses the scene, or is about to (made for it, not joined yet)."""
+        joining = self.joining_until is not None and time.monotonic() < self.joining_until
+        return joining or any(self.connections.values())
 
     def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
         """A gateway's commands, in the order it sent them."""
@@ -92,6 +100,7 @@ class HostedScene:
                 cid, *rest = args
                 if verb == "join":
                     self.connections[attachment].add(cid)
+                    self.joining_until = None
                 elif verb == "leave":
                     self.connections[attachment].discard(cid)
                 self.runner.post(verb, (attachment, cid), *rest)
@@ -175,11 +184,12 @@ class WorkerHost:
             await reply.send((self.name, self.attended(), self.room()))
 
     def attended(self) -> int:
-        """How busy this worker is, as gateways place scenes by it: its scenes with a client.
-        A scene its clients have left stops once idle; counted, it sent the next scenes
+        """How busy this worker is, as gateways place scenes by it: its scenes with a client
+        or made for one not joined yet (:meth:`HostedScene.attended`). A scene its clients
+        have left stops once idle; counted, it sent the next scenes
         elsewhere (Gymnasium's vector environment makes one environment to read its spaces
         and closes it: both of the vector's scenes then went to the other worker)."""
-        return sum(1 for hosted in self.scenes.values() if any(hosted.connections.values()))
+        return sum(1 for hosted in self.scenes.values() if hosted.attended())
 
     def room(self) -> NoRoom | None:
         """Why this worker takes no more scenes (None: it has room). Besides the ``scenes``
