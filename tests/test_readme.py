@@ -30,10 +30,23 @@ NOT_RUN = {
     "make run": "the two commands themselves: CI runs `make test` on a clean clone",
     ".venv/bin/python -m virtual_prosthetics.tasks grasp --url": "minutes of trials; "
     "tests/clients/python/tasks run every task and the command line (test_main)",
-    "make test-container": "needs a container engine; tests/test_container_files.py checks the files",
+    "make test-container": "needs a container engine; tests/test_container_files.py checks "
+    "the files",
     "nats-server -c": "a cluster over several machines; tests/server/cluster start one",
     "server/ ": "the layout, not a command",
 }
+
+
+# the blocks run here, by their first lines
+START_EXPORT = "curl -s http://127.0.0.1:8000/api/scenes/default/export > lab.json"
+START_REPORT = "curl -s http://127.0.0.1:8000/api/scenes/default/robots/demo.EdgedHand-left"
+START_RECORDING = "id=$(curl -s -X POST http://127.0.0.1:8000/api/scenes/default/recordings"
+START_URDF = "curl -sfOJ http://127.0.0.1:8000/api/scenes/default/robots/demo.RoundHand-left/urdf"
+START_UPLOAD = "curl -s --data-binary @hand.zip"
+START_GYM = "import gymnasium as gym"
+START_DIGGER = "import math\nimport virtual_prosthetics as vp"
+START_PAD = "class Pad(vp.Box):"
+START_PAGE = '<script type="module">'
 
 
 def blocks() -> list[tuple[str, str]]:
@@ -93,17 +106,6 @@ def test_every_block_is_run_here_or_says_why_not():
             f"a README block nobody runs ({language}): {text[:80]!r}")
     for start in run_here:
         block(start)  # each is still there, once
-
-
-START_EXPORT = "curl -s http://127.0.0.1:8000/api/scenes/default/export > lab.json"
-START_REPORT = "curl -s http://127.0.0.1:8000/api/scenes/default/robots/demo.EdgedHand-left"
-START_RECORDING = "id=$(curl -s -X POST http://127.0.0.1:8000/api/scenes/default/recordings"
-START_URDF = "curl -sfOJ http://127.0.0.1:8000/api/scenes/default/robots/demo.RoundHand-left/urdf"
-START_UPLOAD = "curl -s --data-binary @hand.zip"
-START_GYM = "import gymnasium as gym"
-START_DIGGER = "import math\nimport virtual_prosthetics as vp"
-START_PAD = "class Pad(vp.Box):"
-START_PAGE = '<script type="module">'
 
 
 def test_the_shell_walkthrough_runs_as_written(demo, folder):
@@ -169,8 +171,9 @@ def test_the_page_example_runs_as_written(demo, folder):
     from playwright.sync_api import sync_playwright  # noqa: PLC0415
     (folder / "page.html").write_text(literal(block(START_PAGE), demo))
     port = free_port()
-    served = subprocess.Popen([sys.executable, "-m", "http.server", str(port), "--bind", "127.0.0.1"],
-                              cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    served = subprocess.Popen([sys.executable, "-m", "http.server", str(port), "--bind",
+                               "127.0.0.1"], cwd=folder, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)
     try:
         with sync_playwright() as playwright:
             chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)

@@ -127,10 +127,11 @@ def test_a_scripts_caption_shows_in_a_corner_of_every_viewer(browser, pages, ser
     page = open_viewer(browser, pages, server, f"scene={scene_name}")
     caption = page.locator("#caption")
     wait_until(page, "() => !document.getElementById('caption').hidden")
-    assert caption.inner_text() == "grasp edged · 1.5 of 96 scene-s\nspherical · trials 1-10 of 20"
-    box = caption.bounding_box()
-    size = page.viewport_size
-    assert box["x"] + box["width"] > size["width"] - 20 and box["y"] + box["height"] > size["height"] - 20
+    assert caption.inner_text() == ("grasp edged · 1.5 of 96 scene-s\n"
+                                    "spherical · trials 1-10 of 20")
+    box, size = caption.bounding_box(), page.viewport_size  # the bottom-right corner
+    assert box["x"] + box["width"] > size["width"] - 20
+    assert box["y"] + box["height"] > size["height"] - 20
     vp.set_caption("")
     wait_until(page, "() => document.getElementById('caption').hidden")
 

@@ -121,7 +121,8 @@ class Score:
 
 def run_trials(session: Session, hands: TaskHand, item: TestObject, every: Sequence[tuple[float, float]],
                mass: float, grip: Grip, arm: Arm, controller: Callable[[Grip], HandController],
-               side_by_side: int, seconds: float = PHASES.end, score: Score | None = None) -> list[Trial]:
+               side_by_side: int, seconds: float = PHASES.end,
+               score: Score | None = None) -> list[Trial]:
     """A trial per draw of ``every``, ``side_by_side`` at a time in a row (one: a robot
     already in the scene), each row cleared away when it is done; the trials, observed
     (and counted in the scene's caption by ``score``, the object's name and held trials

@@ -118,7 +118,8 @@ def relocate(session: Session, hands: TaskHand, trials: int, seed: int, *, side_
         with progress.shown(planned, f"relocate {hands.source.name}"):
             for pattern in chosen:
                 done = run_trials(session, hands, pattern.item, draws(rng, trials), pattern.item.light,
-                                  pattern.grip, steer(approach()), controller, side_by_side, seconds,
+                                  pattern.grip, steer(approach()), controller, side_by_side,
+                                  seconds,
                                   Score(f"{pattern.item.name} to its target", "placed",
                                         lambda trial: judge(trial)["success"]))
                 judged = [{**drawn(trial), **judge(trial)} for trial in done]

@@ -19,8 +19,9 @@ def test_merge_keeps_latest_values_and_all_keys():
 
 def test_merge_keeps_a_caption_and_the_one_that_cleared_it():
     older = {"op": "frame", "seq": 1, "time": 0.1, "caption": "grasp · trial 1"}
-    assert merge_frames(older, {"op": "frame", "seq": 2, "time": 0.2})["caption"] == "grasp · trial 1"
-    assert merge_frames(older, {"op": "frame", "seq": 2, "time": 0.2, "caption": ""})["caption"] == ""
+    newer = {"op": "frame", "seq": 2, "time": 0.2}
+    assert merge_frames(older, newer)["caption"] == "grasp · trial 1"
+    assert merge_frames(older, {**newer, "caption": ""})["caption"] == ""
 
 
 def test_merge_keeps_every_contact_change_and_the_latest_readings():
