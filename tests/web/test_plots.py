@@ -109,6 +109,10 @@ def test_over_a_recording_the_chart_follows_the_player(browser, pages, server, s
     wait_until(page, "() => VP.plots.plot.data[0].length >= 25")
     recorded = page.evaluate("(name) => [...VP.plots.series.get(name).values()]", angle)
     assert recorded[-1] == pytest.approx(29 / 30)  # the last angle, never played
+    # frames carry changes only: the angle holds to the recording's end, drawn so
+    times, drawn = page.evaluate("() => VP.plots.plot.data")
+    assert times[-1] == pytest.approx(page.evaluate("() => VP.plots.span()[1]"))
+    assert drawn[-1] == pytest.approx(29 / 30) and None not in drawn[drawn.index(recorded[0]):]
     page.select_option("#timeline select", "5")
     page.click("#timeline button[title='play / pause']")
     wait_until(page, "() => !VP.replay.playing && VP.replay.time === VP.replay.duration")

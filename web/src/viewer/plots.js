@@ -37,6 +37,7 @@ export class Plots {
 		this.listed = 0;
 		this.touched = false;      // until someone ticks a series, a robot's motors are plotted
 		this.motorLists = new Map();   // robot id -> motor ids, as the messages plotted said
+		this.latest = null;        // the newest frame's time
 	}
 
 	// Called with every message the viewer gets.
@@ -59,6 +60,7 @@ export class Plots {
 		}
 		if (message.op !== 'frame') return;
 		const at = message.time;
+		this.latest = Math.max(this.latest ?? at, at);
 		for (const [sensor, reading] of Object.entries(message.sensors ?? {})) {
 			for (const field of READINGS) {
 				const value = reading[field];
@@ -180,16 +182,24 @@ export class Plots {
 		return `${this.named(name.slice(0, cut))} ${name.slice(cut + 1)}`;
 	}
 
-	// [times, ...values] for uPlot: every time any chosen series has, in order, within the window.
+	// [times, ...values] for uPlot: every time any chosen series has, in order, and the
+	// latest time (live) or the recording's end, within the window. Frames carry changes
+	// only, so a value holds until the next one: each series is carried forward (a motor
+	// that stopped is a flat line to the end, not a line that stops where it last moved).
 	data() {
 		const times = new Set();
 		for (const name of this.chosen) for (const at of this.series.get(name)?.keys() ?? []) times.add(at);
-		let ordered = [...times].sort((a, b) => a - b);
-		if (this.cursor() === null && ordered.length) ordered = ordered.filter((at) => at >= ordered[ordered.length - 1] - WINDOW);
-		return [ordered, ...this.chosen.map((name) => {
+		const end = this.span()?.[1] ?? this.latest;
+		if (times.size && end !== null) times.add(end);
+		const ordered = [...times].sort((a, b) => a - b);
+		const columns = this.chosen.map((name) => {
 			const samples = this.series.get(name) ?? new Map();
-			return ordered.map((at) => samples.get(at) ?? null);
-		})];
+			let held = null;
+			return ordered.map((at) => (held = samples.has(at) ? samples.get(at) : held));
+		});
+		const from = this.cursor() === null && ordered.length
+			? ordered.findIndex((at) => at >= ordered[ordered.length - 1] - WINDOW) : 0;
+		return [ordered.slice(from), ...columns.map((column) => column.slice(from))];
 	}
 
 	draw() {
