@@ -11,7 +11,7 @@ import time
 import pytest
 
 import virtual_prosthetics as vp
-from tests.conftest import WAIT_SECONDS
+from tests.conftest import WAIT_SECONDS, start_server, stop_server
 
 
 class CuttableProxy:
@@ -70,14 +70,24 @@ class CuttableProxy:
         self.listener.close()
 
 
+@pytest.fixture(scope="module")
+def patient():
+    """A server that keeps a left client's objects a minute: a client tries to connect
+    again only as long as its objects are kept, and the shared server's second (as its
+    tests want) was too short, on a loaded machine, for three dropped handshakes."""
+    running = start_server("--no-demo", "--limit", f"leaveGraceSeconds={int(WAIT_SECONDS)}")
+    yield running
+    stop_server(running)
+
+
 @pytest.fixture
-def proxy(server):
-    running = CuttableProxy(server.port)
+def proxy(patient):
+    running = CuttableProxy(patient.port)
     yield running
     running.close()
 
 
-def test_a_dropped_script_comes_back_with_its_robots_and_makes_nothing_twice(server, proxy,
+def test_a_dropped_script_comes_back_with_its_robots_and_makes_nothing_twice(patient, proxy,
                                                                             scene_name):
     with vp.connect(f"ws://127.0.0.1:{proxy.port}", scene=scene_name) as scene:
         me = scene.client_id
@@ -92,14 +102,14 @@ def test_a_dropped_script_comes_back_with_its_robots_and_makes_nothing_twice(ser
         hand.flex_fingers(0.6)  # sent once the client is itself again
         scene.sync()
         assert proxy.accepted == 2 and scene.client_id == me
-        robots = server.get(f"/api/scenes/{scene_name}/robots")
+        robots = patient.get(f"/api/scenes/{scene_name}/robots")
         assert [r["id"] for r in robots] == [hand.id]
-        motors = server.get(f"/api/scenes/{scene_name}/robots/{hand.id}")["motors"]
+        motors = patient.get(f"/api/scenes/{scene_name}/robots/{hand.id}")["motors"]
         assert motors[1]["angle"] == pytest.approx(-0.6)
         assert hand.get_angles()[1] == pytest.approx(-0.6)  # the mirror resynced and follows
 
 
-def test_connections_dropped_mid_handshake_do_not_stop_the_reconnection(server, proxy,
+def test_connections_dropped_mid_handshake_do_not_stop_the_reconnection(patient, proxy,
                                                                         scene_name):
     with vp.connect(f"ws://127.0.0.1:{proxy.port}", scene=scene_name) as scene:
         me = scene.client_id
@@ -114,10 +124,10 @@ def test_connections_dropped_mid_handshake_do_not_stop_the_reconnection(server, 
         box.set_position(1, 2, 3)
         scene.sync()
         assert scene.client_id == me and proxy.reset_next == 0
-        assert [n["position"] for n in server.nodes(scene_name) if n["id"] == box.id] == [[1, 2, 3]]
+        assert [n["position"] for n in patient.nodes(scene_name) if n["id"] == box.id] == [[1, 2, 3]]
 
 
-def test_closing_on_purpose_does_not_come_back(server, proxy, scene_name):
+def test_closing_on_purpose_does_not_come_back(patient, proxy, scene_name):
     scene = vp.connect(f"ws://127.0.0.1:{proxy.port}", scene=scene_name)
     vp.Box()
     scene.sync()
