@@ -1,13 +1,14 @@
 """Where a gateway's new scene runs: on the worker holding its lease, else on the least
 busy worker with room, which claims the lease (:mod:`.worker_host`).
 
-How busy each worker is (its scenes with a client: WorkerHost.attended) comes from asking
-them all every second, from each worker's answer to a placement (its count then), and
-from the placements this gateway has under way; so scenes placed at the same moment
-spread instead of all going where there were fewest a second ago. When every worker on the bus, asked afresh, has no room, the scene
-is refused at once (``limit_exceeded``, naming each worker's limit), as a single server
-refuses past ``--limit scenes``: waiting would not make room, and the client is told which
-flag does.
+How busy each worker is (its scenes with a client, or made for one about to join:
+WorkerHost.attended) comes from asking them all every second, from each worker's answer
+to a placement (its count then, kept over an older survey's), and from the placements
+this gateway has under way; so scenes placed at the same moment spread instead of all
+going where there were fewest a second ago. When every worker on the bus, asked afresh,
+has no room, the scene is refused at once (``limit_exceeded``, naming each worker's
+limit), as a single server refuses past ``--limit scenes``: waiting would not make room,
+and the client is told which flag does.
 """
 
 from __future__ import annotations
