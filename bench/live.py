@@ -124,15 +124,12 @@ def _one_change(setter: Any, watcher: Any, robot: str, motor: str, k: int) -> fl
 
 def viewers(running: RunningServer, counts: list[int], seconds: float) -> list[dict[str, Any]]:
     """Viewer connections on hands-10 while it is driven at 60 Hz: per count, frames per
-    second (lowest, median), late frames, server CPU; then each count again with one more
-    connection that never reads."""
+    second (lowest, median), late frames, server CPU and the web process's CPU per
+    viewer-frame; then the most viewers again with one more connection that never reads."""
     scene = "viewed"
-    runs = [(count, stall) for count in counts for stall in (False, True)]
-    rows = []
+    runs = [(count, False) for count in counts] + [(max(counts), True)]
     with driving(running, scene, "hands", 10, 3600):
-        for count, stall in runs:
-            rows.append(_viewer_run(running, scene, count, seconds, stall))
-    return rows
+        return [_viewer_run(running, scene, count, seconds, stall) for count, stall in runs]
 
 
 def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
@@ -140,21 +137,35 @@ def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
     command = [*NICE, sys.executable, "-m", "bench.viewers", running.ws, scene, str(count),
                *(["--stalled"] if stall else [])]
 
-    def server_cores(start: float, end: float) -> float:
+    def server_cores(start: float, end: float) -> tuple[float, dict[str, Any], dict[str, Any]]:
         sleep_until(start)
-        before = server_cpu_seconds(running, scene)
+        before, handed = server_cpu_seconds(running, scene), scene_metrics(running, scene)
         sleep_until(end)
-        return (server_cpu_seconds(running, scene) - before) / (time.monotonic() - start)
+        cores = (server_cpu_seconds(running, scene) - before) / (time.monotonic() - start)
+        return cores, handed, scene_metrics(running, scene)
 
-    [out], cpu = run_viewers([command], seconds, server_cores)
+    [out], (cores, before, after) = run_viewers([command], seconds, server_cores)
     found = out["viewers"]
     frames = sum(v["frames"] for v in found)
     fps = [v["fps"] for v in found]
+    handed = after["viewerFrames"] - before["viewerFrames"]
     return {"viewers": count, "stalled": stall, "fps_min": min(fps),
             "fps_median": figure(fps).median,
             "late_pct": 100 * sum(v["late"] for v in found) / max(1, frames),
             "skipped_pct": 100 * sum(v["skipped"] for v in found) / max(1, frames),
-            "server_cores": cpu}
+            "server_cores": cores, "viewer_frames_per_s": handed / seconds,
+            # the web process's fan-out, measured in it: CPU per frame handed to a connection
+            "fanout_us_per_viewer_frame":
+                1e6 * (after["fanoutCpuSeconds"] - before["fanoutCpuSeconds"]) / max(1, handed)}
+
+
+def viewer_frame_us_outside(rows: list[dict[str, Any]]) -> float:
+    """The server's whole CPU (web and scene processes) per viewer-frame, from outside:
+    the most viewers' cores less the fewest's, over the frames the difference received."""
+    plain = [row for row in rows if not row["stalled"]]
+    fewest, most = min(plain, key=lambda r: r["viewers"]), max(plain, key=lambda r: r["viewers"])
+    frames_per_s = most["viewer_frames_per_s"] - fewest["viewer_frames_per_s"]
+    return 1e6 * (most["server_cores"] - fewest["server_cores"]) / max(1.0, frames_per_s)
 
 
 def server_cpu_seconds(running: RunningServer, scene: str) -> float:

@@ -18,7 +18,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import busy_connect, chaos, chaos_cluster, cluster, core, gym, idle_scenes, live, piles, recording, scenes, tasks
+from . import (busy_connect, chaos, chaos_cluster, cluster, core, fanout_floor, gym, idle_scenes, live,
+               piles, recording, scenes, tasks)
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -70,7 +71,7 @@ class Sizes:
 FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks=200,
              requests=20_000, frames=300, hand_counts=(10, 20, 30, 40, 50, 60, 80, 100),
              hand_ticks=120, outside_seconds=12, latency_rounds=2000,
-             viewer_counts=(1, 10, 50, 100, 200), viewer_seconds=5, busy_hands=20,
+             viewer_counts=(1, 10, 100, 1000), viewer_seconds=5, busy_hands=20,
              document_rounds=30, chaos_faults=30 * len(chaos.KINDS),
              cluster_chaos_faults=5 * len(chaos_cluster.KINDS), idle_scenes=200, hands_most=100,
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
@@ -79,7 +80,7 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              tasks=(20.0, 150, 10), gym=(600, 30))
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
-              latency_rounds=5, viewer_counts=(2,), viewer_seconds=2.0, busy_hands=2,
+              latency_rounds=5, viewer_counts=(1, 3), viewer_seconds=2.0, busy_hands=2,
               document_rounds=2, chaos_faults=len(chaos.KINDS),
               cluster_chaos_faults=len(chaos_cluster.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
@@ -108,6 +109,8 @@ def measure(sizes: Sizes) -> dict[str, Any]:
                               for count in (small, large)],
         "dynamic": lambda: core.dynamic(*sizes.dynamic),
         "recording": lambda: recording.recording(small, sizes.recorded_ticks, sizes.seeks),
+        "fanout_floor": lambda: fanout_floor.send_floor_us(max(sizes.viewer_counts),
+                                                           sizes.viewer_seconds),
     }
     for name, step in steps.items():
         found[name] = _timed(name, step)
@@ -169,8 +172,12 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "sensors100_ms": found["sensors"][0]["sensing_ms"].median,
         "requests_per_s": found["requests"]["per_second"],
         "latency_p99_ms": found["latency"]["p99_ms"],
-        "viewers200_fps_min": min(row["fps_min"] for row in most),
-        "viewers200_late_pct": max(row["late_pct"] for row in most),
+        "viewers1000_fps_min": min(row["fps_min"] for row in most),
+        "viewers1000_late_pct": max(row["late_pct"] for row in most),
+        "viewer_frame_us": next(row["fanout_us_per_viewer_frame"] for row in most
+                                if not row["stalled"]),
+        "viewer_frame_us_outside": live.viewer_frame_us_outside(found["viewers"]),
+        "viewer_frame_floor_us": found["fanout_floor"],
         "frame_bytes_two_hands": found["frames"]["frame_bytes"].median,
         "max_hands_60hz": found["max_hands"]["max_hands"],
         "dynamic_hands10_objects50_tick_ms": found["dynamic"]["tick_ms"].median,

@@ -19,6 +19,7 @@ from .demo import DEMOS
 from .web.access import AccessPolicy
 from .web.app import create_app
 from .web.connection_limits import ConnectionCount, guarded_protocol
+from .web.framed_socket import FramedSocketProtocol
 from .web.scene_capacity import machine_memory, scenes_held
 
 WS_MAX_BYTES = 16 << 20  # beyond the protocol's 1 MiB: those get an answer, not a hang-up
@@ -50,9 +51,10 @@ def main(argv: list[str] | None = None) -> None:
                      limits=limits, uploads=args.assets_dir, access=access,
                      state_dir=args.state_dir, cluster=cluster)
     # No permessage-deflate: it would compress every frame for every client on the one
-    # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md).
+    # event loop all scenes share (a 100-hand "added" held it 55 ms; see bench/RESULTS.md),
+    # and a frame made once could no longer be written to every viewer (framed_socket.py).
     uvicorn.run(app, host=args.host, port=args.port, log_level=args.log_level,
-                http=guarded_protocol(limits, ConnectionCount()), ws="websockets-sansio",
+                http=guarded_protocol(limits, ConnectionCount()), ws=FramedSocketProtocol,
                 ws_max_size=WS_MAX_BYTES, ws_per_message_deflate=False, ws_ping_interval=args.ping_seconds,
                 ws_ping_timeout=args.ping_seconds,
                 h11_max_incomplete_event_size=limits.header_bytes)

@@ -10,21 +10,24 @@ from typing import Any
 
 from ..core.protocol.messages import encode
 from ..core.scene.frames import merge_frames
+from .framed_socket import frame_of
 
 
 class Outgoing:
     """A message's JSON text and op, encoded once however many connections get it.
 
-    Made in a scene's process and sent to the server's as text; the message itself is
-    decoded again only where it is needed (folding frames for a slow reader).
+    Made in a scene's process and sent to the server's as text; framed for the WebSocket
+    once, here, when first sent; decoded again only where it is needed (folding frames
+    for a slow reader).
     """
 
-    __slots__ = ("op", "text", "_message", "_behind", "__weakref__")
+    __slots__ = ("op", "text", "_message", "_frame", "_behind", "__weakref__")
 
     def __init__(self, op: str, text: str, message: dict[str, Any] | None = None) -> None:
         self.op = op
         self.text = text
         self._message = message
+        self._frame: bytes | None = None
         # a frame this one was folded behind (weakly: a strong key would chain every frame
         # to the one before, for ever) -> the fold
         self._behind: weakref.WeakKeyDictionary[Outgoing, Outgoing] | None = None
@@ -38,6 +41,13 @@ class Outgoing:
         if self._message is None:
             self._message = json.loads(self.text)
         return self._message
+
+    @property
+    def frame(self) -> bytes:
+        """The message as one WebSocket frame: the same bytes for every connection."""
+        if self._frame is None:
+            self._frame = frame_of(self.text)
+        return self._frame
 
     def behind(self, older: Outgoing) -> Outgoing:
         """This frame folded behind ``older`` (both frames), made once for every connection

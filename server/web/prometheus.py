@@ -22,6 +22,10 @@ SCENE_METRICS: dict[str, tuple[str, str, str]] = {
     "cpuSeconds": ("vp_cpu_seconds_total", "counter", "CPU the scene's process has used (s)"),
     "clients": ("vp_clients", "gauge", "Connections to the scene"),
     "queuedBytes": ("vp_queued_bytes", "gauge", "Bytes waiting in the scene's connections' outboxes"),
+    "viewerFrames": ("vp_viewer_frames_total", "counter",
+                     "Tick messages handed to connections, one per connection"),
+    "fanoutCpuSeconds": ("vp_fanout_cpu_seconds_total", "counter",
+                         "CPU this server process spent handing the scene's ticks to connections (s)"),
 }
 
 

@@ -300,7 +300,8 @@ async def _scene_metrics(hub: SceneHub) -> dict[str, Any]:
             "clients": len(hub.connections),
             "queued": sum(len(c.outbox) for c in hub.connections),
             "queuedBytes": sum(c.outbox.bytes for c in hub.connections),
-            "framesMerged": sum(c.outbox.merged for c in hub.connections)}
+            "framesMerged": sum(c.outbox.merged for c in hub.connections),
+            "viewerFrames": hub.viewer_frames, "fanoutCpuSeconds": round(hub.fanout_cpu, 6)}
 
 
 def _robots(scene: Scene) -> list[dict[str, Any]]:

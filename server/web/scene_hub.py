@@ -19,6 +19,7 @@ from typing import Any, AsyncIterator, Callable
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
 from ..errors import UnknownScene, VPError
+from .framed_socket import FramedSocket
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .recordings import Recordings
 from .runner import RunnerFactory, SceneRunner
@@ -52,19 +53,29 @@ class Connection:
     farewell: Outgoing | None = None  # the last message, sent as the connection closes
     close_code: int = 1000
     close_reason: str = ""
+    socket: FramedSocket | None = None  # where frames made once are written, if offered
+    sending: bool = False  # its writer holds a message taken from the outbox
 
     def __post_init__(self) -> None:
         self.drained.set()
 
     def send(self, items: list[Outgoing]) -> None:
-        """Queue messages; a connection that stopped reading is marked closed."""
+        """Write messages, or queue them behind those waiting; a connection that stopped
+        reading is marked closed."""
         try:
             for item in items:
-                self.outbox.put(item)
+                if not self._written_now(item):
+                    self.outbox.put(item)
         except SlowConsumer as reason:
             if not self.closed.is_set():
                 log.warning("closing %s: %s", self.client_id, reason)
             self.closed.set()
+
+    def _written_now(self, item: Outgoing) -> bool:
+        # straight to the socket (the same bytes for every viewer), only when nothing of
+        # this connection's is waiting or being written: messages never overtake
+        return (self.socket is not None and not self.sending and not self.outbox
+                and not self.closed.is_set() and self.socket.write_now(item.frame))
 
     def applied(self, size: int) -> None:
         """``size`` bytes of this connection's text were applied by its scene."""
@@ -94,6 +105,8 @@ class SceneHub:
         self.figures: dict[str, Any] | None = None  # its last metrics, for when it is silent
         self.summary: dict[str, Any] | None = None  # its last counts, likewise
         self.saving: dict[str, Any] = {}  # what its process last said of its files
+        self.viewer_frames = 0  # messages of its ticks, one per connection that got them
+        self.fanout_cpu = 0.0  # CPU seconds this process spent handing them out
         self._owners, self._on_end, self._recordings = owners, ended, recordings
         self._open = asyncio.Event()  # made (restored), and no import under way
         self._imports = 0
@@ -187,9 +200,14 @@ class SceneHub:
                 self._ended(*event[1:])
 
     def broadcast(self, items: list[Outgoing]) -> None:
-        """Queue a tick's messages for every connection."""
-        for connection in list(self.connections):
+        """Write a tick's messages to every connection (or queue them), counting the CPU
+        it takes: the cost of a viewer, in ``/api/metrics``."""
+        started = time.thread_time()
+        connections = list(self.connections)
+        for connection in connections:
             connection.send(items)
+        self.viewer_frames += len(connections) * len(items)
+        self.fanout_cpu += time.thread_time() - started
 
     async def join(self, connection: Connection) -> None:
         """Send a connection its hello and snapshot; it gets every later tick."""

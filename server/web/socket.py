@@ -18,6 +18,7 @@ from ..core.physics.engine import ENGINE
 from ..core.protocol.session import ROLES
 from ..errors import LimitExceeded, OutOfRange, VPError
 from .access import AccessPolicy
+from .framed_socket import framed_socket
 from .hub import Hubs
 from .outbox import Outbox, Outgoing
 from .scene_hub import Connection, SceneHub
@@ -54,7 +55,8 @@ async def websocket_endpoint(websocket: WebSocket, scene: str = "default",
         return
     client_id, resume_key = hubs.client_for(scene, resume)
     connection = Connection(client_id, role, Outbox(hubs.limits.outbox_bytes), resume_key, keep,
-                            trusted=role == "controller" and access.trusts(token))
+                            trusted=role == "controller" and access.trusts(token),
+                            socket=framed_socket(websocket.scope))
     tasks: list[asyncio.Task[object]] = []
     try:
         await hub.join(connection)
@@ -86,11 +88,17 @@ async def _read(websocket: WebSocket, connection: Connection, hub: SceneHub) -> 
 
 
 async def _write(websocket: WebSocket, connection: Connection) -> None:
+    socket = connection.socket
     try:
         while True:
             item = await connection.outbox.get()
-            await websocket.send_text(item.text)
-    except (WebSocketDisconnect, RuntimeError):
+            connection.sending = True  # until written: nothing may be written before it
+            if socket is None:
+                await websocket.send_text(item.text)
+            else:
+                await socket.write(item.frame)
+            connection.sending = False
+    except (WebSocketDisconnect, RuntimeError, OSError):  # (OSError: uvicorn's disconnect)
         return
 
 

@@ -29,8 +29,11 @@ def test_bench_quick_writes_every_figure(tmp_path):
     figures = results["figures"]
     assert [(d["hands"], d["export_ms"]["count"]) for d in figures["documents"]] == [(2, 2), (3, 2)]
     assert figures["hands10"]["bodies"] == 32 and figures["frames"]["frame_bytes"]["count"] == 3
-    assert [(row["viewers"], row["stalled"]) for row in figures["viewers"]] == [(2, False), (2, True)]
+    assert [(row["viewers"], row["stalled"]) for row in figures["viewers"]] == [
+        (1, False), (3, False), (3, True)]
     assert all(row["fps_median"] > 0 for row in figures["viewers"])  # frames reached them
+    assert all(row["fanout_us_per_viewer_frame"] > 0 for row in figures["viewers"])  # counted
+    assert math.isfinite(results["viewer_frame_us_outside"])
     assert figures["latency"]["rounds"] == 5
     assert figures["idle_scenes"]["scene_start_cpu_ms"]["count"] == 3  # a fresh scene each
     busy = figures["busy_connect"]
