@@ -18,8 +18,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from . import (busy_connect, chaos, chaos_cluster, cluster, core, fanout_floor, gym, idle_scenes, live,
-               piles, recording, scenes, tasks)
+from . import (busy_connect, chaos, chaos_cluster, client_cpu, cluster, core, fanout_floor, gym,
+               idle_scenes, live, piles, recording, scenes, tasks)
 from .report import lines, write
 
 HERE = Path(__file__).resolve().parent
@@ -144,6 +144,8 @@ def _outside(sizes: Sizes, small: int, large: int) -> dict[str, Any]:
         outside = {
             "outside": lambda: [live.tick_outside(running, count, sizes.outside_seconds)
                                 for count in (small, large, sizes.hands_most)],
+            "clients": lambda: [client_cpu.measure(running, client, small, sizes.outside_seconds)
+                                for client in ("python", "js")],
             "latency": lambda: live.latency(running, sizes.latency_rounds),
             "viewers": lambda: live.viewers(running, list(sizes.viewer_counts),
                                             sizes.viewer_seconds),
@@ -184,6 +186,8 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "recording_hands10_mb_per_minute": found["recording"]["mb_per_minute"],
         "recording_seek_ms_max": found["recording"]["seek_max_ms"],
         "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],
+        "client_cpu_hands10_pct": 100 * found["clients"][0]["server_cores"],
+        "client_cpu_hands10_js_pct": 100 * found["clients"][1]["server_cores"],
         "hands100_outside_ticks_per_s": found["outside"][2]["ticks_per_second"],
         "two_scenes_fps_min": min(found["two_scenes"]["ticks_per_second"]),
         "busy_server_connect_s": found["busy_connect"]["connect_fresh_s"].p95,

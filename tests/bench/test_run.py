@@ -35,6 +35,8 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert all(row["fanout_us_per_viewer_frame"] > 0 for row in figures["viewers"])  # counted
     assert math.isfinite(results["viewer_frame_us_outside"])
     assert figures["latency"]["rounds"] == 5
+    assert [(c["client"], c["hands"]) for c in figures["clients"]] == [("python", 2), ("js", 2)]
+    assert all(c["requests_per_second"] > 0 for c in figures["clients"])  # the clients drove
     assert figures["idle_scenes"]["scene_start_cpu_ms"]["count"] == 3  # a fresh scene each
     busy = figures["busy_connect"]
     assert busy["scenes"] == 2 and busy["connect_fresh_s"]["count"] == 5
