@@ -43,7 +43,8 @@ from nats.js.kv import KeyValue
 from ..errors import BusUnavailable, TooLarge
 
 log = logging.getLogger(__name__)
-PLACE = "vp.place"
+PLACE = "vp.place"  # gateways ask every worker how busy it is (a Load each)
+LOADS = "vp.loads"  # a worker tells every gateway its Load when it changes
 CONNECT_SECONDS = 60.0  # a process started with its bus waits this long for it
 # a bus cut off without its connection closing (a partition) is noticed within about
 # PING_SECONDS * (PINGS_OUT + 1), not nats-py's default of minutes
@@ -61,6 +62,19 @@ class NoRoom:
     value: float
     flag: str
     text: str
+
+
+@dataclass(frozen=True)
+class Load:
+    """How busy a worker is: its attended scenes and why it has no room (None: it has),
+    as it was at ``stamp``, the worker's own monotonic clock (of two loads of one worker,
+    the one stamped later is the newer, whichever way each came: a survey, a placement's
+    answer or a change told)."""
+
+    worker: str
+    scenes: int
+    room: NoRoom | None
+    stamp: float
 
 
 def attach_subject(worker: str) -> str:

@@ -22,7 +22,7 @@ from ..errors import BusUnavailable
 from ..web.runner import Deliver
 from ..web.scene_store import SceneStore
 from ..web.worker import SceneSetup
-from .bus import Bus, OrderedSender, Reply, Unanswered, alive_subject, gateway_subject
+from .bus import LOADS, Bus, OrderedSender, Reply, Unanswered, alive_subject, gateway_subject
 from .leases import break_worker, lease_holder
 from .placement import Placement
 from .remote_runner import RemoteRunner
@@ -51,8 +51,9 @@ class Gateway:
         self._tasks: list[asyncio.Task[None]] = []
         self.placement = Placement(bus)
 
-    async def place(self, attachment: str, scene: str) -> tuple[str, dict[str, Any]] | None:
-        return await self.placement.place(attachment, scene)
+    async def place(self, attachment: str, scene: str,
+                    expecting: bool) -> tuple[str, dict[str, Any]] | None:
+        return await self.placement.place(attachment, scene, expecting)
 
     def runner(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                setup: SceneSetup | None, deliver: Deliver, store: SceneStore | None,
@@ -64,6 +65,7 @@ class Gateway:
         """Answer workers that ask whether it lives; send; beat; survey the workers."""
         self.bus.link.returned.append(self._after_outage)
         await self.bus.subscribe(gateway_subject(self.name), self._alive)
+        await self.bus.subscribe(LOADS, self.placement.told)
         self._tasks = [asyncio.create_task(self._outgoing.run()),
                        asyncio.create_task(self._beat()),
                        asyncio.create_task(self._watch_link()),

@@ -3,9 +3,10 @@ busy worker with room, which claims the lease (:mod:`.worker_host`).
 
 How busy each worker is (its scenes with a client, or made for one about to join:
 WorkerHost.attended) comes from asking them all every second, from each worker's answer
-to a placement (its count then, kept over an older survey's), and from the placements
-this gateway has under way; so scenes placed at the same moment spread instead of all
-going where there were fewest a second ago. When every worker on the bus, asked afresh,
+to a placement, from what a worker tells when a client leaves, and from the placements
+this gateway has under way; of a worker's loads the one it stamped last counts, whichever
+way it came. So scenes placed at the same moment spread instead of all going where there
+were fewest a second ago. When every worker on the bus, asked afresh,
 has no room, the scene is refused at once (``limit_exceeded``, naming each worker's
 limit), as a single server refuses past ``--limit scenes``: waiting would not make room,
 and the client is told which flag does.
@@ -21,7 +22,7 @@ from collections import Counter
 from typing import Any
 
 from ..errors import LimitExceeded
-from .bus import PLACE, Bus, NoRoom, Unanswered, attach_subject
+from .bus import PLACE, Bus, Load, Reply, Unanswered, attach_subject
 from .leases import break_worker, lease_holder
 
 log = logging.getLogger(__name__)
@@ -38,13 +39,14 @@ class Placement:
 
     def __init__(self, bus: Bus) -> None:
         self.bus = bus
-        # worker -> scenes, why it has no room (None: it has), when heard
-        self._loads: dict[str, tuple[int, NoRoom | None, float]] = {}
+        self._loads: dict[str, tuple[Load, float]] = {}  # worker -> its newest, when heard
         self._under_way: Counter[str] = Counter()
         self._surveyed = float("-inf")
 
-    async def place(self, attachment: str, scene: str) -> tuple[str, dict[str, Any]] | None:
-        """One try: attach to the lease holder, else to the least busy workers in turn;
+    async def place(self, attachment: str, scene: str,
+                    expecting: bool = True) -> tuple[str, dict[str, Any]] | None:
+        """One try: attach to the lease holder, else to the least busy workers in turn
+        (``expecting``: a client waits for the scene, which counts at once where it goes);
         the worker and its answer, or None (try again: a lease lapsing, no worker heard
         of). Raises :class:`LimitExceeded` when no worker has room."""
         holder = await lease_holder(self.bus.workers, self.bus.scenes, scene)
@@ -58,8 +60,8 @@ class Placement:
         for worker in candidates:
             self._under_way[worker] += 1
             try:
-                answer = await self.bus.request(attach_subject(worker), (attachment, scene),
-                                                ATTACH_SECONDS)
+                answer = await self.bus.request(attach_subject(worker),
+                                                (attachment, scene, expecting), ATTACH_SECONDS)
             except Unanswered as unanswered:
                 if unanswered.gone:  # it has left the bus: its lease need not lapse
                     self._loads.pop(worker, None)
@@ -68,12 +70,12 @@ class Placement:
             finally:
                 self._under_way[worker] -= 1
             if answer[0] == "attached":
-                self._heard(worker, answer[1]["scenes"], answer[1]["room"])
+                self._heard(answer[1]["load"])
                 return worker, answer[1]
             if answer[0] == "elsewhere":
                 return None  # placed meanwhile: its holder, next try
             if answer[0] == "full":  # filled up since it was asked: the next one
-                self._heard(worker, self._loads.get(worker, (0,))[0], answer[1])
+                self._heard(answer[1])
         return None
 
     async def _least_busy(self) -> list[str]:
@@ -81,22 +83,28 @@ class Placement:
         if time.monotonic() - self._surveyed > 2 * SURVEY_SECONDS:  # (an answer knows one)
             await self.survey()
         now = time.monotonic()
-        loads = {name: scenes + self._under_way[name]
-                 for name, (scenes, full, heard) in self._loads.items()
-                 if now - heard < FORGET_SECONDS and full is None}
+        loads = {name: load.scenes + self._under_way[name]
+                 for name, (load, heard) in self._loads.items()
+                 if now - heard < FORGET_SECONDS and load.room is None}
         ordered = list(loads)
         random.shuffle(ordered)
         return sorted(ordered, key=loads.__getitem__)
 
-    def _heard(self, worker: str, scenes: int, full: NoRoom | None) -> None:
-        self._loads[worker] = (scenes, full, time.monotonic())
+    def _heard(self, load: Load) -> None:
+        known = self._loads.get(load.worker)
+        if known is None or known[0].stamp <= load.stamp:
+            self._loads[load.worker] = (load, time.monotonic())
+
+    async def told(self, load: Load, reply: Reply | None) -> None:
+        """A worker's load, told as it changed (subscribed to ``LOADS``)."""
+        self._heard(load)
 
     def _refuse(self, scene: str) -> None:
         """Raise the refusal of a scene no worker has room for (none when no worker is
         known: one may be starting, or a dead one's lease lapsing)."""
         now = time.monotonic()
-        full = {name: reason for name, (_, reason, heard) in sorted(self._loads.items())
-                if now - heard < FORGET_SECONDS and reason is not None}
+        full = {name: load.room for name, (load, heard) in sorted(self._loads.items())
+                if now - heard < FORGET_SECONDS and load.room is not None}
         if not full:
             return
         first = next(iter(full.values()))
@@ -106,14 +114,11 @@ class Placement:
                             value=first.value, flag=first.flag, scene=scene)
 
     async def survey(self) -> None:
-        """Ask every worker how busy it is. A worker's answer to a placement made while the
-        survey gathered is newer than its answer to the survey, and stays (the survey's
-        hid a scene just placed: a vector's two scenes went to one worker)."""
-        asked = time.monotonic()
-        answers = await self.bus.gather(PLACE, None, GATHER_SECONDS)
-        for name, scenes, full in answers:
-            if self._loads.get(name, (0, None, float("-inf")))[2] < asked:
-                self._heard(name, scenes, full)
+        """Ask every worker how busy it is (an answer older than what a worker said since,
+        to a placement made while the survey gathered, does not count: it hid a scene just
+        placed, and a vector's two scenes went to one worker)."""
+        for load in await self.bus.gather(PLACE, None, GATHER_SECONDS):
+            self._heard(load)
         self._surveyed = time.monotonic()
 
     async def keep_surveying(self) -> None:

@@ -36,9 +36,11 @@ class Attachments(Protocol):
     def send(self, subject: str, value: Any) -> None:
         """Publish, in order with everything else the gateway sends."""
 
-    async def place(self, attachment: str, scene: str) -> tuple[str, dict[str, Any]] | None:
-        """Attach to the scene's worker (placing the scene first if it runs nowhere): the
-        worker and its answer, or None for "not yet"."""
+    async def place(self, attachment: str, scene: str,
+                    expecting: bool) -> tuple[str, dict[str, Any]] | None:
+        """Attach to the scene's worker (placing the scene first if it runs nowhere;
+        ``expecting``: a client waits for it): the worker and its answer, or None for
+        "not yet"."""
 
     def attached(self, runner: RemoteRunner) -> None:
         """The runner is placed: its worker's heartbeat covers it now."""
@@ -58,6 +60,7 @@ class RemoteRunner:
         self.last_posted = 0.0
         self.ended = False
         self.stopping = False
+        self.expecting = False  # a client waits for the scene: its worker counts it at once
         self._deliver = deliver
         self._waiting: list[tuple[Any, ...]] = []  # posted before it was placed
         self._replies = Replies()
@@ -92,7 +95,8 @@ class RemoteRunner:
             self._events = await self.gateway.bus.subscribe(events_subject(self.name),
                                                             self._receive)
             deadline = time.monotonic() + PLACE_SECONDS
-            while (placed := await self.gateway.place(self.attachment, self.name)) is None:
+            while (placed := await self.gateway.place(self.attachment, self.name,
+                                                             self.expecting)) is None:
                 if time.monotonic() > deadline:
                     raise UnknownScene(f"no worker took scene {self.name} within "
                                        f"{PLACE_SECONDS:.0f} s: none answered, or each is "

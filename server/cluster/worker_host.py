@@ -25,8 +25,9 @@ from ..web.hub import clients_objects
 from ..web.runner import SceneRunner
 from ..web.state_dir import StateDir
 from ..web.worker import SceneSetup
-from .bus import (PLACE, Bus, NoRoom, OrderedSender, Reply, Unanswered, alive_subject,
-                  attach_subject, commands_subject, events_subject, gateway_of, gateway_subject)
+from .bus import (LOADS, PLACE, Bus, Load, NoRoom, OrderedSender, Reply, Unanswered,
+                  alive_subject, attach_subject, commands_subject, events_subject, gateway_of,
+                  gateway_subject)
 from .leases import Leases
 from .process_cpu import ProcessCpu
 
@@ -43,8 +44,9 @@ NEW_SCENE_CORES = 0.05
 # a gateway not heard of this long (its heartbeat comes each second) is asked whether it
 # lives: one that has left the bus (died) loses its attachments; a swamped one keeps them
 SILENT_SECONDS = 5.0
-# a scene made for a client that has not joined yet counts as attended this long (on a
-# loaded machine a survey came between a placement and its client's joining)
+# a scene placed for a client that has not joined yet counts as attended this long (on a
+# loaded machine a survey came between a placement and its client's joining); one placed
+# with no client waiting (a gateway's default scene, a REST read) does not
 JOINING_SECONDS = 30.0
 
 
@@ -58,7 +60,7 @@ class HostedScene:
         self.heard: dict[str, float] = {}  # attachment -> when it was last heard of
         self.connections: dict[str, set[int]] = {}  # attachment -> its connections' numbers
         self.alone_since: float | None = None
-        self.joining_until: float | None = time.monotonic() + JOINING_SECONDS  # (None: joined)
+        self.joining_until: float | None = None  # (expected until then, not joined yet)
         self.owners: list[str] | None = None  # from "ready": the scene is made
         self.asleep = False  # it last said "idle": a newcomer must not take silence for death
         self.saving: dict[str, Any] = {}
@@ -70,14 +72,15 @@ class HostedScene:
                                   nice=SCENE_NICE)
         self.runner.start(after)
 
-    def attach(self, attachment: str) -> dict[str, Any]:
+    def attach(self, attachment: str, expecting: bool) -> dict[str, Any]:
         self.heard[attachment] = time.monotonic()
+        if expecting and not any(self.connections.values()):
+            self.joining_until = time.monotonic() + JOINING_SECONDS
         self.connections.setdefault(attachment, set())
         self.alone_since = None
         return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
                 "saving": self.saving, "asleep": self.asleep,
-                "scenes": self.host.attended(),  # this one included
-                "room": self.host.room()}
+                "load": self.host.load()}  # this scene included
 
     def attended(self) -> bool:
         """Whether a client uses the scene, or is about to (made for it, not joined yet)."""
@@ -103,6 +106,7 @@ class HostedScene:
                     self.joining_until = None
                 elif verb == "leave":
                     self.connections[attachment].discard(cid)
+                    self.host.tell_load()
                 self.runner.post(verb, (attachment, cid), *rest)
 
     def _answer(self, attachment: str, number: int, done: asyncio.Future[Any]) -> None:
@@ -119,6 +123,7 @@ class HostedScene:
         for cid in self.connections.pop(attachment, ()):
             self.runner.post("leave", (attachment, cid))
         asked = self.heard.pop(attachment, None) is not None
+        self.host.tell_load()
         if not self.heard:
             self.alone_since = time.monotonic()
             if asked:
@@ -181,7 +186,18 @@ class WorkerHost:
 
     async def _load(self, value: Any, reply: Reply | None) -> None:
         if reply is not None:
-            await reply.send((self.name, self.attended(), self.room()))
+            await reply.send(self.load())
+
+    def load(self) -> Load:
+        """How busy this worker is now (what gateways place scenes by)."""
+        return Load(self.name, self.attended(), self.room(), time.monotonic())
+
+    def tell_load(self) -> None:
+        """Tell every gateway when a scene may be attended no more (a client left, a
+        scene ended): a gateway that
+        placed here still counts them until its next survey, and a Gymnasium vector's
+        scenes, placed at once after the probe environment left, went to one worker."""
+        self.publish(LOADS, self.load())
 
     def attended(self) -> int:
         """How busy this worker is, as gateways place scenes by it: its scenes with a client
@@ -208,18 +224,18 @@ class WorkerHost:
         return None
 
     async def _attach(self, value: Any, reply: Reply | None) -> None:
-        attachment, scene = value
+        attachment, scene, expecting = value
         async with self._claims:
-            answer = await self._place(attachment, scene)
+            answer = await self._place(attachment, scene, expecting)
         if reply is not None:
             await reply.send(answer)
 
-    async def _place(self, attachment: str, scene: str) -> tuple[Any, ...]:
+    async def _place(self, attachment: str, scene: str, expecting: bool) -> tuple[Any, ...]:
         hosted = self.scenes.get(scene)
         if hosted is not None and not hosted.runner.stopping:
-            return ("attached", hosted.attach(attachment))
-        if hosted is None and (full := self.room()) is not None:
-            return ("full", full)
+            return ("attached", hosted.attach(attachment, expecting))
+        if hosted is None and self.room() is not None:
+            return ("full", self.load())
         holder = await self.leases.claim(scene)
         if holder is not None:
             return ("elsewhere", holder)
@@ -230,7 +246,7 @@ class WorkerHost:
         hosted.subscription = await self.bus.subscribe(
             commands_subject(self.name, scene),
             lambda value, reply, hosted=hosted: hosted.command(*value))
-        return ("attached", hosted.attach(attachment))
+        return ("attached", hosted.attach(attachment, expecting))
 
     async def _alive(self, value: Any, reply: Reply | None) -> None:
         """A gateway's heartbeat for its attachments here; the ones still running."""
@@ -248,6 +264,7 @@ class WorkerHost:
         if self.scenes.get(hosted.name) is hosted:
             del self.scenes[hosted.name]
             asyncio.create_task(self.leases.release(hosted.name))
+            self.tell_load()
         if hosted.subscription is not None:
             asyncio.create_task(hosted.subscription.unsubscribe())
 

@@ -93,6 +93,7 @@ class Runner(Protocol):
     last_posted: float
     ended: bool
     stopping: bool
+    expecting: bool  # a client waits for the scene (a cluster counts it as attended)
 
     @property
     def pid(self) -> int | None: ...
@@ -120,6 +121,8 @@ class SceneRunner:
     """Starts a scene's process, sends it commands, and hands its events to ``deliver``
     on the event loop (a final ``("ended", failed)`` when the process is gone; a cluster's
     runner may add why the scene never started: ``("ended", failed, refusal)``)."""
+
+    expecting = False  # (a cluster's runner tells its worker; here nothing counts it)
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
                  setup: worker.SceneSetup | None, deliver: Deliver,

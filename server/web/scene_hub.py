@@ -146,6 +146,7 @@ class SceneHub:
         newcomer's client id be chosen (the owners it holds are reserved by then). The
         scene is not idle meanwhile (a slow start must not see it stopped)."""
         self._arriving += 1
+        self.runner.expecting = True
         self.idle_since = None
         try:
             await self._open.wait()

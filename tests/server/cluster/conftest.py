@@ -108,7 +108,7 @@ def ask_bus(url: str, question: Any, lease_seconds: float = 3.0) -> Any:
 def workers(url: str) -> list[str]:
     """The workers that answer on the bus, by name."""
     async def gather(bus: Bus) -> list[str]:
-        return sorted(answer[0] for answer in await bus.gather(PLACE, None, 0.2))
+        return sorted(load.worker for load in await bus.gather(PLACE, None, 0.2))
     return ask_bus(url, gather)
 
 

@@ -4,10 +4,17 @@ same moment by two gateways spread over the workers instead of piling on one."""
 from __future__ import annotations
 
 import asyncio
+import time
 from collections import Counter
+from concurrent.futures import ThreadPoolExecutor
+
+from websockets.sync.client import connect
 
 from server.cluster.bus import Bus
 from server.cluster.placement import Placement
+from tests.server.web.ws_requests import next_message
+
+from .conftest import Cluster, holder, running_bus
 
 
 def test_scenes_placed_at_once_by_two_gateways_spread_over_the_workers(workers_only, scene_name):
@@ -22,3 +29,29 @@ def test_scenes_placed_at_once_by_two_gateways_spread_over_the_workers(workers_o
 
     workers = asyncio.run(place_at_once())
     assert sum(workers.values()) == 16 and abs(workers["wa"] - workers["wb"]) <= 2
+
+
+def test_a_scene_its_client_left_no_longer_sends_the_next_scenes_elsewhere(tmp_path):
+    """Gymnasium's vector: a probe environment's scene is made and left, then the vector's
+    two scenes are made at once; the worker that ran the probe's tells the gateway at once
+    that it is free again, so they spread (with the load as of the probe's placement, the
+    second went to either worker at random)."""
+    with running_bus(tmp_path) as url:
+        cluster = Cluster(url, tmp_path, gateways=1)
+        try:
+            ws = cluster.gateways[0].ws
+            for round in range(3):
+                with connect(f"{ws}/ws?scene=probe{round}") as probe:
+                    next_message(probe, "snapshot")
+                time.sleep(0.2)  # (its leave reaches the worker; the gateway surveys each second)
+                scenes = [f"vector{round}a", f"vector{round}b"]
+                with ThreadPoolExecutor(2) as pool:
+                    clients = list(pool.map(lambda s: connect(f"{ws}/ws?scene={s}").__enter__(), scenes))
+                for client in clients:
+                    next_message(client, "snapshot")
+                assert sorted(holder(url, scene) for scene in scenes) == ["wa", "wb"], round
+                for client in clients:
+                    client.close()
+                time.sleep(0.3)
+        finally:
+            cluster.close()
