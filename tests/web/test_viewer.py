@@ -103,17 +103,19 @@ def test_frame_all_brings_what_the_scene_holds_into_view(browser, pages, server,
 def test_a_viewer_frames_what_a_scene_holds_when_no_script_placed_the_camera(
         browser, pages, server, scene, scene_name):
     """Found: a task's scene opened cropped. A camera nobody placed frames everything
-    when something is out of view, on opening and as things are added, until a person
-    orbits; a scene that fits stays in the manual's view."""
+    when something is out of view, on opening, as things are added and once they have
+    moved, until a person orbits; a scene that fits stays in the manual's view."""
     vp.Ball(0.3).set_position(-2, 0.3, 0)
     scene.sync()
     page = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(page, "() => VP.objects.size === 1 && VP.drawn()")
     assert page.evaluate("() => VP.camera.position.toArray()") == pytest.approx(DEFAULT_CAMERA[0])
     far = vp.Box(1, 1, 1, "red")
-    far.set_position(25, 0.5, -12)
     scene.sync()
-    wait_until(page, "(id) => VP.objects.has(id) && VP.drawn()", far.id)
+    wait_until(page, "(id) => VP.objects.has(id) && VP.drawn()", far.id)  # made in view
+    far.set_position(25, 0.5, -12)  # then moved out of it (found: not framed then)
+    scene.sync()
+    wait_until(page, "(id) => VP.objects.get(id).position.x === 25 && VP.drawn()", far.id)
     assert Picture(page.screenshot()).share(lambda c: reddish(c)) > 0.0005
     other = open_viewer(browser, pages, server, f"scene={scene_name}")  # framed on opening
     wait_until(other, "() => VP.objects.size === 2 && VP.drawn()")
