@@ -65,20 +65,33 @@ def measure(running: RunningServer, client: str, count: int, seconds: float) -> 
     scene = f"client-{client}"
     command = ([*NICE, "node", "--input-type=module", "-e", JS_DRIVER, "--"] if client == "js"
                else [*NICE, sys.executable, "-m", "bench.client_cpu", "python"])
-    driver = subprocess.Popen([*command, running.ws, scene, str(seconds + 2), str(count),
+    driver = subprocess.Popen([*command, running.ws, scene, str(seconds + 5), str(count),
                                str(GRID)], cwd=ROOT)
     try:
-        time.sleep(2.0)  # connected, the hands made, the loop running
+        _wait_for_steps(running, scene, driver)
         pids = [running.process.pid, scene_metrics(running, scene)["pid"]]
         before, start = cpu_seconds(pids), time.monotonic()
         time.sleep(seconds * 0.8)
         cores = (cpu_seconds(pids) - before) / (time.monotonic() - start)
         figures = scene_metrics(running, scene)
     finally:
-        driver.wait(seconds + 60)
+        driver.terminate()  # (measured: what is left of its run is not)
+        driver.wait(60)
     return {"client": client, "hands": count, "server_cores": cores,
             "ticks_per_second": figures["ticksPerSecond"], "tick_ms_p50": figures["tickMsP50"],
             "requests_per_second": figures["requestsPerSecond"]}
+
+
+def _wait_for_steps(running: RunningServer, scene: str, driver: subprocess.Popen[bytes]) -> None:
+    """Until the driver's hands are made and its loop sends steps (a second of them)."""
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and driver.poll() is None:
+        found = running.get("/api/metrics")["scenes"].get(scene)
+        if found is not None and found["requestsPerSecond"] > 0:
+            time.sleep(1.0)
+            return
+        time.sleep(0.1)
+    raise RuntimeError(f"the {scene} driver sent no step within a minute")
 
 
 if __name__ == "__main__":
