@@ -6,10 +6,10 @@ WorkerHost.attended) comes from asking them all every second, from each worker's
 to a placement, from what a worker tells when a client leaves, and from the placements
 this gateway has under way; of a worker's loads the one it stamped last counts, whichever
 way it came. So scenes placed at the same moment spread instead of all going where there
-were fewest a second ago. When every worker on the bus, asked afresh,
-has no room, the scene is refused at once (``limit_exceeded``, naming each worker's
-limit), as a single server refuses past ``--limit scenes``: waiting would not make room,
-and the client is told which flag does.
+were fewest a second ago. When every worker on the bus, asked afresh, has no room, the
+scene is refused at once (``limit_exceeded``, naming each worker's limit), as a single
+server refuses past ``--limit scenes``: waiting would not make room, and the client is
+told which flag does.
 """
 
 from __future__ import annotations

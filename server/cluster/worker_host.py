@@ -193,10 +193,10 @@ class WorkerHost:
         return Load(self.name, self.attended(), self.room(), time.monotonic())
 
     def tell_load(self) -> None:
-        """Tell every gateway when a scene may be attended no more (a client left, a
-        scene ended): a gateway that
-        placed here still counts them until its next survey, and a Gymnasium vector's
-        scenes, placed at once after the probe environment left, went to one worker."""
+        """Tell every gateway when a scene may be attended no more (a client left, a scene
+        ended): a gateway that placed here counted it until its next survey, and a
+        Gymnasium vector's scenes, placed at once after its probe environment left, went
+        to one worker."""
         self.publish(LOADS, self.load())
 
     def attended(self) -> int:
