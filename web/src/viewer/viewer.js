@@ -99,13 +99,13 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 	for (const child of stage.scene.children) child.userData.vpLocal = true;
 	const reframe = () => framing && stage.frameIfCut(tree.root);
 	tree.on('loaded', () => { stage.invalidate(); reframe(); });
-	let moving = false;
 	stage.beforeRender.push((now) => {
-		if (motion.step(now / 1000)) stage.invalidate();
-		// a move just ended (a script placed something after making it): it may be out of
-		// view now; framed before this picture, so a picture that is drawn() shows it
-		if (moving && !motion.busy) reframe();
-		moving = motion.busy;
+		const moved = motion.step(now / 1000);
+		if (moved) stage.invalidate();
+		// a move ended in this step (a script placed something after making it; on a slow
+		// page a move starts and ends in one step): it may be out of view now. Framed
+		// before this picture, so a picture that is drawn() shows it.
+		if (moved && !motion.busy) reframe();
 		if (logo.step(now, tree.objects.size === 0)) stage.invalidate();
 		view.lasers.step();
 		panels.step();
