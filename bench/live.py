@@ -137,14 +137,15 @@ def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
     command = [*NICE, sys.executable, "-m", "bench.viewers", running.ws, scene, str(count),
                *(["--stalled"] if stall else [])]
 
-    def server_cores(start: float, end: float) -> tuple[float, dict[str, Any], dict[str, Any]]:
+    def window(start: float, end: float) -> tuple[float, dict[str, Any], dict[str, Any]]:
+        """The server's cores over the window, and the scene's metrics at each end."""
         sleep_until(start)
-        before, handed = server_cpu_seconds(running, scene), scene_metrics(running, scene)
+        cpu, first = server_cpu_seconds(running, scene), scene_metrics(running, scene)
         sleep_until(end)
-        cores = (server_cpu_seconds(running, scene) - before) / (time.monotonic() - start)
-        return cores, handed, scene_metrics(running, scene)
+        cores = (server_cpu_seconds(running, scene) - cpu) / (time.monotonic() - start)
+        return cores, first, scene_metrics(running, scene)
 
-    [out], (cores, before, after) = run_viewers([command], seconds, server_cores)
+    [out], (cores, before, after) = run_viewers([command], seconds, window)
     found = out["viewers"]
     frames = sum(v["frames"] for v in found)
     fps = [v["fps"] for v in found]
