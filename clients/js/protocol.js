@@ -130,8 +130,10 @@ export class ProtocolCore {
 	}
 }
 
-// The objects a call or creation names: its object, or each one a setTransforms places.
+// The objects a call or creation names: its object, or each one a setTransforms places
+// (a batch: those its operations name).
 function named(message) {
+	if (message.op === 'batch') return message.ops.flatMap((op) => named(op) ?? []);
 	if (message.op === 'create') return [message.object];
 	if (message.op !== 'call') return null;
 	if (message.method === 'setTransforms') return Object.keys(message.args[0] ?? {});

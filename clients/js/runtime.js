@@ -118,7 +118,8 @@ function keepSyncing(session) {
 }
 
 // Manual setAnimation(func, fps=30): func(time, dTime) fps times a second, seconds since
-// the import. Everything it sets leaves as one message per step. In a scene this script
+// the import. Everything it sets leaves as one batch per step (applied as one, answered
+// once; a refused call undoes the step's others and the next call throws it). In a scene this script
 // paused (pause()), each step is followed by the ticks of one period (step()), and the
 // next waits for them: the animation comes out the same on every run, as fast as the
 // server computes it in Node, never ahead of the wall clock in a page. Not in 1.0:
@@ -131,7 +132,7 @@ export function setAnimation(func, fps = 30) {
 	let last = getTime();
 	const animate = () => {
 		const time = getTime();
-		func(time, time - last);
+		gathered(() => func(time, time - last));
 		last = time;
 		try {
 			currentSession().flush();
@@ -142,6 +143,18 @@ export function setAnimation(func, fps = 30) {
 	const free = IN_BROWSER ? browserLoop(animate, period) : intervalLoop(animate, period);
 	const held = heldLoop(animate, period, free);
 	animation = { stop: () => { free.stop(); held.stop(); } };
+}
+
+// A step run so that what it sends leaves as one batch (as it is, not connected).
+function gathered(step) {
+	let session;
+	try {
+		session = currentSession();
+	} catch (error) {
+		if (!(error instanceof ConnectionLost)) throw error;
+		return step();
+	}
+	return session.gathering(step);
 }
 
 function intervalLoop(step, period) {

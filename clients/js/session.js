@@ -5,12 +5,13 @@
 //
 // Requests made during one task (one animation step, one page script) leave as one
 // WebSocket message, after the transforms the page wrote directly to its objects
-// (`part.position.x = …`) have been compared with what the server last knew.
+// (`part.position.x = …`) have been compared with what the server last knew. An
+// animation step's requests nobody waits for go as one batch: applied as one, answered once.
 
 import * as THREE from 'three';
 import { encode } from './codec.js';
 import { ConnectionLost } from './errors.js';
-import { callMessage, createMessage } from './messages.js';
+import { batchMessage, callMessage, createMessage } from './messages.js';
 import { Mirror } from './mirror.js';
 import { baseRotation, scaleAbove, shownPosition, shownRotation } from './pose.js';
 import { Prediction } from './prediction.js';
@@ -52,6 +53,7 @@ export class Session {
 		this.outbox = [];                // texts, or {text} entries (null until known: sendLater)
 		this.meshFiles = null;           // a page's own mesh files (mesh_files.js), once connected
 		this.flushing = false;
+		this.gathered = null;            // while an animation step runs: its requests nobody waits for
 		this.listeners = [];             // (message) for every server message not an answer
 		this.mirror = new Mirror({ wants: (id) => this.hearsContacts(id) });
 		this.mirror.listeners.push((kind, id, fields) => this.mirrored(kind, id, fields));
@@ -293,6 +295,7 @@ export class Session {
 	// tree and the motors shows in the mirror at once (prediction.js), as 1.0 did it at
 	// once. With `wait`, a promise of its result.
 	send(message, { wait = false } = {}) {
+		if (this.gathered && !wait) return this.hold(message);
 		const { text, answer } = this.requested(message, { wait });
 		this.queue(text);
 		return answer && within(answer, this.timeout, () => `no answer to ${message.op} ${message.method ?? ''}`.trim());
@@ -310,12 +313,47 @@ export class Session {
 		});
 	}
 
-	// A request numbered, and what it does predicted (a closed session or a kept error throws).
+	// A request numbered, and what it does predicted (a closed session or a kept error
+	// throws); what the step gathered so far leaves first.
 	requested(message, options) {
+		this.sendGathered();
 		if (this.closed) throw new ConnectionLost(this.closed);
 		this.core.raiseDeferred();
 		this.prediction?.request(message, this.core.nextId);
 		return this.core.request(message, options);
+	}
+
+	// Run an animation step: the requests it makes that nobody waits for, and the
+	// transforms it wrote, leave as one batch (so as one request of the server's, applied
+	// as one: a refused one undoes the others, and the next call throws it) when it ends,
+	// or earlier, before a request someone waits for.
+	gathering(step) {
+		this.gathered = [];
+		try {
+			step();
+			if (!this.closed) this.syncTransforms();
+		} finally {
+			this.sendGathered();
+			this.gathered = null;
+		}
+	}
+
+	// Keep a request of the step; what it does is predicted now, until the batch's answer
+	// (the id the batch will have: nothing else is numbered before it leaves).
+	hold(message) {
+		if (this.closed) throw new ConnectionLost(this.closed);
+		this.core.raiseDeferred();
+		this.prediction?.request(message, this.core.nextId);
+		this.gathered.push(message);
+		return null;
+	}
+
+	sendGathered() {
+		const ops = this.gathered?.splice(0) ?? [];
+		for (let start = 0; start < ops.length; start += this.maxPerText) {
+			const chunk = ops.slice(start, start + this.maxPerText);
+			this.queue(this.core.request(chunk.length === 1 ? chunk[0] : batchMessage(chunk)).text);
+		}
 	}
 
 	queue(entry) {

@@ -222,3 +222,50 @@ test('a saved state comes back: every body at rest where it was, the same steps 
 		Prosthetic.close();
 	}
 });
+
+test('an animation step leaves as one batch, answered once, read at once; a refused call undoes its step', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-batch-${process.pid}` });
+	try {
+		const hand = new Prosthetic.EdgedHand(true);
+		const ball = new Prosthetic.Ball(0.1);
+		await Prosthetic.sync();
+		const texts = [], send = session.transmit, read = [];
+		session.transmit = (text) => { texts.push(text); send(text); };
+		await new Promise((done) => {
+			Prosthetic.setAnimation(() => {
+				hand.flexFingers(0.5);
+				hand.spreadFingers(0.2);
+				ball.position.x = 1;                       // written directly: in the same batch
+				read.push(hand.getMotors()[4].getAngle());  // the step's own write, at once
+				if (read.length === 5) {
+					Prosthetic.setAnimation(null);
+					done();
+				}
+			}, 30);
+		});
+		await Prosthetic.sync();
+		const steps = texts.map((text) => JSON.parse(text)).filter((m) => m.op === 'batch');
+		assert.ok(steps.length >= 4, `${steps.length} batches`);
+		assert.deepEqual(steps[0].ops.map((op) => op.method), ['flexFingers', 'spreadFingers', 'setTransforms']);
+		assert.ok(read.every((angle) => angle === -0.2), `read in the step: ${read}`);
+		assert.equal(hand.getMotors()[4].getAngle(), -0.2);
+		assert.equal(session.mirror.nodes.get(ball.vp.id).position[0], 1);
+
+		const ghost = new Prosthetic.MotorZ(-1, 1);
+		ghost.delete();
+		await Prosthetic.sync();
+		let steps2 = 0;
+		Prosthetic.setAnimation(() => {
+			steps2++;
+			hand.flexFingers(0.9);
+			ghost.setAngle(0.5);    // the server no longer has it
+			Prosthetic.setAnimation(null);
+		}, 30);
+		await new Promise((resolve) => setTimeout(resolve, 300));
+		await assert.rejects(Prosthetic.sync(), (error) => error.code === 'unknown_object' && error.details.index === 1);
+		assert.equal(steps2, 1);
+		assert.equal(hand.getMotors()[1].getAngle(), -0.5, 'the step\'s other call was undone too');
+	} finally {
+		Prosthetic.close();
+	}
+});

@@ -19,6 +19,7 @@ from websockets.sync.client import connect as ws_connect
 from .errors import ConnectionLost, ServerError, ServerWarning, Timeout
 from .protocol import Handler, ProtocolCore, Request
 from .waiting import bound
+from .wire_messages import Batch
 
 RETRY_FIRST, RETRY_MAX = 0.1, 1.0  # seconds between attempts to connect again
 REPLACED = 4001  # close code: this client connected again elsewhere (no coming back here)
@@ -68,9 +69,11 @@ class Connection:
 
     @contextlib.contextmanager
     def gathering(self) -> Iterator[None]:
-        """Requests sent inside that nobody waits for leave together, as one text, when it
-        ends (or earlier, with the first request someone waits for): an animation step's
-        setters reach the server as one message, as the JS client sends a task's."""
+        """Requests sent inside that nobody waits for leave together, as one ``batch``,
+        when it ends (or earlier, with the first request someone waits for): an animation
+        step's setters reach the server as one request, applied as one (a refused one
+        undoes the others; the next call raises it) and answered once, as the JS client
+        sends an animation step's."""
         self._gathering += 1
         try:
             yield
@@ -83,7 +86,7 @@ class Connection:
         """Send the requests :meth:`gathering` holds."""
         held, self._held = self._held, []
         if held:
-            self._send(held, False)
+            self._send(_batches(held), False)
 
     def send(self, message: dict[str, Any], wait: bool = False) -> Any:
         """Send a request; with ``wait``, block for its answer and return the result."""
@@ -92,7 +95,7 @@ class Connection:
             self._held.append(message)
             return None
         held, self._held = self._held, []
-        request = self._send([*held, message], wait)
+        request = self._send([*_batches(held), message], wait)
         if not wait:
             return None
         with self._lock:
@@ -245,6 +248,14 @@ def _open(url: str, timeout: float) -> Any:
     """An open WebSocket to ``url`` (entered by hand: the connection outlives the caller,
     closed by :meth:`Connection.close`)."""
     return ws_connect(url, max_size=None, open_timeout=bound(timeout)).__enter__()
+
+
+def _batches(ops: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Gathered requests as batches of at most TEXT_MESSAGES operations (a lone one as it
+    is). Counted, not measured: one over the server's ``messageBytes`` (1 MiB) is refused
+    whole with ``too_large``, as one request that large always was."""
+    chunks = [ops[k:k + TEXT_MESSAGES] for k in range(0, len(ops), TEXT_MESSAGES)]
+    return [chunk[0] if len(chunk) == 1 else Batch(op="batch", ops=chunk) for chunk in chunks]
 
 
 def _texts(requests: list[Request]) -> Iterator[str]:

@@ -61,8 +61,9 @@ def run(seconds: float | None = None) -> None:
 
     Before every step the contact callbacks that are due run (``begin_contact`` and
     ``end_contact`` of this client's parts). Without an animation, ``run`` only does that.
-    What a step sends reaches the server as one message (a read in the step sends what
-    came before it first). In a scene this client paused (``pause``), each step is
+    What a step sends nobody waits for reaches the server as one batch, applied as one
+    and answered once (a refused call undoes the step's others; the next call raises it;
+    a read in the step sends what came before it first). In a scene this client paused (``pause``), each step is
     followed by the ticks of one period (``step``), without waiting: the animation comes
     out the same on every run and as fast as the server computes it.
     """
@@ -79,7 +80,7 @@ def run(seconds: float | None = None) -> None:
         step = max(0.0, now - last)  # a server restarted from its state folder counts from 0
         elapsed += step
         if func is not None:
-            with scene.connection.gathering():  # the step's setters leave as one message
+            with scene.connection.gathering():  # the step's setters leave as one batch
                 func(*(now, step)[:arity])
         last = now
         if scene.holding and _stepped(scene, max(1, round(period * scene.tick_rate))):

@@ -55,15 +55,19 @@ def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
         stop_server(own)
 
 
-def test_an_animation_step_reaches_the_server_as_one_message_and_none_is_refused(scene):
+def test_an_animation_step_reaches_the_server_as_one_batch_and_none_is_refused(scene):
     """The issue's probe: 100 cheap calls a step at 60 steps a second (6 000 calls a
     second) once died after a second with ``limit_exceeded``; now the step's calls leave
-    as one text and every one is applied."""
+    as one batch, one request answered once (no answer is built for each setter), and
+    every one is applied."""
     motors = [vp.MotorZ(-1, 1) for _ in range(100)]
     scene.sync()
     texts: list[str] = []
     send = scene.connection._ws.send
     scene.connection._ws.send = lambda text: (texts.append(text), send(text))[1]
+    answers: list[dict] = []
+    receive = scene.connection.core.receive
+    scene.connection.core.receive = lambda text: answers.append(receive(text)) or answers[-1]
     last: list[float] = []
 
     def step(t: float) -> None:
@@ -74,11 +78,45 @@ def test_an_animation_step_reaches_the_server_as_one_message_and_none_is_refused
     vp.set_animation(step, 60)
     vp.run(2)
     # how many steps 2 s hold depends on the machine's load (88 of 120 on a busy CI run):
-    # what matters is that each of many steps left as one text of its 100 calls
-    assert len(texts) >= 30 and all(len(json.loads(text)) == 100 for text in texts[:-1])
+    # what matters is that each of many steps left as one batch of its 100 calls
+    batches = [json.loads(text) for text in texts[:-1]]
+    assert len(batches) >= 30 and all(b["op"] == "batch" and len(b["ops"]) == 100 for b in batches)
+    assert [m["method"] for m in batches[-1]["ops"]] == ["setAngle"] * 100
     assert [motor.get_angle() for motor in motors] == pytest.approx(last)
-    seen = json.loads(texts[-2])
-    assert [m["method"] for m in seen] == ["setAngle"] * 100 and len({m["id"] for m in seen}) == 100
+    oks = [a for a in answers if a["op"] == "ok"]
+    assert len(oks) == len(texts) and {a["id"] for a in oks} == {b["id"] for b in batches} | {
+        json.loads(texts[-1])["id"]}
+
+
+def test_a_step_with_a_refused_call_changes_nothing_and_the_next_call_raises_it(scene):
+    """A step's calls are applied as one: a call the server refuses (a motor deleted
+    meanwhile) undoes the step's other setters, and the script hears it at its next call,
+    naming the call."""
+    motor = vp.MotorZ(-1, 1)
+    motor.set_angle(0.25)
+    scene.sync()
+    ghost = vp.MotorZ(-1, 1)
+    ghost.delete()
+    scene.sync()
+    calls = []
+
+    def step(t: float) -> None:
+        calls.append(t)
+        motor.set_angle(0.5)
+        ghost.set_angle(0.5)  # the server no longer has it
+
+    vp.set_animation(step, 60)
+    with pytest.raises(vp.ServerError) as raised:
+        vp.run(1)
+    assert raised.value.code == "unknown_object" and "batch op 1" in str(raised.value)
+    assert raised.value.details["index"] == 1
+    for _ in calls:  # the steps already sent when the first error came raise theirs too
+        try:
+            scene.sync()
+            break
+        except vp.ServerError as later:
+            assert later.code == "unknown_object"
+    assert motor.get_angle() == pytest.approx(0.25)
 
 
 def test_run_in_a_paused_scene_steps_it_a_period_per_step(scene):
