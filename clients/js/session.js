@@ -344,16 +344,25 @@ export class Session {
 		if (this.closed) throw new ConnectionLost(this.closed);
 		this.core.raiseDeferred();
 		this.prediction?.request(message, this.core.nextId);
-		this.gathered.push(message);
+		this.gathered.push({ message, bytes: encode(message).length });
 		return null;
 	}
 
+	// The gathered requests as batches of at most messagesPerText operations and about
+	// TEXT_BYTES each (a lone one as it is).
 	sendGathered() {
-		const ops = this.gathered?.splice(0) ?? [];
-		for (let start = 0; start < ops.length; start += this.maxPerText) {
-			const chunk = ops.slice(start, start + this.maxPerText);
-			this.queue(this.core.request(chunk.length === 1 ? chunk[0] : batchMessage(chunk)).text);
+		let chunk = [], bytes = 0;
+		const send = () => {
+			if (chunk.length) this.queue(this.core.request(chunk.length === 1 ? chunk[0] : batchMessage(chunk)).text);
+			chunk = [];
+			bytes = 0;
+		};
+		for (const held of this.gathered?.splice(0) ?? []) {
+			if (chunk.length && (bytes + held.bytes > TEXT_BYTES || chunk.length >= this.maxPerText)) send();
+			chunk.push(held.message);
+			bytes += held.bytes + 1;
 		}
+		send();
 	}
 
 	queue(entry) {

@@ -269,3 +269,27 @@ test('an animation step leaves as one batch, answered once, read at once; a refu
 		Prosthetic.close();
 	}
 });
+
+test('a step larger than one text leaves as several batches and all of it is made', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-big-step-${process.pid}` });
+	try {
+		const texts = [], send = session.transmit;
+		session.transmit = (text) => { texts.push(text); send(text); };
+		let seed = 4;
+		const random = () => { seed = (seed * 16807) % 2147483647; return seed / 2147483647 * 2 - 1; };
+		const meshes = [];
+		session.gathering(() => {   // as an animation step: four meshes of 5 000 vertices, 1.1 MB
+			for (let k = 0; k < 4; k++) {
+				const id = `${session.clientId}.big${k}`;
+				session.send({ op: 'create', object: id, type: 'SceneMesh', args: [{ kind: 'hull', vertices: Array.from({ length: 15000 }, random) }] });
+				meshes.push(id);
+			}
+		});
+		await Prosthetic.sync();
+		const sizes = texts.map((text) => Buffer.byteLength(text));
+		assert.ok(sizes.reduce((a, b) => a + b) > 1 << 20 && sizes.every((size) => size < 1 << 20), `${sizes}`);
+		assert.ok(meshes.every((id) => session.mirror.nodes.has(id)));
+	} finally {
+		Prosthetic.close();
+	}
+});

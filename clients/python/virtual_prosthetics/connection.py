@@ -16,6 +16,7 @@ from urllib.parse import parse_qsl, urlencode, urlsplit, urlunsplit
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus, InvalidURI
 from websockets.sync.client import connect as ws_connect
 
+from .codec import encode
 from .errors import ConnectionLost, ServerError, ServerWarning, Timeout
 from .protocol import Handler, ProtocolCore, Request
 from .waiting import bound
@@ -251,11 +252,25 @@ def _open(url: str, timeout: float) -> Any:
 
 
 def _batches(ops: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Gathered requests as batches of at most TEXT_MESSAGES operations (a lone one as it
-    is). Counted, not measured: one over the server's ``messageBytes`` (1 MiB) is refused
-    whole with ``too_large``, as one request that large always was."""
-    chunks = [ops[k:k + TEXT_MESSAGES] for k in range(0, len(ops), TEXT_MESSAGES)]
-    return [chunk[0] if len(chunk) == 1 else Batch(op="batch", ops=chunk) for chunk in chunks]
+    """Gathered requests as batches of at most TEXT_MESSAGES operations and about
+    TEXT_BYTES each (a lone one as it is)."""
+    batches: list[dict[str, Any]] = []
+    chunk: list[dict[str, Any]] = []
+    size = 0
+    for op in ops:
+        length = len(encode(op))
+        if chunk and (size + length > TEXT_BYTES or len(chunk) >= TEXT_MESSAGES):
+            batches.append(_batch(chunk))
+            chunk, size = [], 0
+        chunk.append(op)
+        size += length + 1
+    if chunk:
+        batches.append(_batch(chunk))
+    return batches
+
+
+def _batch(ops: list[dict[str, Any]]) -> dict[str, Any]:
+    return ops[0] if len(ops) == 1 else Batch(op="batch", ops=ops)
 
 
 def _texts(requests: list[Request]) -> Iterator[str]:

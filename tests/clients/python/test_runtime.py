@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import random
 import threading
 
 import pytest
@@ -145,3 +146,19 @@ def test_run_whose_pause_another_client_ended_goes_on_with_the_wall_clock(server
     other.close()
     assert not scene.holding and len(calls) > 10
     assert calls[-1] - calls[5] > 0.3  # the server's own time, after the pause ended
+
+
+def test_a_step_larger_than_one_text_leaves_as_several_batches_and_all_is_applied(scene):
+    """What one step sends past the server's messageBytes (1 MiB) goes as several
+    batches, each under it: four meshes of 5 000 vertices (1.1 MB) are all made."""
+    rng = random.Random(4)
+    texts: list[str] = []
+    send = scene.connection._ws.send
+    scene.connection._ws.send = lambda text: (texts.append(text), send(text))[1]
+    with scene.connection.gathering():
+        meshes = [vp.SceneMesh({"kind": "hull", "vertices": [
+            rng.uniform(-1, 1) for _ in range(15_000)]}) for _ in range(4)]
+    scene.sync()
+    assert sum(map(len, texts)) > 1 << 20 and all(len(text) < 1 << 20 for text in texts)
+    assert len(texts) >= 2
+    assert all(scene.read(lambda mirror, m=m: m.id in mirror.nodes) for m in meshes)
