@@ -7,6 +7,9 @@ import { encode } from './codec.js';
 import { ProtocolError, ServerError } from './errors.js';
 import { SERVER_OPS } from './wire_messages.js';
 
+const UTF8 = new TextEncoder();
+const ID_ROOM = 24;   // bytes: `,"id":` and the largest id
+
 export class ProtocolCore {
 	// onMessage(message): every server message that is not an answer; onChanges(changes):
 	// what an answer says its request changed; onWarning(text): remarks in answers and the
@@ -30,17 +33,30 @@ export class ProtocolCore {
 		this.unanswered = new Map(); // id -> the object ids a call names, oldest first
 		this.deferred = [];        // ServerErrors of requests nobody waited for
 		this.settled = [];         // [id, resolve]: called once every request up to id is answered
+		this.messageBytes = 1 << 20; // the server's (hello's limits say)
 	}
 
 	// The text to send for `message` with a fresh id; with `wait`, also a promise of
 	// the answer's result (rejected with a ServerError for an error answer).
 	request(message, { wait = false } = {}) {
+		const text = encode({ ...message, id: this.nextId });
+		this.checkSize(message, text);
 		const id = this.nextId++;
 		this.unanswered.set(id, named(message));
-		const text = encode({ ...message, id });
 		if (!wait) return { id, text, answer: null };
 		const answer = new Promise((resolve, reject) => this.waiting.set(id, { resolve, reject }));
 		return { id, text, answer };
+	}
+
+	// Refuse here, as the server would, a request whose text is over the server's
+	// messageBytes: the server cannot tell which request such a text held, so its refusal
+	// would answer none, and the caller would wait in vain.
+	checkSize(message, text) {
+		if (text.length * 3 + ID_ROOM <= this.messageBytes) return;   // (3 bytes a UTF-16 unit at most)
+		const size = UTF8.encode(text).length + ID_ROOM;
+		if (size <= this.messageBytes) return;
+		throw new ServerError('too_large', `a ${message.op} request of ${size} bytes is over the server's limit of ${this.messageBytes} bytes (limit messageBytes; vp-server --limit messageBytes=N changes it)`,
+			message.op, { limit: 'messageBytes', value: this.messageBytes, flag: '--limit messageBytes=N' });
 	}
 
 	// Take one text from the server. Unknown or malformed messages throw ProtocolError.
@@ -57,7 +73,10 @@ export class ProtocolCore {
 		const isAnswer = (message.op === 'ok' || message.op === 'error') && message.id != null;
 		if (message.op === 'warning') this.onWarning(`scene ${message.code}: ${message.message}`);
 		if (!isAnswer) {
-			if (message.op === 'hello') this.welcomed = true;
+			if (message.op === 'hello') {
+				this.welcomed = true;
+				this.messageBytes = message.limits?.messageBytes ?? this.messageBytes;
+			}
 			if (message.op === 'error' && !this.welcomed) this.onRefusal(ServerError.fromWire(message));
 			else if (message.op === 'error') this.deferred.push(ServerError.fromWire(message));
 			this.onMessage(message);

@@ -344,7 +344,9 @@ export class Session {
 		if (this.closed) throw new ConnectionLost(this.closed);
 		this.core.raiseDeferred();
 		this.prediction?.request(message, this.core.nextId);
-		this.gathered.push({ message, bytes: encode(message).length });
+		const text = encode(message);
+		this.core.checkSize(message, text);
+		this.gathered.push({ message, bytes: text.length });
 		return null;
 	}
 

@@ -37,11 +37,14 @@ class ProcessCpu:
                        for pid, s in seconds.items() if pid in self._seconds}
         self._seconds, self._when = seconds, now
 
-    def expected(self, pids: list[int | None], least: float) -> float:
+    def expected(self, pids: list[int | None], least: float,
+                 typical: list[int] | None = None) -> float:
         """The cores these processes are expected to use: each measured one its share; one
         not measured over a whole look yet (new, or not started: None) the mean share of
-        those measured, and at least ``least``. (Counting only what was measured let a
-        burst of new processes within one look pass any bound.)"""
+        the measured ones of ``typical`` (default: ``pids``), and at least ``least``.
+        (Counting only what was measured let a burst of new processes within one look pass
+        any bound.)"""
         known = [self.shares[pid] for pid in pids if pid is not None and pid in self.shares]
-        guess = max(sum(known) / len(known), least) if known else least
+        like = known if typical is None else [self.shares[p] for p in typical if p in self.shares]
+        guess = max(sum(like) / len(like), least) if like else least
         return sum(known) + guess * (len(pids) - len(known))

@@ -216,7 +216,12 @@ class WorkerHost:
             return NoRoom("scenes", self.limits.scenes, "--limit scenes=N",
                           f"it runs its maximum of {self.limits.scenes} scenes")
         pids = [hosted.runner.pid for hosted in self.scenes.values()]
-        expected = self.cpu.expected(pids + [None], NEW_SCENE_CORES)  # (with one more)
+        # a new scene is expected to use what attended ones do: one its client has left
+        # had its start's burst measured (a Gymnasium vector's probe environment: as much
+        # again for the next scene, and the worker was full for both of the vector's)
+        attended = [hosted.runner.pid for hosted in self.scenes.values() if hosted.attended()]
+        expected = self.cpu.expected(pids + [None], NEW_SCENE_CORES,  # (with one more)
+                                     [pid for pid in attended if pid is not None])
         if expected > CPU_SHARE * self.cores:
             return NoRoom("workerCores", self.cores, "--worker-cores",
                           f"its {len(pids)} scenes and one more would use {expected:.2f} of "

@@ -293,3 +293,38 @@ test('a step larger than one text leaves as several batches and all of it is mad
 		Prosthetic.close();
 	}
 });
+
+test('a request over the server\'s messageBytes is refused at once as the server refuses it, and nothing is sent', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const name = `js-too-large-${process.pid}`;
+	const session = await Prosthetic.connect({ url: URL_, scene: name });
+	try {
+		const texts = [], send = session.transmit;
+		session.transmit = (text) => { texts.push(text); send(text); };
+		const caption = 'x'.repeat(1 << 20);
+		let refused = null;
+		try {
+			Prosthetic.setCaption(caption);
+		} catch (error) {
+			refused = error;
+		}
+		assert.equal(refused?.code, 'too_large');
+		const raw = new WebSocket(`${URL_}/ws?scene=${name}&role=controller`);
+		const server = await new Promise((resolve, reject) => {
+			raw.on('message', (data) => {
+				const message = JSON.parse(String(data));
+				if (message.op === 'hello') raw.send(JSON.stringify({ op: 'call', object: 'scene', method: 'setCaption', args: [caption], id: 1 }));
+				if (message.op === 'error') resolve(message);
+			});
+			raw.once('error', reject);
+		});
+		raw.close();
+		assert.deepEqual([server.code, server.details], [refused.code, refused.details]);
+		await Prosthetic.sync();
+		assert.deepEqual(texts, []);
+		Prosthetic.setCaption('fits');   // the connection carries on
+		await Prosthetic.sync();
+		assert.equal(session.mirror.caption, 'fits');
+	} finally {
+		Prosthetic.close();
+	}
+});

@@ -92,6 +92,7 @@ class Connection:
     def send(self, message: dict[str, Any], wait: bool = False) -> Any:
         """Send a request; with ``wait``, block for its answer and return the result."""
         self.raise_deferred()
+        self.core.check_size(message)
         if self._gathering and not wait:
             self._held.append(message)
             return None

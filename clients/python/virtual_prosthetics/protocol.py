@@ -17,6 +17,7 @@ from .wire_messages import SERVER_MESSAGES
 
 Handler = Callable[[dict[str, Any]], None]
 SERVER_OPS = frozenset(SERVER_MESSAGES)
+ID_ROOM = 24  # bytes: ',"id":' and the largest id
 
 
 @dataclass(frozen=True)
@@ -48,6 +49,7 @@ class ProtocolCore:
         self.resume: str | None = None  # hello's key for connecting again as this client
         self.grace = 0.0  # how long the server keeps this client's objects after a loss
         self.interrupted: set[int] = set()  # waited requests a lost connection left unanswered
+        self.message_bytes = 1 << 20  # the server's messageBytes (hello's limits say)
 
     def request(self, message: dict[str, Any], wait: bool = False) -> Request:
         """The request for ``message`` with a fresh id (``wait``: keep its answer)."""
@@ -56,6 +58,18 @@ class ProtocolCore:
         if wait:
             self._waited.add(request_id)
         return Request(request_id, encode({**message, "id": request_id}))
+
+    def check_size(self, message: dict[str, Any]) -> None:
+        """Refuse here, as the server would, a request whose text (with its id) is over
+        the server's ``messageBytes``: the server cannot tell which request such a text
+        held, so its refusal would answer none, and the caller would wait in vain."""
+        size = len(encode(message)) + ID_ROOM  # (ASCII: the codec escapes the rest)
+        if size > self.message_bytes:
+            raise ServerError("too_large", f"a {message.get('op')} request of {size} bytes is "
+                              f"over the server's limit of {self.message_bytes} bytes (limit "
+                              f"messageBytes; vp-server --limit messageBytes=N changes it)",
+                              message.get("op"), {"limit": "messageBytes", "value": self.message_bytes,
+                                                  "flag": "--limit messageBytes=N"})
 
     def receive(self, text: str | bytes) -> dict[str, Any]:
         """Take one text from the server; unknown or malformed messages raise ProtocolError."""
@@ -73,6 +87,7 @@ class ProtocolCore:
             if message["op"] == "hello":
                 self.resume = message.get("resume")
                 self.grace = float(message.get("limits", {}).get("leaveGraceSeconds", 0))
+                self.message_bytes = int(message.get("limits", {}).get("messageBytes", 1 << 20))
             if message["op"] == "error":
                 self.deferred.append(ServerError.from_wire(message))
             self.on_message(message)

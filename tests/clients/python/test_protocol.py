@@ -99,3 +99,31 @@ def test_hello_gives_the_key_to_come_back_and_a_reconnection_settles_the_unanswe
     lost = core.take_deferred()
     assert isinstance(lost, ConnectionLost) and "may or may not" in str(lost)
     assert core.take_deferred() is None and core.closed is None  # the conversation goes on
+
+
+def test_a_request_over_the_servers_message_bytes_is_refused_at_once_as_the_server_refuses_it(
+        server, scene):
+    """Found: a request of more than 1 MiB was refused by the server without an id (it
+    cannot read one from such a text), and the script waited its whole timeout. The
+    client refuses it at once, with the server's code and details, and sends nothing."""
+    import websockets.sync.client
+
+    import virtual_prosthetics as vp
+    texts: list[str] = []
+    send = scene.connection._ws.send
+    scene.connection._ws.send = lambda text: (texts.append(text), send(text))[1]
+    caption = "x" * (1 << 20)
+    with pytest.raises(ServerError) as raised:
+        vp.set_caption(caption)
+    assert texts == [] and raised.value.code == "too_large"
+    with websockets.sync.client.connect(f"{server.ws}/ws?scene={scene.name}",
+                                        max_size=None) as raw:
+        raw.recv(), raw.recv()  # hello, snapshot
+        raw.send(json.dumps({"op": "call", "object": "scene", "method": "setCaption",
+                             "args": [caption], "id": 1}))
+        refusal = next(m for m in iter(lambda: json.loads(raw.recv(timeout=30)), None)
+                       if m["op"] == "error")
+    assert (refusal["code"], refusal["details"]) == (raised.value.code, raised.value.details)
+    vp.set_caption("fits")  # the connection carries on
+    scene.sync()
+    assert scene.read(lambda mirror: mirror.caption) == "fits"

@@ -60,3 +60,17 @@ def test_processes_not_yet_measured_count_at_the_mean_share_and_no_less(processe
     finally:
         new.kill()
         new.wait()
+
+
+def test_new_processes_are_expected_to_use_what_typical_ones_do(processes):
+    """A worker guesses a new scene's share from its attended scenes: a busy scene whose
+    client has left (its start measured) is counted as itself, not taken as typical."""
+    busy, idle = (p.pid for p in processes)
+    cpu = ProcessCpu()
+    for _ in range(2):
+        cpu.measure([busy, idle])
+        time.sleep(0.3)
+    assert cpu.expected([busy, None], 0.01, typical=[idle]) == \
+        pytest.approx(cpu.shares[busy] + max(cpu.shares[idle], 0.01))
+    assert cpu.expected([busy, None], 0.05, typical=[]) == pytest.approx(cpu.shares[busy] + 0.05)
+    assert cpu.expected([busy, None], 0.01) == pytest.approx(2 * cpu.shares[busy])
