@@ -47,10 +47,11 @@ class Reading(NamedTuple):
 
 
 def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequence[Sequence[str]],
-                 forces: Sequence[tuple[ContactForce, ...]], origins: np.ndarray,
+                 forces: Sequence[tuple[ContactForce, ...]] | None, origins: np.ndarray,
                  quats: np.ndarray) -> dict[str, Reading]:
     """Readings of ``sensors`` (shapes already placed), given what each one's part touches
-    and what presses on it, and their world positions and quaternions (n×3 and n×4 arrays).
+    and what presses on it (None: nothing presses on any), and their world positions and
+    quaternions (n×3 and n×4 arrays).
     A part something presses on touches it (1), whatever the pad's ray sees: a fingertip
     pressed on an object from the pad's side, or through the thin gap Bullet keeps between
     surfaces in contact."""
@@ -61,7 +62,10 @@ def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequenc
     directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
     _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
+    rows = zip(sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts)
+    if forces is None:  # (kinematic mode, or nothing pressing: a tick's usual case)
+        return {sensor.id: Reading(distance, touch, tuple(position), tuple(touching), 0, ())
+                for sensor, distance, touch, position, touching in rows}
     return {sensor.id: Reading(distance, 1.0 if pressing else touch, tuple(position), tuple(touching),
                                sum(force.normal for force in pressing), pressing)
-            for sensor, distance, touch, position, touching, pressing in zip(
-                sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts, forces)}
+            for (sensor, distance, touch, position, touching), pressing in zip(rows, forces)}

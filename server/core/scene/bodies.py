@@ -479,12 +479,13 @@ class SceneBodies:
             return {}
         self._read_poses()
         hosts = [sensor.host() for sensor in sensors]  # type: ignore[attr-defined]
+        ids = [None if host is None else host.id for host in hosts]
         if exact:
             contacts = [self.touching(host) for host in hosts]
         else:
             of = self.tracker.overlaps().of
-            contacts = [() if host is None else of(host.id) for host in hosts]
-        pressing = self.physics.contacts({host.id for host in hosts if host is not None})
+            contacts = [() if host is None else of(host) for host in ids]
+        pressing = self.physics.contacts({host for host in ids if host is not None})
         return read_sensors(self._rays, sensors, contacts,
-                            [() if host is None else pressing.get(host.id, ()) for host in hosts],
+                            [pressing.get(host, ()) for host in ids] if pressing else None,
                             *self.world_poses(sensors))
