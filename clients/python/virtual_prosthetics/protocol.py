@@ -63,13 +63,15 @@ class ProtocolCore:
         """Refuse here, as the server would, a request whose text (with its id) is over
         the server's ``messageBytes``: the server cannot tell which request such a text
         held, so its refusal would answer none, and the caller would wait in vain."""
-        size = len(encode(message)) + ID_ROOM  # (ASCII: the codec escapes the rest)
-        if size > self.message_bytes:
-            raise ServerError("too_large", f"a {message.get('op')} request of {size} bytes is "
-                              f"over the server's limit of {self.message_bytes} bytes (limit "
-                              f"messageBytes; vp-server --limit messageBytes=N changes it)",
-                              message.get("op"), {"limit": "messageBytes", "value": self.message_bytes,
-                                                  "flag": "--limit messageBytes=N"})
+        # (the codec writes ASCII, escaping the rest: a character is a byte)
+        size, limit = len(encode(message)) + ID_ROOM, self.message_bytes
+        if size > limit:
+            op = message.get("op")
+            raise ServerError("too_large", f"a {op} request of {size} bytes is over the "
+                              f"server's limit of {limit} bytes (limit messageBytes; vp-server "
+                              f"--limit messageBytes=N changes it)", op,
+                              {"limit": "messageBytes", "value": limit,
+                               "flag": "--limit messageBytes=N"})
 
     def receive(self, text: str | bytes) -> dict[str, Any]:
         """Take one text from the server; unknown or malformed messages raise ProtocolError."""

@@ -63,9 +63,10 @@ def run(seconds: float | None = None) -> None:
     ``end_contact`` of this client's parts). Without an animation, ``run`` only does that.
     What a step sends nobody waits for reaches the server as one batch, applied as one
     and answered once (a refused call undoes the step's others; the next call raises it;
-    a read in the step sends what came before it first). In a scene this client paused (``pause``), each step is
-    followed by the ticks of one period (``step``), without waiting: the animation comes
-    out the same on every run and as fast as the server computes it.
+    a read in the step sends what came before it first). In a scene this client paused
+    (``pause``), each step is followed by the ticks of one period (``step``), without
+    waiting: the animation comes out the same on every run and as fast as the server
+    computes it.
     """
     scene = current_session()
     func, fps = scene.animation or (None, 30.0)
