@@ -353,13 +353,14 @@ export class Session {
 	// The gathered requests as batches of at most messagesPerText operations and about
 	// TEXT_BYTES each (a lone one as it is).
 	sendGathered() {
+		if (!this.gathered?.length) return;
 		let chunk = [], bytes = 0;
 		const send = () => {
 			if (chunk.length) this.queue(this.core.request(chunk.length === 1 ? chunk[0] : batchMessage(chunk)).text);
 			chunk = [];
 			bytes = 0;
 		};
-		for (const held of this.gathered?.splice(0) ?? []) {
+		for (const held of this.gathered.splice(0)) {
 			if (chunk.length && (bytes + held.bytes > TEXT_BYTES || chunk.length >= this.maxPerText)) send();
 			chunk.push(held.message);
 			bytes += held.bytes + 1;

@@ -219,9 +219,9 @@ class WorkerHost:
         # a new scene is expected to use what attended ones do: one its client has left
         # had its start's burst measured (a Gymnasium vector's probe environment: as much
         # again for the next scene, and the worker was full for both of the vector's)
-        attended = [hosted.runner.pid for hosted in self.scenes.values() if hosted.attended()]
-        expected = self.cpu.expected(pids + [None], NEW_SCENE_CORES,  # (with one more)
-                                     [pid for pid in attended if pid is not None])
+        attended = [hosted.runner.pid for hosted in self.scenes.values()
+                    if hosted.attended() and hosted.runner.pid is not None]
+        expected = self.cpu.expected(pids + [None], NEW_SCENE_CORES, attended)  # (one more)
         if expected > CPU_SHARE * self.cores:
             return NoRoom("workerCores", self.cores, "--worker-cores",
                           f"its {len(pids)} scenes and one more would use {expected:.2f} of "

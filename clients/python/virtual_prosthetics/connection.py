@@ -16,7 +16,6 @@ from urllib.parse import parse_qsl, urlencode, urlsplit, urlunsplit
 from websockets.exceptions import ConnectionClosed, InvalidHandshake, InvalidStatus, InvalidURI
 from websockets.sync.client import connect as ws_connect
 
-from .codec import encode
 from .errors import ConnectionLost, ServerError, ServerWarning, Timeout
 from .protocol import Handler, ProtocolCore, Request
 from .waiting import bound
@@ -49,7 +48,7 @@ class Connection:
         self._lock = threading.Condition()
         self._reader = threading.Thread(target=self._read, name="vp-reader", daemon=True)
         self._gathering = 0  # depth of gathering(): requests then wait in _held
-        self._held: list[dict[str, Any]] = []
+        self._held: list[tuple[dict[str, Any], int]] = []  # (request, its text's bytes)
 
     @property
     def closed(self) -> str | None:
@@ -92,9 +91,9 @@ class Connection:
     def send(self, message: dict[str, Any], wait: bool = False) -> Any:
         """Send a request; with ``wait``, block for its answer and return the result."""
         self.raise_deferred()
-        self.core.check_size(message)
+        size = self.core.check_size(message)
         if self._gathering and not wait:
-            self._held.append(message)
+            self._held.append((message, size))
             return None
         held, self._held = self._held, []
         request = self._send([*_batches(held), message], wait)
@@ -252,14 +251,13 @@ def _open(url: str, timeout: float) -> Any:
     return ws_connect(url, max_size=None, open_timeout=bound(timeout)).__enter__()
 
 
-def _batches(ops: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Gathered requests as batches of at most TEXT_MESSAGES operations and about
-    TEXT_BYTES each (a lone one as it is)."""
+def _batches(held: list[tuple[dict[str, Any], int]]) -> list[dict[str, Any]]:
+    """Gathered requests (each with its text's bytes) as batches of at most TEXT_MESSAGES
+    operations and about TEXT_BYTES each (a lone one as it is)."""
     batches: list[dict[str, Any]] = []
     chunk: list[dict[str, Any]] = []
     size = 0
-    for op in ops:
-        length = len(encode(op))
+    for op, length in held:
         if chunk and (size + length > TEXT_BYTES or len(chunk) >= TEXT_MESSAGES):
             batches.append(_batch(chunk))
             chunk, size = [], 0

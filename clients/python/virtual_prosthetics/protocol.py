@@ -59,10 +59,11 @@ class ProtocolCore:
             self._waited.add(request_id)
         return Request(request_id, encode({**message, "id": request_id}))
 
-    def check_size(self, message: dict[str, Any]) -> None:
-        """Refuse here, as the server would, a request whose text (with its id) is over
-        the server's ``messageBytes``: the server cannot tell which request such a text
-        held, so its refusal would answer none, and the caller would wait in vain."""
+    def check_size(self, message: dict[str, Any]) -> int:
+        """The bytes of a request's text (with room for its id); refused here, as the
+        server would, when over the server's ``messageBytes``: the server cannot tell which
+        request such a text held, so its refusal would answer none, and the caller would
+        wait in vain."""
         # (the codec writes ASCII, escaping the rest: a character is a byte)
         size, limit = len(encode(message)) + ID_ROOM, self.message_bytes
         if size > limit:
@@ -72,6 +73,7 @@ class ProtocolCore:
                               f"--limit messageBytes=N changes it)", op,
                               {"limit": "messageBytes", "value": limit,
                                "flag": "--limit messageBytes=N"})
+        return size
 
     def receive(self, text: str | bytes) -> dict[str, Any]:
         """Take one text from the server; unknown or malformed messages raise ProtocolError."""

@@ -9,6 +9,7 @@ the pad's own business).
 
 from __future__ import annotations
 
+from itertools import repeat
 from typing import TYPE_CHECKING, Any, NamedTuple, Sequence
 
 import numpy as np
@@ -62,10 +63,8 @@ def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequenc
     directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
     _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
-    rows = zip(sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts)
-    if forces is None:  # (kinematic mode, or nothing pressing: a tick's usual case)
-        return {sensor.id: Reading(distance, touch, tuple(position), tuple(touching), 0, ())
-                for sensor, distance, touch, position, touching in rows}
+    pressed = repeat(()) if forces is None else forces
     return {sensor.id: Reading(distance, 1.0 if pressing else touch, tuple(position), tuple(touching),
-                               sum(force.normal for force in pressing), pressing)
-            for (sensor, distance, touch, position, touching), pressing in zip(rows, forces)}
+                               sum(force.normal for force in pressing) if pressing else 0, pressing)
+            for sensor, distance, touch, position, touching, pressing in zip(
+                sensors, hits[:, 1].tolist(), touches.tolist(), origins.tolist(), contacts, pressed)}

@@ -1,11 +1,14 @@
-"""The Python client's protocol core, driven without any socket."""
+"""The Python client's protocol core, driven without any socket; and its refusal of an
+oversize request, compared with the real server's."""
 
 from __future__ import annotations
 
 import json
 
 import pytest
+import websockets.sync.client
 
+import virtual_prosthetics as vp
 from virtual_prosthetics.errors import ConnectionLost, ProtocolError, ServerError
 from virtual_prosthetics.protocol import ProtocolCore
 
@@ -106,9 +109,6 @@ def test_a_request_over_the_servers_message_bytes_is_refused_at_once_as_the_serv
     """Found: a request of more than 1 MiB was refused by the server without an id (it
     cannot read one from such a text), and the script waited its whole timeout. The
     client refuses it at once, with the server's code and details, and sends nothing."""
-    import websockets.sync.client
-
-    import virtual_prosthetics as vp
     texts: list[str] = []
     send = scene.connection._ws.send
     scene.connection._ws.send = lambda text: (texts.append(text), send(text))[1]
