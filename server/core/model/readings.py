@@ -61,7 +61,7 @@ def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequenc
     # each sensor's +Y axis in the world: the second column of its rotation matrix
     x, y, z, w = quats.T
     directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
-    _, hits = targets.cast(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
+    hits = targets.distances(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
     pressed = repeat(()) if forces is None else forces
     return {sensor.id: Reading(distance, 1.0 if pressing else touch, tuple(position), tuple(touching),

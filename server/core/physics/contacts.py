@@ -59,13 +59,18 @@ class Overlaps:
 
     def of(self, node_id: str) -> list[str]:
         """What ``node_id`` touches, sorted."""
+        return self.partners.get(node_id, [])
+
+    @property
+    def partners(self) -> dict[str, list[str]]:
+        """What each id that touches anything touches, sorted."""
         if self._partners is None:
             partners: dict[str, list[str]] = {}
             for a, b in self.pairs:
                 partners.setdefault(a, []).append(b)
                 partners.setdefault(b, []).append(a)
             self._partners = {node_id: sorted(others) for node_id, others in partners.items()}
-        return self._partners.get(node_id, [])
+        return self._partners
 
 
 class ContactTracker:

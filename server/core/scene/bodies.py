@@ -390,7 +390,7 @@ class SceneBodies:
     def world_poses(self, nodes: list[Node]) -> tuple[np.ndarray, np.ndarray]:
         """World positions (n×3) and quaternions (n×4) of nodes (:class:`PartPoses`)."""
         self._read_poses()
-        return self._parts.world_poses(nodes)
+        return self._parts.world_poses(nodes, self._rays.poses)
 
     def _guarded(self, root_id: str, work: Callable[[], None]) -> bool:
         """Do ``work`` for a tree; if it fails (a bug) the tree is left out, the scene goes on."""
@@ -483,8 +483,8 @@ class SceneBodies:
         if exact:
             contacts = [self.touching(host) for host in hosts]
         else:
-            of = self.tracker.overlaps().of
-            contacts = [() if host is None else of(host) for host in ids]
+            partners = self.tracker.overlaps().partners
+            contacts = [partners.get(host, ()) for host in ids]  # type: ignore[arg-type]
         pressing = self.physics.contacts({host for host in ids if host is not None})
         return read_sensors(self._rays, sensors, contacts,
                             [pressing.get(host, ()) for host in ids] if pressing else None,

@@ -10,7 +10,7 @@ node under a stretched part or a motor is posed by its tree instead
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -18,6 +18,7 @@ from ..kit import math3d
 from ..kit.math3d import Pose, Vec3
 from ..model.node import UNIT_SCALE, Node
 
+PoseArrays = Callable[[Sequence[str]], "tuple[np.ndarray, np.ndarray]"]  # positions, quaternions
 CARRIED_SETS = 64  # sets of nodes whose carriers are kept (watched sensors: one set)
 
 
@@ -62,10 +63,11 @@ class PartPoses:
         self._offsets.clear()
         self._carried.clear()
 
-    def world_poses(self, nodes: list[Node]) -> tuple[np.ndarray, np.ndarray]:
+    def world_poses(self, nodes: list[Node], part_poses: PoseArrays) -> tuple[np.ndarray, np.ndarray]:
         """World positions (n×3) and quaternions (n×4) of nodes: the pose in Bullet of the
-        unscaled part that carries a node, composed with the node's offset from it, for
-        all such nodes at once; else the tree's own (:meth:`Node.world_pose`)."""
+        unscaled part that carries a node (``part_poses`` gives them as arrays, for parts
+        by id), composed with the node's offset from it, for all such nodes at once; else
+        the tree's own (:meth:`Node.world_pose`)."""
         key = tuple(node.id for node in nodes)
         carried = self._carried.get(key)
         if carried is None:
@@ -76,10 +78,8 @@ class PartPoses:
         for index in carried.own:
             positions[index], quats[index] = nodes[index].world_pose()
         if carried.hosts:
-            hosts = [self._poses[host] for host in carried.hosts]
             positions[carried.rows], quats[carried.rows] = math3d.compose_arrays(
-                np.array([p for p, _ in hosts]), np.array([q for _, q in hosts]),
-                carried.positions, carried.quats)
+                *part_poses(carried.hosts), carried.positions, carried.quats)
         return positions, quats
 
     def _carriers(self, nodes: list[Node]) -> _Carried:
