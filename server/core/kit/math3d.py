@@ -9,8 +9,6 @@ from __future__ import annotations
 import math
 from typing import Sequence
 
-import numpy as np
-
 Vec3 = tuple[float, float, float]
 Quat = tuple[float, float, float, float]
 Pose = tuple[Vec3, Quat]
@@ -95,26 +93,6 @@ def compose(parent: Pose, local: Pose) -> Pose:
     (pp, pq), (lp, lq) = parent, local
     rx, ry, rz = rotate(pq, lp)
     return (pp[0] + rx, pp[1] + ry, pp[2] + rz), multiply(pq, lq)
-
-
-def compose_arrays(positions: np.ndarray, quats: np.ndarray, local_positions: np.ndarray,
-                   local_quats: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`compose` of many poses at once (rows of n×3 positions and n×4 quaternions),
-    by the same operations in the same order, so each row equals what compose gives."""
-    qx, qy, qz, qw = quats.T
-    vx, vy, vz = local_positions.T
-    tx = 2 * (qy * vz - qz * vy)
-    ty = 2 * (qz * vx - qx * vz)
-    tz = 2 * (qx * vy - qy * vx)
-    rotated = np.stack((vx + qw * tx + (qy * tz - qz * ty),
-                        vy + qw * ty + (qz * tx - qx * tz),
-                        vz + qw * tz + (qx * ty - qy * tx)), axis=1)
-    bx, by, bz, bw = local_quats.T
-    turned = np.stack((qw * bx + qx * bw + qy * bz - qz * by,
-                       qw * by - qx * bz + qy * bw + qz * bx,
-                       qw * bz + qx * by - qy * bx + qz * bw,
-                       qw * bw - qx * bx - qy * by - qz * bz), axis=1)
-    return positions + rotated, turned
 
 
 def to_matrix(q: Quat) -> tuple[Vec3, Vec3, Vec3]:

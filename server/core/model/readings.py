@@ -49,18 +49,16 @@ class Reading(NamedTuple):
 
 def read_sensors(targets: RayTargets, sensors: Sequence[Node], contacts: Sequence[Sequence[str]],
                  forces: Sequence[tuple[ContactForce, ...]] | None, origins: np.ndarray,
-                 quats: np.ndarray) -> dict[str, Reading]:
+                 turns: np.ndarray) -> dict[str, Reading]:
     """Readings of ``sensors`` (shapes already placed), given what each one's part touches
     and what presses on it (None: nothing presses on any), and their world positions and
-    quaternions (n×3 and n×4 arrays).
+    rotation matrices (n×3 and n×3×3 arrays).
     A part something presses on touches it (1), whatever the pad's ray sees: a fingertip
     pressed on an object from the pad's side, or through the thin gap Bullet keeps between
     surfaces in contact."""
     if not sensors:
         return {}
-    # each sensor's +Y axis in the world: the second column of its rotation matrix
-    x, y, z, w = quats.T
-    directions = np.stack((2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)), axis=1)
+    directions = turns[:, :, 1]  # each sensor's +Y axis in the world
     hits = targets.distances(origins, directions, (0.0, part_figures.SENSOR_NEAR), part_figures.SENSOR_RANGE)
     touches = np.maximum(0.0, 1.0 - hits[:, 0] / part_figures.TOUCH_RANGE)  # 0 for inf too
     pressed = repeat(()) if forces is None else forces

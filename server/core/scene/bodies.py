@@ -29,7 +29,7 @@ from ..physics.dynamics import Physics
 from ..physics.engine import PhysicsWorld
 from ..physics.raycast import RayTargets
 from .build_stages import BuildStages
-from .carriers import PartPoses
+from .carriers import Carriers
 
 if TYPE_CHECKING:
     from ..kit.math3d import Pose
@@ -69,7 +69,7 @@ class SceneBodies:
         self._joint_motors: dict[str, list[Node]] = {}  # root -> its joints' motors, in order
         self._followers: dict[str, list[Node]] = {}  # root -> its motors that follow another
         self._ray_geometry: dict[str, dict[str, Any]] = {}
-        self._parts = PartPoses()  # where Bullet put the parts; what they carry
+        self._parts = Carriers()  # the parts with bodies; what they carry
         self._unposed: set[str] = set()  # roots moved since their parts' poses were read
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
         self._mounts: dict[str, Pose] = {}  # dynamic mode: where robots' mounts are put
@@ -271,9 +271,7 @@ class SceneBodies:
         self.sync()
         for root_id in self._unposed:
             if self.physics.tree(root_id) is not None:  # (not since taken out)
-                keys, poses = self.physics.part_poses(root_id)
-                self._rays.move_many(keys, poses)
-                self._parts.placed(keys, poses)
+                self._rays.move_many(*self.physics.part_poses(root_id))
         self._unposed.clear()
 
     def _rebuild(self, new_trees: str) -> set[str]:
@@ -380,17 +378,13 @@ class SceneBodies:
             else:
                 self._rays.move(key, pose)
         self.tracker.placed(keys, made=True)
-        self._place_nodes(root_id, keys, poses)
+        self._parts.built(keys, self.physics.tree(root_id).scales())  # type: ignore[union-attr]
         return keys
 
-    def _place_nodes(self, root_id: str, keys: Sequence[str], poses: list[Pose]) -> None:
-        """Keep the poses Bullet found for the parts (sensors on them start from there)."""
-        self._parts.placed(keys, poses, self.physics.tree(root_id).scales())  # type: ignore[union-attr]
-
-    def world_poses(self, nodes: list[Node]) -> tuple[np.ndarray, np.ndarray]:
-        """World positions (n×3) and quaternions (n×4) of nodes (:class:`PartPoses`)."""
+    def world_frames(self, nodes: list[Node]) -> tuple[np.ndarray, np.ndarray]:
+        """World positions (n×3) and rotation matrices (n×3×3) of nodes (:class:`Carriers`)."""
         self._read_poses()
-        return self._parts.world_poses(nodes, self._rays.poses)
+        return self._parts.world_frames(nodes, self._rays.frames)
 
     def _guarded(self, root_id: str, work: Callable[[], None]) -> bool:
         """Do ``work`` for a tree; if it fails (a bug) the tree is left out, the scene goes on."""
@@ -488,4 +482,4 @@ class SceneBodies:
         pressing = self.physics.contacts({host for host in ids if host is not None})
         return read_sensors(self._rays, sensors, contacts,
                             [pressing.get(host, ()) for host in ids] if pressing else None,
-                            *self.world_poses(sensors))
+                            *self.world_frames(sensors))

@@ -72,24 +72,6 @@ def test_unknown_order_is_refused():
         math3d.euler_to_quat(0, 0, 0, "XXY")
 
 
-def test_composing_many_poses_at_once_gives_exactly_what_compose_gives():
-    import numpy as np
-
-    rng = random.Random(7)
-
-    def pose():
-        q = math3d.euler_to_quat(*(rng.uniform(-3, 3) for _ in range(3)))
-        return tuple(rng.uniform(-5, 5) for _ in range(3)), q
-
-    parents, locals_ = [pose() for _ in range(50)], [pose() for _ in range(50)]
-    positions, quats = math3d.compose_arrays(
-        np.array([p for p, _ in parents]), np.array([q for _, q in parents]),
-        np.array([p for p, _ in locals_]), np.array([q for _, q in locals_]))
-    expected = [math3d.compose(parent, local) for parent, local in zip(parents, locals_)]
-    assert positions.tolist() == [list(p) for p, _ in expected]  # bit for bit
-    assert quats.tolist() == [list(q) for _, q in expected]
-
-
 def test_between_goes_straight_and_turns_along_the_shorter_arc():
     a = ((0.0, 0.0, 0.0), math3d.axis_angle("z", 0.0))
     b = ((2.0, 4.0, -6.0), math3d.axis_angle("z", 1.0))

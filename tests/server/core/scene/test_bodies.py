@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pytest
 
 from server.core.kit import math3d
@@ -96,23 +97,22 @@ def test_a_sensor_on_a_part_is_placed_from_the_parts_pose_in_bullet(scene):
     scene.tick(0.1)
     hand.flex_fingers(0.6)
     scene.bodies.sync()
-    positions, quats = scene.bodies.world_poses([on_tip, tip, hand])
-    (position, orientation), (want_p, want_q) = (positions[0], quats[0]), on_tip.world_pose()
-    for k, node in enumerate((tip, hand), start=1):
-        assert list(positions[k]) == pytest.approx(node.world_pose()[0], abs=1e-12)
-    assert position == pytest.approx(want_p, abs=1e-12)
-    assert abs(sum(a * b for a, b in zip(orientation, want_q))) == pytest.approx(1, abs=1e-12)
+    positions, turns = scene.bodies.world_frames([on_tip, tip, hand])
+    for k, node in enumerate((on_tip, tip, hand)):
+        position, quat = node.world_pose()
+        assert positions[k].tolist() == pytest.approx(position, abs=1e-12)
+        assert turns[k].ravel().tolist() == pytest.approx(np.ravel(math3d.to_matrix(quat)).tolist(), abs=1e-12)
     on_tip.set_position((0.1, 0, 0))  # its offset from the tip is worked out again
     on_tip.set_rotation(0.5, 0.2, 0)
     hand.spread_fingers(0.2)
     scene.bodies.sync()
-    positions, quats = scene.bodies.world_poses([on_tip])
+    positions, turns = scene.bodies.world_frames([on_tip])
     want_p, want_q = on_tip.world_pose()
     assert positions[0].tolist() == pytest.approx(want_p, abs=1e-12)
-    assert abs(sum(a * b for a, b in zip(quats[0].tolist(), want_q))) == pytest.approx(1, abs=1e-12)
+    assert turns[0].ravel().tolist() == pytest.approx(np.ravel(math3d.to_matrix(want_q)).tolist(), abs=1e-12)
     tip.set_scale((1, 2, 1))  # a stretched part: the tree composes the whole way
     scene.bodies.sync()
-    [position] = scene.bodies.world_poses([on_tip])[0].tolist()
+    [position] = scene.bodies.world_frames([on_tip])[0].tolist()
     assert position == pytest.approx(on_tip.world_pose()[0], abs=1e-12)
 
 
