@@ -19,6 +19,7 @@ from .hulls import convex_hull
 ON_SURFACE = 1e-9  # a ray starting this close outside or inside a face starts on it
 AT_LIMIT = 1e-12   # entries this close below a limit count as at it (rounding)
 _PARALLEL = 1e-15
+PLANE_DIGITS = 12  # a hull's triangles whose planes agree to this many decimals are one face
 _MESH_CHUNK = 200_000  # ray × triangle pairs worked on at once (bounded memory)
 
 
@@ -83,11 +84,12 @@ def convex_entries(normals: np.ndarray, offsets: np.ndarray, origins: np.ndarray
     gaps = offsets - products[..., 1]   # ≥ 0: inside that plane
     with np.errstate(divide="ignore", invalid="ignore"):
         at = gaps / towards
-    entering, leaving = towards < -_PARALLEL, towards > _PARALLEL
-    enter = np.where(entering, at, -np.inf).max(axis=1)
-    leave = np.where(leaving, at, np.inf).min(axis=1)
-    beside = (~entering & ~leaving & (gaps < -ON_SURFACE)).any(axis=1)
-    return _from_one_entry(enter, ~beside & (enter <= leave) & (enter >= -ON_SURFACE), limits)
+    entering = towards < -_PARALLEL
+    # a plane the ray does not enter, with the origin outside it, leaves nothing to meet
+    # (beside it, or past it already): as if entered at infinity, which meets nothing
+    enter = np.where(entering, at, np.where(gaps < -ON_SURFACE, np.inf, -np.inf)).max(axis=1)
+    leave = np.where(towards > _PARALLEL, at, np.inf).min(axis=1)
+    return _from_one_entry(enter, (enter <= leave) & (enter >= -ON_SURFACE), limits)
 
 
 class Ground:
@@ -112,9 +114,14 @@ def box(size: Sequence[float]) -> Convex:
 
 
 def hull(points: Sequence[Sequence[float]]) -> Convex:
-    """The convex hull of ``points``."""
+    """The convex hull of ``points``, by its distinct face planes."""
     shape = convex_hull(points)
     corners, planes = shape.points, shape.equations  # n·p + d ≤ 0 inside
+    # qhull gives a plane per triangle of a face (a box's side twice, a 1.0 finger's 28 for
+    # its 10 faces): one of each is the same shape and every ray meets a third as many.
+    # Planes that round apart stay apart, which only keeps a plane twice.
+    _, first = np.unique(np.round(planes, PLANE_DIGITS), axis=0, return_index=True)
+    planes = planes[np.sort(first)]
     return Convex(planes[:, :3], -planes[:, 3], corners)
 
 
