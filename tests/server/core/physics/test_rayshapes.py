@@ -28,6 +28,18 @@ def test_a_box_as_planes_and_as_triangles_meets_every_ray_alike():
     np.testing.assert_allclose(planes, triangles, atol=1e-9)
 
 
+def test_a_hull_meets_rays_by_one_plane_per_face_as_its_triangles_do():
+    corners = [(x, y, z) for x in (-0.5, 0.5) for y in (-1, 1) for z in (-0.25, 0.25)]
+    tilted = corners + [(0.0, 1.4, 0.0)]  # a roof: faces of one and of two triangles
+    for points, faces in ((corners, 6), (tilted, 9)):
+        shape, mesh = hull(points), trimesh.convex.convex_hull(np.array(points))
+        assert len(shape.offsets) == faces  # qhull gave two triangles per rectangle
+        origins, directions = rays(4, 2000)
+        as_triangles = Triangles(np.asarray(mesh.vertices), np.asarray(mesh.faces))
+        np.testing.assert_allclose(shape.entries(origins, directions, [0.0, 0.5]),
+                                   as_triangles.entries(origins, directions, [0.0, 0.5]), atol=1e-9)
+
+
 def test_a_convex_shape_is_entered_once_so_a_limit_past_the_entry_sees_nothing():
     origin, up = np.array([[0.0, -3.0, 0.0]]), np.array([[0.0, 1.0, 0.0]])
     assert Sphere(1).entries(origin, up, [0.0, 2.0, 2.5]).tolist() == [[2.0, 2.0, np.inf]]
