@@ -112,8 +112,3 @@ def matrix_to_euler_xyz(m: Sequence[Sequence[float]]) -> Vec3:
     if abs(m13) < 0.9999999:
         return (math.atan2(-m[1][2], m[2][2]), y, math.atan2(-m[0][1], m[0][0]))
     return (math.atan2(m[2][1], m[1][1]), y, 0.0)
-
-
-def is_finite(values: Sequence[float]) -> bool:
-    """True when every component is a finite float."""
-    return all(math.isfinite(v) for v in values)

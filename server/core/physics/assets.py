@@ -75,8 +75,8 @@ class AssetLibrary:
         if len(data) > limits.asset_bytes:
             raise TooLarge(f"the file has {len(data)} bytes; at most {limits.asset_bytes} "
                            f"are taken", limit="assetBytes", value=limits.asset_bytes)
-        kind, triangles = _check_mesh(data, limits)
-        return {**self._keep(data, kind, limits), "triangles": triangles}
+        kind, faces, _ = _checked_mesh(data, limits)
+        return {**self._keep(data, kind, limits), "triangles": len(faces)}
 
     def store_robot(self, description: RobotDescription, limits: Limits) -> dict[str, Any]:
         """Keep a robot read from a file (its links' meshes kept already); its name, URL
@@ -177,17 +177,17 @@ def plain_name(filename: str) -> str:
     return name
 
 
-def _check_mesh(data: bytes, limits: Limits) -> tuple[str, int]:
-    """The kind (``glb``/``gltf``) and triangle count of a self-contained glTF file's mesh,
-    judged from its layout before anything is loaded (:mod:`server.core.physics.gltf_file`), then
-    read; or :class:`BadAsset` / :class:`LimitExceeded`."""
+def _checked_mesh(data: bytes, limits: Limits) -> tuple[str, np.ndarray, np.ndarray]:
+    """The kind (``glb``/``gltf``), triangles and vertices of a self-contained glTF file's
+    mesh, judged from its layout before anything is loaded (:mod:`server.core.physics.gltf_file`),
+    then read once; or :class:`BadAsset` / :class:`LimitExceeded`."""
     summary = gltf_file.inspect(data, limits)
     faces, vertices = _load(io.BytesIO(data), summary.kind)
     if len(faces) != summary.triangles or (len(faces) and faces.max() >= len(vertices)):
         raise BadAsset("the file's mesh does not read as its layout says")  # a loader quirk
     if not np.isfinite(vertices).all() or np.abs(vertices).max() > MAX_SIZE:
         raise BadAsset(f"the mesh's coordinates must be finite and within ±{MAX_SIZE:g}")
-    return summary.kind, summary.triangles
+    return summary.kind, faces, vertices
 
 
 def _load(source: Any, kind: str | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -211,6 +211,5 @@ def _read_robot(path: str, version: int) -> RobotDescription:
 @lru_cache(maxsize=64)
 def _read_mesh(path: str, url: str, version: int, limits: Limits) -> MeshFile:
     data = Path(path).read_bytes()  # checked again: a file may have been put there by hand
-    kind, _ = _check_mesh(data, limits)
-    faces, vertices = _load(io.BytesIO(data), kind)
+    _, faces, vertices = _checked_mesh(data, limits)
     return MeshFile(url, vertices, faces)

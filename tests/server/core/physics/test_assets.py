@@ -63,3 +63,15 @@ def test_a_file_with_coordinates_out_of_bounds_is_refused(tmp_path):
     with pytest.raises(BadAsset):
         AssetLibrary(uploads=tmp_path).store(huge, DEFAULT)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_scene_process_parses_a_mesh_file_once(tmp_path, monkeypatch):
+    library = AssetLibrary(uploads=tmp_path)
+    data = trimesh.creation.icosphere(2, 0.5).export(file_type="glb")
+    stored = library.store(data, DEFAULT)
+    loads = []
+    real = trimesh.load
+    monkeypatch.setattr(trimesh, "load", lambda *args, **kwargs: loads.append(1) or real(*args, **kwargs))
+    library.mesh(stored["name"])  # a process's first use: checked and read in one parse
+    library.mesh(stored["name"])
+    assert len(loads) == 1
