@@ -40,7 +40,7 @@ from nats.errors import NoRespondersError, NoServersError, TimeoutError as Reque
 from nats.js.errors import BadRequestError
 from nats.js.kv import KeyValue
 
-from ..errors import BusUnavailable, TooLarge
+from ..core.kit.errors import BusUnavailable, TooLarge
 
 log = logging.getLogger(__name__)
 PLACE = "vp.place"  # gateways ask every worker how busy it is (a Load each)

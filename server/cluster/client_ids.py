@@ -18,7 +18,7 @@ from collections import deque
 from nats.js.errors import KeyDeletedError, KeyNotFoundError, KeyWrongLastSequenceError
 from nats.js.kv import KeyValue
 
-from ..errors import LimitExceeded
+from ..core.kit.errors import LimitExceeded
 
 log = logging.getLogger(__name__)
 BLOCK = 1000

@@ -18,7 +18,7 @@ from typing import Any
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import BusUnavailable
+from ..core.kit.errors import BusUnavailable
 from ..web.runner import Deliver
 from ..web.scene_store import SceneStore
 from ..web.worker import SceneSetup

@@ -21,7 +21,7 @@ import time
 from collections import Counter
 from typing import Any
 
-from ..errors import LimitExceeded
+from ..core.kit.errors import LimitExceeded
 from .bus import PLACE, Bus, Load, Reply, Unanswered, attach_subject
 from .leases import break_worker, lease_holder
 

@@ -18,7 +18,7 @@ import threading
 import time
 from typing import Any, Protocol
 
-from ..errors import UnknownScene, VPError
+from ..core.kit.errors import UnknownScene, VPError
 from ..web.runner import Deliver, Replies, Runner
 from .bus import Bus, commands_subject, events_subject
 

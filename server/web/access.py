@@ -32,7 +32,7 @@ from typing import Any
 
 from starlette.requests import Request
 
-from ..errors import Forbidden
+from ..core.kit.errors import Forbidden
 
 _SECRET_IN_TEXT = re.compile(r"((?:token|resume)=)[^&\s\"']*", re.IGNORECASE)
 ANY_ADDRESS = ("0.0.0.0", "::", "")

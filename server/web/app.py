@@ -17,7 +17,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from ..core.kit.limits import DEFAULT, Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import (BusUnavailable, Forbidden, InternalError, LimitExceeded, LookupFailure,
+from ..core.kit.errors import (BusUnavailable, Forbidden, InternalError, LimitExceeded, LookupFailure,
                       RecordingBusy, RecordingDamaged, StorageFailure, TooLarge, VPError)
 from . import assets, heap, picture_route, recording_routes, rest, robot_routes, socket
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed

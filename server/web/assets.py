@@ -20,7 +20,7 @@ from fastapi import APIRouter, Request
 from fastapi.responses import FileResponse, JSONResponse
 
 from ..core.physics.assets import AssetLibrary, plain_name
-from ..errors import LimitExceeded, UnknownAsset
+from ..core.kit.errors import LimitExceeded, UnknownAsset
 from .access import changing_allowed
 from .rest import NOT_FOUND, ErrorBody, read_body
 

@@ -20,7 +20,7 @@ from ..core.kit.limits import DEFAULT, Limits
 from ..core.physics.assets import AssetLibrary
 from ..core.protocol.scene_document import uploaded_assets
 from ..core.scene.scene import Scene
-from ..errors import LimitExceeded, OutOfRange, UnknownScene, VPError
+from ..core.kit.errors import LimitExceeded, OutOfRange, UnknownScene, VPError
 from . import heap
 from .client_ids import ClientIdSource, ClientIds
 from .offload import Offload

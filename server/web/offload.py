@@ -17,7 +17,7 @@ from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Awaitable, Callable, Protocol
 
-from ..errors import InternalError, LimitExceeded, TooLarge, VPError
+from ..core.kit.errors import InternalError, LimitExceeded, TooLarge, VPError
 from .parent_death import end_with_parent
 from .runner import CONTEXT
 

@@ -12,7 +12,7 @@ from typing import IO, Any, Callable, Mapping
 
 from ..core.recording.mcap_recorder import Recorder, RecordingLimits
 from ..core.scene.scene import Scene
-from ..errors import RecordingBusy, StorageFailure, UnknownRecording
+from ..core.kit.errors import RecordingBusy, StorageFailure, UnknownRecording
 from .recordings import new_recording
 
 log = logging.getLogger(__name__)

@@ -14,7 +14,7 @@ from fastapi.responses import FileResponse, JSONResponse
 
 from ..core.recording import replay
 from ..core.recording.resimulate import resimulate_file
-from ..errors import OutOfRange
+from ..core.kit.errors import OutOfRange
 from .access import changing_allowed
 from .offload import hang_up_of
 from .rest import NOT_FOUND, ErrorBody, hub_of, hubs_of

@@ -21,7 +21,7 @@ from typing import Any
 from mcap.reader import make_reader
 
 from ..core.kit.limits import Limits
-from ..errors import LimitExceeded, RecordingBusy, RecordingDamaged, UnknownRecording
+from ..core.kit.errors import LimitExceeded, RecordingBusy, RecordingDamaged, UnknownRecording
 
 RECORDING_ID = re.compile(r"[A-Za-z0-9_-]{1,64}-\d{8}T\d{6}Z-[0-9a-f]{4}")
 SUFFIX = ".mcap"

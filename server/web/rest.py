@@ -23,7 +23,7 @@ from ..core.protocol import reports, robot_files
 from ..core.protocol.messages import PROTOCOL_VERSION
 from ..core.protocol.scene_document import check_document_bytes, export_scene
 from ..core.scene.scene import Scene
-from ..errors import TooLarge, UnknownObject, UnknownScene, VPError
+from ..core.kit.errors import TooLarge, UnknownObject, UnknownScene, VPError
 from . import prometheus
 from .access import changing_allowed
 from .offload import hang_up_of

@@ -16,7 +16,7 @@ from fastapi import APIRouter, Request
 from fastapi.responses import JSONResponse
 
 from ..core.physics.robot_upload import store_robot_upload
-from ..errors import BadArguments
+from ..core.kit.errors import BadArguments
 from .access import changing_allowed
 from .rest import NOT_FOUND, ErrorBody, hub_of, read_body
 

@@ -21,7 +21,7 @@ from typing import Any, Callable, Protocol
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import UnknownScene, VPError
+from ..core.kit.errors import UnknownScene, VPError
 from . import worker
 from .state_dir import SceneStore
 

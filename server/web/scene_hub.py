@@ -18,7 +18,7 @@ from typing import Any, AsyncIterator, Callable
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
-from ..errors import UnknownScene, VPError
+from ..core.kit.errors import UnknownScene, VPError
 from .framed_socket import FramedSocket
 from .outbox import Outbox, Outgoing, SlowConsumer
 from .recordings import Recordings

@@ -16,7 +16,7 @@ from starlette.websockets import WebSocketDisconnect
 
 from ..core.physics.engine import ENGINE
 from ..core.protocol.session import ROLES
-from ..errors import LimitExceeded, OutOfRange, VPError
+from ..core.kit.errors import LimitExceeded, OutOfRange, VPError
 from .access import AccessPolicy
 from .framed_socket import framed_socket
 from .hub import Hubs

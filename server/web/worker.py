@@ -68,7 +68,7 @@ from ..core.protocol.ownership import SERVER_KEEPER
 from ..core.protocol.session import Session
 from .parent_death import end_with_parent
 from ..core.scene.scene import Scene
-from ..errors import InternalError, UnknownRecording, VPError
+from ..core.kit.errors import InternalError, UnknownRecording, VPError
 from . import heap
 from .outbox import Outgoing
 from .recording_file import SceneRecordings

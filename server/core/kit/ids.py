@@ -13,7 +13,7 @@ from bisect import bisect_right
 
 from typing import Any
 
-from ...errors import DuplicateId, LimitExceeded
+from .errors import DuplicateId, LimitExceeded
 from .journal import Journal
 
 _MAX_NUMBER_DIGITS = 15  # longer numeric names are remembered as names

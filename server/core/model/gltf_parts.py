@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...errors import LimitExceeded
+from ..kit.errors import LimitExceeded
 from ..kit.math3d import Vec3, euler_to_quat, rotate
 from ..kit.numbers import Finite
 from ..physics.assets import MeshFile

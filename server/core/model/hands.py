@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ...errors import OutOfRange
+from ..kit.errors import OutOfRange
 from . import part_figures
 from .gltf_parts import AnthroPalm, AnthroThumb, GLTFPart, RoundFinger, RoundPalm
 from .motor import Motor, MotorX, MotorY, MotorZ

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ...errors import Cycle, OutOfRange, WrongType
+from ..kit.errors import Cycle, OutOfRange, WrongType
 from ..kit import math3d
 from ..kit.math3d import Pose, Vec3
 from ..kit.numbers import encode_numbers

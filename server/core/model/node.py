@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar, Iterator, Mapping, Protocol, Sequence
 
-from ...errors import Cycle, LimitExceeded
+from ..kit.errors import Cycle, LimitExceeded
 from ..kit import math3d
 from ..kit.ids import owner_of
 from ..kit.journal import Journal

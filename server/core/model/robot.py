@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 from typing import Any
 
-from ...errors import WrongType
+from ..kit.errors import WrongType
 from ..kit.ids import owner_of
 from ..kit.math3d import Vec3
 from ..physics.grip_map import grip_map

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Iterable
 
-from ...errors import LimitExceeded
+from ..kit.errors import LimitExceeded
 from ..kit.journal import Journal
 
 LASER = "laser"  # the watcher of a sensor that has a laser

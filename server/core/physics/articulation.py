@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any, Callable, Mapping
 
-from ...errors import LimitExceeded
+from ..kit.errors import LimitExceeded
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3, axis_angle, compose
 from .geometry import scaled
 

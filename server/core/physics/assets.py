@@ -25,7 +25,7 @@ from typing import Any, Collection
 
 import numpy as np
 
-from ...errors import (BadAsset, Forbidden, InternalError, LimitExceeded, TooLarge,
+from ..kit.errors import (BadAsset, Forbidden, InternalError, LimitExceeded, TooLarge,
                       UnknownAsset)
 from ..kit.limits import DEFAULT, MAX_SIZE, Limits
 from . import gltf_file

@@ -66,7 +66,7 @@ import time
 from dataclasses import asdict, dataclass, replace
 from typing import Any, Callable, Mapping, Sequence
 
-from ...errors import BadArguments, OutOfRange, WrongType, show
+from ..kit.errors import BadArguments, OutOfRange, WrongType, show
 from ..kit.math3d import ORIGIN, Pose, Vec3, between, compose
 from .articulation import NO_POSE, Articulation
 from .geometry import centroid, volume

@@ -18,7 +18,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ...errors import BadAsset
+from ..kit.errors import BadAsset
 from ..kit.math3d import Vec3
 from .assets import MeshFile
 from .hulls import convex_hull, solid

@@ -22,7 +22,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ...errors import BadArguments, OutOfRange, WrongType, show
+from ..kit.errors import BadArguments, OutOfRange, WrongType, show
 from ..kit.limits import MAX_COORDINATE, MAX_SIZE, MIN_SIZE
 from .hulls import convex_hull
 

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import BadAsset, LimitExceeded
+from ..kit.errors import BadAsset, LimitExceeded
 from ..kit.limits import Limits
 
 GLB_MAGIC, JSON_CHUNK, BIN_CHUNK = b"glTF", b"JSON", b"BIN\x00"

@@ -18,7 +18,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from ...errors import BadAsset, LimitExceeded
+from ..kit.errors import BadAsset, LimitExceeded
 from ..kit.limits import MAX_SIZE, Limits
 from ..kit.math3d import Vec3
 from .envelopes import hull_envelope

@@ -19,7 +19,7 @@ from typing import Any, Iterable
 
 import numpy as np
 
-from ...errors import BadAsset, Forbidden
+from ..kit.errors import BadAsset, Forbidden
 from ..kit.limits import Limits
 from ..kit.math3d import to_matrix
 from . import link_meshes

@@ -17,7 +17,7 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from ...errors import OutOfRange
+from ..kit.errors import OutOfRange
 from ..kit.math3d import Pose, Vec3
 from .bullet import shape_arguments
 from .engine import PhysicsWorld

@@ -16,7 +16,7 @@ import re
 import zipfile
 from dataclasses import dataclass
 
-from ...errors import BadAsset, Forbidden, LimitExceeded, TooLarge
+from ..kit.errors import BadAsset, Forbidden, LimitExceeded, TooLarge
 from ..kit.limits import Limits
 
 ZIP_MAGIC = b"PK\x03\x04"

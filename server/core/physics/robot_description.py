@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import BadAsset
+from ..kit.errors import BadAsset
 from ..kit.limits import MAX_COORDINATE, MAX_SIZE
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Vec3
 from .articulation import MAX_LINKS

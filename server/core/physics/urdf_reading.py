@@ -18,7 +18,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from ...errors import BadAsset
+from ..kit.errors import BadAsset
 from ..kit.limits import Limits
 from ..kit.math3d import Pose
 from . import link_meshes

@@ -11,7 +11,7 @@ import math
 import re
 from typing import Any, Callable, Sequence
 
-from ...errors import BadArguments, OutOfRange, WrongType, show
+from ..kit.errors import BadArguments, OutOfRange, WrongType, show
 from ..kit.limits import MAX_COORDINATE, MAX_SIZE, MIN_SIZE
 from ..kit.math3d import EULER_ORDERS, Quat, Vec3
 from ..kit.numbers import NON_FINITE

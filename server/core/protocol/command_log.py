@@ -15,7 +15,7 @@ import json
 import logging
 from typing import Any, Iterable
 
-from ...errors import VPError
+from ..kit.errors import VPError
 from ..scene.scene import Scene
 from .messages import encode
 from .session import Session

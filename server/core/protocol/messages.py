@@ -14,7 +14,7 @@ from typing import Any, Callable
 import fastjsonschema
 import orjson
 
-from ...errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp, show
+from ..kit.errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp, show
 from ..kit.limits import DEFAULT, Limits
 from ..kit.wire_messages import CLIENT_MESSAGES
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Callable
 
-from ...errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
+from ..kit.errors import BadMessage, LimitExceeded, UnknownMethod, UnknownType, VPError
 from ..kit.numbers import encode_numbers
 from ..model.node import Node
 from ..scene.scene import Scene

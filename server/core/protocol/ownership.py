@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from typing import Any, Iterator, Sequence
 
-from ...errors import Forbidden
+from ..kit.errors import Forbidden
 from ..kit.ids import owner_of
 from ..model.node import Node
 from ..model.robot import Robot

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from typing import Any
 
-from ...errors import UnknownObject
+from ..kit.errors import UnknownObject
 from ..kit.ids import owner_of
 from ..kit.math3d import Pose, Quat, Vec3, compose
 from ..model.imported import ImportedRobot

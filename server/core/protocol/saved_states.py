@@ -20,7 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ...errors import Forbidden, LimitExceeded, UnknownObject
+from ..kit.errors import Forbidden, LimitExceeded, UnknownObject
 from ..kit.ids import owner_of
 from ..scene.scene import Scene
 from .scene_document import export_scene, import_scene

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from functools import cache
 from typing import Any, Callable
 
-from ...errors import BadJSON, BadMessage, Forbidden, UnknownAsset, WrongType
+from ..kit.errors import BadJSON, BadMessage, Forbidden, UnknownAsset, WrongType
 from ..kit.ids import owner_of
 from ..kit.numbers import encode_numbers
 from ..model.gltf_parts import GLTFPart

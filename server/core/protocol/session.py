@@ -11,7 +11,7 @@ import re
 import time
 from typing import Any, Callable
 
-from ...errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
+from ..kit.errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
 from ..kit.rates import TokenBucket
 from ..kit.wire_messages import Hello, Ok
 from ..physics.dynamics import Physics

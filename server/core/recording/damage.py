@@ -4,7 +4,7 @@ a recording at all (anything can land in the recordings folder).
 The MCAP reader, its decompressor and the JSON inside raise many kinds of errors for such
 a file, some of which cannot even be sent back from the process that read them (an error
 whose arguments do not rebuild it ends a process pool). :func:`reading` turns them all
-into :class:`~server.errors.RecordingDamaged`, naming the recording and what was wrong.
+into :class:`~server.core.kit.errors.RecordingDamaged`, naming the recording and what was wrong.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from typing import Iterator
 from mcap.exceptions import McapError
 from zstandard import ZstdError
 
-from ...errors import RecordingDamaged
+from ..kit.errors import RecordingDamaged
 
 # what reading a damaged file raises: the reader's own errors, the decompressor's, records
 # cut short (struct, EOF), bytes that are not the JSON or the fields written (ValueError

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ...errors import LimitExceeded
+from ..kit.errors import LimitExceeded
 from ..kit.limits import Limits
 from ..model.node import Node
 from ..model.readings import Reading, read_sensors

@@ -10,7 +10,7 @@ between two ticks, never during one. It runs as fast as the server can compute.
 
 from __future__ import annotations
 
-from ...errors import Forbidden, NotPaused, OutOfRange
+from ..kit.errors import Forbidden, NotPaused, OutOfRange
 from ..kit.journal import Journal
 
 MAX_STEP_TICKS = 60  # a message's steps at most (a second): the scene still answers its others

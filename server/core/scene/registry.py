@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from ...errors import DuplicateId, LimitExceeded, UnknownObject
+from ..kit.errors import DuplicateId, LimitExceeded, UnknownObject
 from ..kit.ids import IdBook, owner_of
 from ..kit.journal import Journal
 from ..kit.limits import Limits

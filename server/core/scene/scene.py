@@ -10,7 +10,7 @@ import logging
 from contextlib import AbstractContextManager
 from typing import Any, Protocol
 
-from ...errors import LimitExceeded, StorageFailure
+from ..kit.errors import LimitExceeded, StorageFailure
 from ..kit.ids import IdBook
 from ..kit.journal import Journal
 from ..kit.limits import DEFAULT, Limits

@@ -27,7 +27,7 @@ import trimesh
 
 from server.core.physics.assets import AssetLibrary
 from server.core.kit.limits import DEFAULT
-from server.errors import VPError
+from server.core.kit.errors import VPError
 
 ODD = [-1, 0, 1, 2, 3, 7, 255, 65535, 2 ** 31, 2 ** 32 - 1, 2 ** 40, 2 ** 63, 1e300, -0.0,
        float("nan"), "x", "", None, True, [], {}, [0], [0, 0], {"a": 1}, 5120, 5121, 5123,

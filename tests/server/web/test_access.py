@@ -14,7 +14,7 @@ from websockets.sync.client import connect
 
 import virtual_prosthetics as vp
 from server.web.access import AccessPolicy
-from server.errors import Forbidden
+from server.core.kit.errors import Forbidden
 
 from ...conftest import WAIT_SECONDS, start_server, stop_server
 

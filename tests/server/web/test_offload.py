@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from server.errors import LimitExceeded, OutOfRange
+from server.core.kit.errors import LimitExceeded, OutOfRange
 from server.web.offload import CallerGone, Offload
 from tests.conftest import WAIT_SECONDS, alive
 

@@ -13,7 +13,7 @@ from websockets.sync.client import connect
 
 from server.core.kit.limits import DEFAULT
 from server.core.scene.scene import Scene
-from server.errors import UnknownObject
+from server.core.kit.errors import UnknownObject
 from server.web.rest import _robot
 from server.web.worker import SceneWorker
 from tests.conftest import WAIT_SECONDS, alive, descendants, eventually, start_server, stop_server

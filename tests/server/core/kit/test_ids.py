@@ -6,7 +6,7 @@ import pytest
 
 from server.core.kit.ids import IdBook, IntegerRuns
 from server.core.kit.journal import Journal
-from server.errors import DuplicateId, LimitExceeded
+from server.core.kit.errors import DuplicateId, LimitExceeded
 
 
 def test_integer_runs_agree_with_a_set_whatever_the_order():

@@ -6,7 +6,7 @@ from server.core.model.gltf_parts import (MAX_RECOLORS, AnthroPalm, AnthroThumb,
                                           RoundFinger, RoundPalm, slot_direction)
 from server.core.model.hands import AnthroHand, RoundHand
 from server.core.model.part_figures import PALM_JOINT_GAP, round_palm_slots
-from server.errors import LimitExceeded, UnknownAsset
+from server.core.kit.errors import LimitExceeded, UnknownAsset
 
 
 def test_hand_parts_are_the_manuals_classes_and_files(scene):

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from server.core.model.hands import AnthroHand, EdgedHand, RoundHand
-from server.errors import OutOfRange
+from server.core.kit.errors import OutOfRange
 
 FINGERS = ["Thumb", "Index finger", "Middle finger", "Ring finger", "Little finger"]
 FLEX = ["proximal", "middle", "distal"]

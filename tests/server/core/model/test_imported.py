@@ -16,7 +16,7 @@ from server.core.physics.assets import AssetLibrary
 from server.core.physics.robot_archive import open_archive
 from server.core.physics.urdf_reading import read_urdf
 from server.core.scene.scene import Scene
-from server.errors import BadAsset, UnknownAsset
+from server.core.kit.errors import BadAsset, UnknownAsset
 from tests import hand_files
 from tests.hand_files import hand_zip
 

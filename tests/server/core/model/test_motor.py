@@ -9,7 +9,7 @@ from server.core.model.motor import Motor, MotorX, MotorY, MotorZ, Slider
 from server.core.model.parts import Box
 from server.core.model.robot import Robot
 from server.core.physics.dynamics import DEFAULT_MAX_FORCE
-from server.errors import OutOfRange
+from server.core.kit.errors import OutOfRange
 
 
 def test_limits_are_swapped_and_default_clamped(scene):
@@ -107,7 +107,7 @@ def test_a_follower_turns_with_its_leader_at_its_ratio_and_offset_within_its_lim
 
 
 def test_a_motor_follows_only_a_motor_and_never_itself(scene):
-    from server.errors import Cycle, WrongType
+    from server.core.kit.errors import Cycle, WrongType
     robot, (a, b, c) = coupled_finger(scene)
     b.follow(a)
     with pytest.raises(Cycle, match="m0 cannot follow m1: m1 turns with m0 already"):

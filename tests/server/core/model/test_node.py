@@ -8,7 +8,7 @@ from server.core.kit.limits import DEFAULT
 from server.core.model.node import Node, Slot
 from server.core.model.parts import Part
 from server.core.scene.scene import Scene
-from server.errors import LimitExceeded
+from server.core.kit.errors import LimitExceeded
 
 
 def test_walk_is_depth_first_pre_order_as_threejs_traverse(scene):

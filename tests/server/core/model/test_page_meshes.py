@@ -10,7 +10,7 @@ from server.core.model.parts import Ball, Box, Part
 from server.core.model.robot import Robot
 from server.core.model.sensor import Sensor
 from server.core.model.page_meshes import SceneMesh
-from server.errors import LimitExceeded
+from server.core.kit.errors import LimitExceeded
 
 DOWN = (math.pi, 0, 0)
 BOX = {"kind": "box", "size": [2, 0.5, 2]}

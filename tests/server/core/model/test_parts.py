@@ -8,7 +8,7 @@ from server.core.kit import math3d
 from server.core.model.node import Slot
 from server.core.model.parts import Ball, Box, EdgedFinger, EdgedPalm, EdgedTip, Part
 from server.core.model.robot import Robot
-from server.errors import Cycle
+from server.core.kit.errors import Cycle
 
 
 def flat(points):

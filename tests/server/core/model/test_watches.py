@@ -4,7 +4,7 @@ import pytest
 
 from server.core.kit.journal import Journal
 from server.core.model.watches import Watches
-from server.errors import LimitExceeded
+from server.core.kit.errors import LimitExceeded
 
 
 def test_a_sensor_stays_watched_while_anyone_watches_it():

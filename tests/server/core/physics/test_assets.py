@@ -11,7 +11,7 @@ import trimesh
 
 from server.core.physics.assets import AssetLibrary, plain_name
 from server.core.kit.limits import DEFAULT
-from server.errors import BadAsset, Forbidden, UnknownAsset
+from server.core.kit.errors import BadAsset, Forbidden, UnknownAsset
 
 
 @pytest.mark.parametrize("spelling", ["round-palm.glb", "../assets/gltf/round-palm.glb",

@@ -8,7 +8,7 @@ from server.core.model.parts import Ball, Box
 from server.core.model.sensor import Sensor
 from server.core.physics import dynamics
 from server.core.physics.dynamics import DEFAULT_MAX_TORQUE, DEFAULT_UNIT, Physics
-from server.errors import BadArguments, OutOfRange, WrongType
+from server.core.kit.errors import BadArguments, OutOfRange, WrongType
 
 
 def test_options_left_out_take_their_defaults_and_the_wire_form_round_trips():

@@ -3,7 +3,7 @@
 import pytest
 
 from server.core.physics import geometry
-from server.errors import BadArguments, WrongType
+from server.core.kit.errors import BadArguments, WrongType
 
 
 def checked(value):

@@ -11,7 +11,7 @@ import trimesh
 
 from server.core.physics.gltf_file import MAX_ITEMS, inspect
 from server.core.kit.limits import DEFAULT
-from server.errors import BadAsset, LimitExceeded
+from server.core.kit.errors import BadAsset, LimitExceeded
 from tests.conftest import run_program
 from tests.features.fuzz import CASES
 from tests.features.fuzz.gltf_files import glb_parts, pack_glb

@@ -9,7 +9,7 @@ import pytest
 from server.core.kit.limits import DEFAULT
 from server.core.physics.mjcf_reading import read_mjcf
 from server.core.physics.robot_archive import open_archive
-from server.errors import BadAsset, Forbidden
+from server.core.kit.errors import BadAsset, Forbidden
 from tests import hand_files
 from tests.hand_files import mjcf_files, mjcf_zip, zipped
 

@@ -9,7 +9,7 @@ import pytest
 from server.core.physics.bullet import pybullet
 from server.core.physics.engine import PhysicsWorld
 from server.core.physics.picture_world import PictureWorld
-from server.errors import OutOfRange
+from server.core.kit.errors import OutOfRange
 
 RED, BLUE = np.array([255, 0, 0]), np.array([0, 0, 255])
 WEDGE = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 0], [1, 0, 1]]

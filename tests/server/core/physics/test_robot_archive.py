@@ -5,7 +5,7 @@ import pytest
 
 from server.core.kit.limits import DEFAULT
 from server.core.physics.robot_archive import open_archive
-from server.errors import BadAsset, Forbidden, LimitExceeded, TooLarge
+from server.core.kit.errors import BadAsset, Forbidden, LimitExceeded, TooLarge
 from tests.hand_files import hand_urdf, hand_zip, tip_stl, zipped
 
 

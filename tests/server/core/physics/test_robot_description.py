@@ -9,7 +9,7 @@ from server.core.kit.limits import DEFAULT
 from server.core.physics.robot_archive import open_archive
 from server.core.physics.robot_description import RobotDescription
 from server.core.physics.urdf_reading import read_urdf
-from server.errors import BadAsset
+from server.core.kit.errors import BadAsset
 from tests.hand_files import hand_zip
 
 

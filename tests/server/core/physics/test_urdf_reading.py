@@ -9,7 +9,7 @@ import pytest
 from server.core.kit.limits import DEFAULT
 from server.core.physics.robot_archive import open_archive
 from server.core.physics.urdf_reading import read_urdf
-from server.errors import BadAsset, Forbidden, LimitExceeded
+from server.core.kit.errors import BadAsset, Forbidden, LimitExceeded
 from tests import hand_files
 from tests.hand_files import hand_urdf, hand_zip, zipped
 

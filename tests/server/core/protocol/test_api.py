@@ -10,7 +10,7 @@ from server.core.protocol.node_classes import NODE_CLASSES
 from server.core.protocol.operations import Operations
 from server.core.protocol.saved_states import SCENE_CALLS
 from server.core.scene.scene import Scene
-from server.errors import ERROR_CODES
+from server.core.kit.errors import ERROR_CODES
 from tests.hand_files import stored_hand
 
 

@@ -5,7 +5,7 @@ import pytest
 from server.core.model.parts import Ball
 from server.core.protocol.api import TYPES, methods_of
 from server.core.protocol.arguments import bind
-from server.errors import BadArguments, OutOfRange, UnknownObject, WrongType
+from server.core.kit.errors import BadArguments, OutOfRange, UnknownObject, WrongType
 
 
 def params(type_name: str, method: str):

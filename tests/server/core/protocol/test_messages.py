@@ -7,7 +7,7 @@ import pytest
 
 from server.core.protocol import messages
 from server.core.protocol.messages import check_client_message, validator
-from server.errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp
+from server.core.kit.errors import BadJSON, BadMessage, LimitExceeded, TooLarge, UnknownOp
 
 
 def test_decode_accepts_an_object_or_an_array():

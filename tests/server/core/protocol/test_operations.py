@@ -8,7 +8,7 @@ from server.core.kit.limits import DEFAULT
 from server.core.protocol import api
 from server.core.protocol.operations import RESULTS, Operations
 from server.core.scene.scene import Scene
-from server.errors import LimitExceeded, OutOfRange, UnknownMethod, UnknownType
+from server.core.kit.errors import LimitExceeded, OutOfRange, UnknownMethod, UnknownType
 
 
 @pytest.fixture

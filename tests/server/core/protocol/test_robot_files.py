@@ -19,7 +19,7 @@ from server.core.model.parts import Ball, Box
 from server.core.model.robot import Robot
 from server.core.physics.assets import BUNDLED_DIR
 from server.core.protocol.robot_files import file_names, robot_glb, robot_mjcf, robot_urdf
-from server.errors import UnknownObject
+from server.core.kit.errors import UnknownObject
 
 HANDS = [EdgedHand, RoundHand, AnthroHand]
 

@@ -9,7 +9,7 @@ from server.core.kit.limits import Limits
 from server.core.protocol.operations import Operations
 from server.core.protocol.scene_document import export_scene
 from server.core.scene.scene import Scene
-from server.errors import Forbidden, LimitExceeded, UnknownObject
+from server.core.kit.errors import Forbidden, LimitExceeded, UnknownObject
 
 
 def ref(node_id: str) -> dict[str, str]:

@@ -18,7 +18,7 @@ from server.core.protocol.messages import schema
 from server.core.protocol.operations import Operations
 from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene, import_scene
-from server.errors import BadMessage, DuplicateId, UnknownAsset, VPError
+from server.core.kit.errors import BadMessage, DuplicateId, UnknownAsset, VPError
 from tests.hand_files import stored_hand
 
 

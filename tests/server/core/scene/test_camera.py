@@ -2,7 +2,7 @@
 
 import pytest
 
-from server.errors import OutOfRange
+from server.core.kit.errors import OutOfRange
 
 
 def test_camera_changes_are_reported(scene):

@@ -4,7 +4,7 @@ with its request."""
 import pytest
 
 from server.core.protocol.scene_document import export_scene, import_scene
-from server.errors import OutOfRange
+from server.core.kit.errors import OutOfRange
 
 
 def test_a_caption_goes_out_once_in_a_frame_and_stays_in_snapshots(scene):

@@ -3,7 +3,7 @@
 import pytest
 
 from server.core.scene.scene import Scene
-from server.errors import Forbidden, NotPaused, OutOfRange
+from server.core.kit.errors import Forbidden, NotPaused, OutOfRange
 
 
 @pytest.fixture

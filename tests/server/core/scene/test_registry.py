@@ -9,7 +9,7 @@ from server.core.model.motor import MotorZ
 from server.core.model.parts import Ball, Box
 from server.core.model.robot import Robot
 from server.core.scene.scene import Scene
-from server.errors import LimitExceeded, UnknownObject
+from server.core.kit.errors import LimitExceeded, UnknownObject
 
 
 @pytest.fixture

@@ -7,7 +7,7 @@ from server.core.model.motor import MotorZ
 from server.core.model.parts import Ball, Box, EdgedFinger, EdgedPalm
 from server.core.model.sensor import Sensor
 from server.core.model.robot import Robot
-from server.errors import DuplicateId, OutOfRange, StorageFailure
+from server.core.kit.errors import DuplicateId, OutOfRange, StorageFailure
 
 
 def frame_of(messages):

@@ -3,7 +3,7 @@
 import pickle
 
 from server.core.kit.limits import DEFAULT
-from server.errors import LimitExceeded, OutOfRange, TooLarge
+from server.core.kit.errors import LimitExceeded, OutOfRange, TooLarge
 
 
 def test_a_refusal_by_a_configurable_limit_names_its_value_and_the_flag_that_changes_it():

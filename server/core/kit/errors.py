@@ -47,8 +47,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from .core.kit.limits import DEFAULT as DEFAULT_LIMITS
-from .core.kit.wire_messages import Error as ErrorMessage
+from .limits import DEFAULT as DEFAULT_LIMITS
+from .wire_messages import Error as ErrorMessage
 
 MAX_MESSAGE = 500
 MAX_DETAIL = 120
