@@ -18,7 +18,7 @@ COMPOSE   := /usr/bin/docker-compose
 DEBIAN_PROGRAMS := $(CHROMIUM) $(COMPOSE) $(NATS) $(NGINX)
 HOST_CA   ?= /etc/ssl/certs/ca-certificates.crt
 
-.PHONY: run test test-long test-container bench bench-quick bench-browser install install-server js-packages clean
+.PHONY: run test test-long test-container bench bench-quick bench-browser generate install install-server js-packages clean
 
 run: install
 	$(BIN)/vp-server --host $(HOST) --port $(PORT) $(if $(STATE_DIR),--state-dir $(STATE_DIR))
@@ -40,6 +40,11 @@ test-container: $(COMPOSE)
 	if [ -f $(HOST_CA) ]; then cp $(HOST_CA) docker/certs/host.crt; fi
 	VP_BASE_IMAGE=$$(docker/base-image.sh) $(COMPOSE) build tests
 	$(COMPOSE) run --rm tests
+
+# Every file written from a source of truth (generate/): api.json, the typed messages, the
+# JS client's skeletons, the bundled meshes; tests/generate/test_generated.py finds drift.
+generate: install
+	$(BIN)/python -m generate
 
 # Every figure of bench/results.json, written with bench/RESULTS.md (a few minutes; run it
 # on a quiet machine). bench-quick runs the same code on tiny scenes (the test suite does).

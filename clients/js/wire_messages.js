@@ -1,6 +1,6 @@
 // One typed definition (a JSDoc typedef) per wire message, and the op lists. Written by
-// `python -m server.core.protocol.message_types` from protocol/schema/protocol.json; do
-// not edit (a test fails when the two differ). Messages stay plain objects: messages.js
+// `make generate` (generate/message_types.py) from protocol/schema/protocol.json; do not
+// edit (a test fails when the two differ). Messages stay plain objects: messages.js
 // makes the ones a client sends, protocol.js checks the ops of those a server sends.
 
 /**

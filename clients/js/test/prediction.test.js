@@ -6,7 +6,7 @@ import test from 'node:test';
 import * as Prosthetic from '../virtual-prosthetics.js';
 
 const URL_ = process.env.VP_URL;
-// what a skeleton leaves out (server/core/protocol/skeletons.py)
+// what a skeleton leaves out (generate/skeletons.py)
 const DEFAULTS = { position: [0, 0, 0], quaternion: [0, 0, 0, 1], flipped: false };
 const FIELDS = ['type', 'parent', 'children', 'motors', 'position', 'quaternion', 'axis', 'min', 'max', 'angle', 'flipped', 'name', 'slides'];
 

@@ -1,6 +1,6 @@
-"""One typed definition per wire message. Written by
-``python -m server.core.protocol.message_types`` from protocol/schema/protocol.json; do
-not edit (a test fails when the two differ).
+"""One typed definition per wire message. Written by ``make generate``
+(generate/message_types.py) from protocol/schema/protocol.json; do not edit (a test
+fails when the two differ).
 
 Messages stay plain dicts on the wire and in the code: ``Frame(op="frame", seq=1, time=0.0)``
 makes one; the definitions say which keys each has, for readers and type checkers.

@@ -99,7 +99,7 @@ def edged_palm_slots(left: bool, length: float, width: float) -> list[tuple[Vec3
 # --- round and anthropomorphic parts (meshes) ----------------------------------------
 
 # Bounding boxes ((x0, x1), (y0, y1), (z0, z1)) of the bundled meshes in their files' own
-# frames: 1.0's proportions (assets/meshes.py makes the files to fit them).
+# frames: 1.0's proportions (generate/meshes.py makes the files to fit them).
 MESH_BOUNDS: dict[str, tuple[tuple[float, float], ...]] = {
     "round-finger-8.glb": ((-0.15, 0.15), (-0.456, 0.474), (-0.15, 0.15)),
     "round-finger-5.glb": ((-0.15, 0.15), (-0.312, 0.324), (-0.15, 0.15)),

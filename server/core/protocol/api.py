@@ -2,7 +2,7 @@
 
 Names are the manual's (camelCase, as on the wire and in the JavaScript client); the
 Python name of each method is derived by :func:`snake`. ``protocol/api.json`` is this
-table exported for the clients (``python -m server.core.protocol.api_export``); a test fails when
+table exported for the clients (``make generate``: generate/api_table.py); a test fails when
 it drifts.
 
 Parameter kinds (how each argument is checked, see :mod:`server.core.protocol.arguments`):

@@ -1,4 +1,4 @@
-"""Write the API table as ``protocol/api.json`` for the clients: ``python -m server.core.protocol.api_export``."""
+"""The API table (:mod:`server.core.protocol.api`) as ``protocol/api.json``, for the clients."""
 
 from __future__ import annotations
 
@@ -6,10 +6,10 @@ import json
 from pathlib import Path
 from typing import Any
 
-from ..kit.numbers import encode_numbers
-from .api import REQUIRED, TYPES, Param, snake
+from server.core.kit.numbers import encode_numbers
+from server.core.protocol.api import REQUIRED, TYPES, Param, snake
 
-API_PATH = Path(__file__).resolve().parents[3] / "protocol" / "api.json"
+API_PATH = Path(__file__).resolve().parents[1] / "protocol" / "api.json"
 
 
 def _param(param: Param) -> dict[str, Any]:
@@ -39,6 +39,7 @@ def render() -> str:
     return json.dumps(table(), indent=1) + "\n"
 
 
-if __name__ == "__main__":
-    API_PATH.write_text(render())
-    print(f"wrote {API_PATH}")
+
+def outputs() -> dict[Path, str]:
+    """What this generator writes."""
+    return {API_PATH: render()}

@@ -6,22 +6,20 @@ connector sides, the caps, the palm's front and back) are white, curved ones blu
 1.0's files, so a round hand can recolour the blue to grey. Sizes are the bounding boxes
 of 1.0's files (``server.core.model.part_figures.MESH_BOUNDS``); the shapes are our own.
 
-``python -m assets.meshes`` writes ``assets/gltf/*.glb``; ``build(name)`` makes one mesh.
+``make generate`` writes ``assets/gltf/*.glb``; ``build(name)`` makes one mesh.
 """
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Callable
 
 import numpy as np
 import trimesh
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
-from server.core.model.part_figures import MESH_BOUNDS, MESH_BLUE, MESH_WHITE  # noqa: E402
+from server.core.model.part_figures import MESH_BOUNDS, MESH_BLUE, MESH_WHITE
 
-GLTF_DIR = Path(__file__).resolve().parent / "gltf"
+GLTF_DIR = Path(__file__).resolve().parents[1] / "assets" / "gltf"
 AROUND = 48  # points per ring
 FLAT = 1e-9  # how far from a cutting plane a point still lies on it
 
@@ -215,18 +213,8 @@ def build(name: str) -> trimesh.Trimesh:
     return painted(fit(shapes[name](), name))
 
 
-def write_all(directory: Path = GLTF_DIR) -> list[Path]:
-    """Write every bundled mesh as GLB into ``directory``."""
-    directory.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name in MESH_BOUNDS:
-        path = directory / name
-        path.write_bytes(trimesh.exchange.gltf.export_glb(trimesh.Scene(build(name)),
-                                                          include_normals=True))
-        written.append(path)
-    return written
-
-
-if __name__ == "__main__":
-    for path in write_all():
-        print(path.relative_to(Path.cwd()) if path.is_relative_to(Path.cwd()) else path)
+def outputs() -> dict[Path, bytes]:
+    """What this generator writes: every bundled mesh as GLB."""
+    return {GLTF_DIR / name: trimesh.exchange.gltf.export_glb(trimesh.Scene(build(name)),
+                                                             include_normals=True)
+            for name in MESH_BOUNDS}

@@ -1,5 +1,5 @@
 """Typed definitions of the wire messages, written from ``protocol/schema/protocol.json``:
-``python -m server.core.protocol.message_types`` writes the server's
+``make generate`` writes the server's
 (``server/core/kit/wire_messages.py``), the Python client's
 (``clients/python/virtual_prosthetics/wire_messages.py``) and the JavaScript client's
 (``clients/js/wire_messages.js``, JSDoc typedefs and the op lists). The schema stays the one
@@ -13,15 +13,15 @@ from pathlib import Path
 from dataclasses import dataclass
 from typing import Any, Callable
 
-from .messages import schema
+from server.core.protocol.messages import schema
 
-ROOT = Path(__file__).resolve().parents[3]
+ROOT = Path(__file__).resolve().parents[1]
 TARGETS = [ROOT / "server" / "core" / "kit" / "wire_messages.py",
            ROOT / "clients" / "python" / "virtual_prosthetics" / "wire_messages.py"]
 JS_TARGET = ROOT / "clients" / "js" / "wire_messages.js"
-HEADER = '''"""One typed definition per wire message. Written by
-``python -m server.core.protocol.message_types`` from protocol/schema/protocol.json; do
-not edit (a test fails when the two differ).
+HEADER = '''"""One typed definition per wire message. Written by ``make generate``
+(generate/message_types.py) from protocol/schema/protocol.json; do not edit (a test
+fails when the two differ).
 
 Messages stay plain dicts on the wire and in the code: ``Frame(op="frame", seq=1, time=0.0)``
 makes one; the definitions say which keys each has, for readers and type checkers.
@@ -103,8 +103,8 @@ def render() -> str:
 
 
 JS_HEADER = """// One typed definition (a JSDoc typedef) per wire message, and the op lists. Written by
-// `python -m server.core.protocol.message_types` from protocol/schema/protocol.json; do
-// not edit (a test fails when the two differ). Messages stay plain objects: messages.js
+// `make generate` (generate/message_types.py) from protocol/schema/protocol.json; do not
+// edit (a test fails when the two differ). Messages stay plain objects: messages.js
 // makes the ones a client sends, protocol.js checks the ops of those a server sends."""
 
 
@@ -128,13 +128,8 @@ def render_js() -> str:
     return "\n\n".join(parts + ["\n".join(tables)]) + "\n"
 
 
-def written() -> dict[Path, str]:
-    """Every written file and the text it should hold."""
+def outputs() -> dict[Path, str]:
+    """What this generator writes."""
     text = render()
     return {**{target: text for target in TARGETS}, JS_TARGET: render_js()}
 
-
-if __name__ == "__main__":
-    for target, text in written().items():
-        target.write_text(text)
-        print(f"wrote {target}")
