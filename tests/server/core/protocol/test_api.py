@@ -14,11 +14,6 @@ from server.core.kit.errors import ERROR_CODES
 from tests.hand_files import stored_hand
 
 
-def test_every_creatable_type_has_a_class_and_every_class_a_type():
-    creatable = {name for name, spec in api.TYPES.items() if spec.creatable}
-    assert creatable == set(NODE_CLASSES)
-
-
 def test_every_method_in_the_table_exists_with_room_for_its_arguments():
     for type_name, cls in {**NODE_CLASSES, "Scene": Scene}.items():
         for method in api.methods_of(type_name).values():
