@@ -41,7 +41,7 @@ class Bench:
         self.send(ops)
         self.scene.tick(PERIOD)
         gc.collect()
-        gc.freeze()  # as the server's scene processes do (server.web.heap)
+        gc.freeze()  # as the server's scene processes do (server.web.process.heap)
 
     def send(self, ops: list[dict[str, Any]]) -> None:
         """Apply operations as one batch message (the answers must be ok)."""

@@ -16,11 +16,11 @@ from .cluster.roles import LEASE_SECONDS, ROLES, ClusterMember, WorkerSettings, 
 from .core.kit.limits import DEFAULT, Limits
 from .core.physics.assets import AssetLibrary
 from .demo import DEMOS
-from .web.access import AccessPolicy
-from .web.app import create_app
-from .web.connection_limits import ConnectionCount, guarded_protocol
-from .web.framed_socket import FramedSocketProtocol
-from .web.scene_capacity import machine_memory, scenes_held
+from .web.http.access import AccessPolicy
+from .web.http.app import create_app
+from .web.connections.connection_limits import ConnectionCount, guarded_protocol
+from .web.connections.framed_socket import FramedSocketProtocol
+from .web.scenes.scene_capacity import machine_memory, scenes_held
 
 WS_MAX_BYTES = 16 << 20  # beyond the protocol's 1 MiB: those get an answer, not a hang-up
 PING_SECONDS = 20.0  # a WebSocket whose peer does not answer a ping this long is closed

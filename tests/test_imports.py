@@ -92,9 +92,24 @@ def test_the_server_imports_one_way_cli_demo_cluster_web_core():
                          None) for module in graph}
     assert [module for module, k in tier.items() if k is None] == ["server"]
     assert graph["server"] == set()
-    assert "server.web.runner" in graph["server.cluster.worker_host"]  # the graph is read
+    assert "server.web.scenes.runner" in graph["server.cluster.worker_host"]  # the graph is read
     wrong = [f"{module} imports {other}" for module, imports in graph.items() for other in imports
              if tier[module] is not None and tier[other] > tier[module]]
+    assert wrong == []
+
+
+# server/web's folders, lowest first: each may import those before it, never one after
+WEB_FOLDERS = ["storage", "connections", "recording", "process", "scenes", "http"]
+
+
+def test_the_webs_folders_import_only_the_folders_below_them():
+    graph = import_graph(ROOT / "server")
+    folders = {name.split(".")[2] for name in graph if name.startswith("server.web.")}
+    assert folders == set(WEB_FOLDERS)  # (a module beside the folders would be one more)
+    wrong = [f"{module} imports {other}" for module, imports in graph.items()
+             if module.startswith("server.web.") for other in imports
+             if other.startswith("server.web.")
+             and WEB_FOLDERS.index(other.split(".")[2]) > WEB_FOLDERS.index(module.split(".")[2])]
     assert wrong == []
 
 

@@ -19,7 +19,7 @@ Buckets: ``vp_workers`` and ``vp_scenes`` (which worker runs which scene:
 handed out: :mod:`.client_ids`).
 
 Messages are pickled Python values, as on the pipes between a server and its scene
-processes (:mod:`server.web.runner`): the bus is part of one deployment and must be
+processes (:mod:`server.web.scenes.runner`): the bus is part of one deployment and must be
 reachable by its processes only (NATS accounts or TLS when it leaves one machine).
 """
 

@@ -38,7 +38,7 @@ async def _get_or_create(shared: KeyValue, key: str, value: bytes) -> tuple[byte
 
 
 class SharedClientIds:
-    """A gateway's :class:`server.web.client_ids.ClientIdSource`."""
+    """A gateway's :class:`server.web.connections.client_ids.ClientIdSource`."""
 
     def __init__(self, shared: KeyValue, secret: bytes) -> None:
         self._shared = shared

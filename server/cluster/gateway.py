@@ -1,7 +1,7 @@
 """A gateway: the server's WebSockets, REST and pages, its scenes run by workers.
 
-:class:`Gateway` is what :class:`server.web.hub.Hubs` needs of the cluster: a
-:data:`server.web.runner.RunnerFactory` making :class:`.remote_runner.RemoteRunner`\\ s,
+:class:`Gateway` is what :class:`server.web.scenes.hub.Hubs` needs of the cluster: a
+:data:`server.web.scenes.runner.RunnerFactory` making :class:`.remote_runner.RemoteRunner`\\ s,
 client ids shared with the other gateways (:mod:`.client_ids`), one ordered sender for
 everything the gateway publishes, and a heartbeat that tells each worker its attachments
 live and notices when a worker has gone.
@@ -19,9 +19,9 @@ from typing import Any
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
 from ..core.kit.errors import BusUnavailable
-from ..web.runner import Deliver
-from ..web.scene_store import SceneStore
-from ..web.worker import SceneSetup
+from ..web.scenes.runner import Deliver
+from ..web.storage.scene_store import SceneStore
+from ..web.process.worker import SceneSetup
 from .bus import LOADS, Bus, OrderedSender, Reply, Unanswered, alive_subject, gateway_subject
 from .leases import break_worker, lease_holder
 from .placement import Placement

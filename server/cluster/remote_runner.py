@@ -1,9 +1,9 @@
-"""A gateway's handle on a scene a worker runs: :class:`server.web.runner.Runner` over the bus.
+"""A gateway's handle on a scene a worker runs: :class:`server.web.scenes.runner.Runner` over the bus.
 
 It places the scene first (the worker holding its lease, else the least busy one that
 claims it; while a dead worker's lease lapses it keeps trying), then sends commands in
 the order they were posted (those posted meanwhile wait) and hands the scene's events to
-its hub, as :class:`server.web.runner.SceneRunner` does for a process of its own. It ends
+its hub, as :class:`server.web.scenes.runner.SceneRunner` does for a process of its own. It ends
 when it is detached (asked to stop), when the scene's process ends, or when its worker
 stops answering (:class:`.gateway.Gateway`'s heartbeat): then as a failed scene, which its
 clients reconnect to, and it starts again elsewhere.
@@ -19,7 +19,7 @@ import time
 from typing import Any, Protocol
 
 from ..core.kit.errors import UnknownScene, VPError
-from ..web.runner import Deliver, Replies, Runner
+from ..web.scenes.runner import Deliver, Replies, Runner
 from .bus import Bus, commands_subject, events_subject
 
 log = logging.getLogger(__name__)

@@ -16,9 +16,9 @@ from typing import Mapping
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
-from ..web.hub import Hubs
-from ..web.state_dir import StateDir
-from ..web.worker import SceneSetup
+from ..web.scenes.hub import Hubs
+from ..web.storage.state_dir import StateDir
+from ..web.process.worker import SceneSetup
 from .bus import Bus
 from .client_ids import SharedClientIds
 from .gateway import Gateway
@@ -54,7 +54,7 @@ class WorkerSettings:
 
 
 class ClusterMember:
-    """This process's part in the cluster; :func:`server.web.app.create_app` starts and
+    """This process's part in the cluster; :func:`server.web.http.app.create_app` starts and
     stops it around its own life (a worker alone: :meth:`serve`)."""
 
     def __init__(self, url: str, role: str, worker: WorkerSettings,

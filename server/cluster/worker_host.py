@@ -1,6 +1,6 @@
 """A worker: runs scenes for the cluster's gateways (``vp-server --role worker``).
 
-Each scene is a process of :mod:`server.web.runner`, as on a single server; the worker
+Each scene is a process of :mod:`server.web.scenes.runner`, as on a single server; the worker
 holds its lease (:mod:`.leases`), takes its commands from the bus and publishes its events
 once, for every gateway attached to it (:mod:`.bus`). An *attachment* is one gateway's
 handle on one scene (:class:`.remote_runner.RemoteRunner`); a client connection is named
@@ -21,10 +21,10 @@ from typing import Any, Mapping
 
 from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
-from ..web.hub import clients_objects
-from ..web.runner import SceneRunner
-from ..web.state_dir import StateDir
-from ..web.worker import SceneSetup
+from ..web.scenes.hub import clients_objects
+from ..web.scenes.runner import SceneRunner
+from ..web.storage.state_dir import StateDir
+from ..web.process.worker import SceneSetup
 from .bus import (LOADS, PLACE, Bus, Load, NoRoom, OrderedSender, Reply, Unanswered,
                   alive_subject, attach_subject, commands_subject, events_subject, gateway_of,
                   gateway_subject)

@@ -1,4 +1,4 @@
-"""A slow viewer gets frames folded together (server.web.outbox): robots send their angles
+"""A slow viewer gets frames folded together (server.web.connections.outbox): robots send their angles
 as one array in motor order, and the folded frame must still leave every motor at its
 angle, however motors moved between robots in between."""
 

@@ -6,7 +6,7 @@ import json
 import re
 
 from server.core.protocol.messages import CLIENT_OPS
-from server.web.scene_hub import REPLACED
+from server.web.scenes.scene_hub import REPLACED
 from tests.conftest import ROOT
 from virtual_prosthetics import connection, protocol
 

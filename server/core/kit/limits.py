@@ -45,7 +45,7 @@ class Limits:
     transforms_per_call: int = 10_000     # objects one setTransforms places
     # the server
     scenes: int = 100                     # vp-server's default: what the machine's memory
-                                          # holds (server/web/scene_capacity.py)
+                                          # holds (server/web/scenes/scene_capacity.py)
     scene_idle_seconds: int = 60          # a scene without clients is removed after this
     leave_grace_seconds: int = 10         # a client that left gets its objects back this long
     connections: int = 1_000
@@ -69,7 +69,7 @@ class Limits:
     # than this many are kept and their bytes are under recordingsBytes
     recordings: int = 200
     recordings_bytes: int = 4 << 30
-    # work beside the scenes, each kind in a process of its own (server/web/offload.py):
+    # work beside the scenes, each kind in a process of its own (server/web/scenes/offload.py):
     # what runs or waits at once; more is refused (busy) until some is done
     file_jobs: int = 8                    # robot files (URDF, GLB) being written
     resimulations: int = 2                # recordings run again

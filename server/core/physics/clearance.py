@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from functools import cache
 from itertools import product
-from typing import Any, Callable, Iterable, Iterator
+from typing import Any, Callable, Iterator
 
 from ..kit.math3d import Vec3
 

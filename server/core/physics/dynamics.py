@@ -64,7 +64,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import asdict, dataclass, replace
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Sequence
 
 from ..kit.errors import BadArguments, OutOfRange, WrongType, show
 from ..kit.math3d import ORIGIN, Pose, Vec3, between, compose

@@ -65,7 +65,7 @@ class Session:
         against floods of text that fails before it does anything); a text over it is
         answered with ``limit_exceeded`` for each request in it, and nothing is applied.
         Requests are not counted: a client sending faster than its scene applies is slowed
-        by the web layer, which stops reading its socket (server.web.socket).
+        by the web layer, which stops reading its socket (server.web.http.socket).
         """
         return [answer for answer, _ in self.receive_encoded(text, now)]
 

@@ -32,8 +32,8 @@ from server.core.protocol.command_log import applied_line, left_line
 from server.core.protocol.operations import Operations
 from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene, import_scene
-from server.web.scene_store import SceneStore
-from server.web.worker import SceneWorker
+from server.web.storage.scene_store import SceneStore
+from server.web.process.worker import SceneWorker
 from tests.features.fuzz.gltf_files import peak_megabytes
 
 ODD = [None, True, -1, 0, 1e308, -1e308, 2 ** 64, 1.5, "", "x" * 300, "c1.1", "c2.1",

@@ -58,8 +58,8 @@ def test_every_rest_operation_answers_as_documented(api_schema):
 
 def excluded(operation) -> list:
     """Checks that cannot apply: an upload's body may be any bytes by its schema, but only
-    a glTF mesh is taken (tests/server/web/test_assets.py covers what is refused), and
-    only a robot description a robot upload's (tests/server/web/test_robot_routes.py); an
+    a glTF mesh is taken (tests/server/web/http/test_assets.py covers what is refused), and
+    only a robot description a robot upload's (tests/server/web/http/test_robot_routes.py); an
     import's body any object, but only a scene document (tests/server/web/
     test_persistence.py)."""
     picky = operation.method.upper() == "POST" and operation.path in (

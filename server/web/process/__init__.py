@@ -1,0 +1,5 @@
+"""A scene's own process: its loop (sessions, requests, ticks), saving, its figures, its
+heap, and ending with the server.
+
+May import ``recording``, ``connections`` (what a message is sent as), ``storage`` and the
+core; never the event loop's side."""

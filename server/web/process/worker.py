@@ -1,0 +1,489 @@
+"""One scene in a process of its own: its sessions, requests, ticks, reads and encoding.
+
+PyBullet holds the GIL for every call it makes, so scenes on threads of one process take
+turns: a flooded scene once delayed every other scene's frames by up to a second. Here
+each scene owns a process (and a core when it needs one); the event loop's process only
+moves text. This module is the process's side: :func:`serve` runs until told to stop or
+until the pipe to the server closes. No asyncio here.
+
+Commands (tuples) come from the server in lists; events go back in lists:
+
+========================================  =============================================
+command                                   events it causes
+========================================  =============================================
+``("join", cid, client_id, role, resume,   ``("admit", cid, [hello, snapshot])``
+keep, trusted)``
+``("text", cid, text)``                   ``("answers", cid, [answers], bytes_applied)``
+``("leave", cid)``                        the client's objects deleted (seen in frames)
+                                          after ``leaveGraceSeconds``, unless it comes
+                                          back (joins as the same client) or keeps them
+``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)`` (a
+                                          function's bytes are the body as they are)
+``("import", n, body, replace)``          ``("reply", n, ok, JSON summary or VPError)``:
+                                          the document's bytes parsed and checked here,
+                                          the scene replaced (every client gets a warning
+                                          and a new snapshot) unless it would take what
+                                          clients here own; owners not connected get a
+                                          grace period, as if they had just left
+``("place", n, file, position,             ``("reply", n, ok, the robot's report or VPError)``:
+quaternion)``                             the robot of an uploaded robot file made, kept
+                                          and shared, as the server's (``api.<k>``)
+``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
+``("record", n, id, path)``               ``("reply", n, ok, {"id", …} or VPError)``: a
+                                          recording into ``path`` (recording_file) starts
+``("unrecord", n, id)``                   ``("reply", n, ok, what it holds)``: it stops
+a client's ``startRecording``             ``("recording", id)`` (recording_file)
+any recording's end (asked, a limit,      ``("recorded", what it holds, why)``
+the scene's end)
+``("stop",)``                             the process ends (its scene saved first; exit
+                                          code SAVE_FAILED if its changes could not be)
+once made (or restored)                   ``("ready", owners)``: the owners of its objects
+each tick                                 ``("frame", [messages])`` for every client
+========================================  =============================================
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import signal
+import sys
+import time
+from collections import deque
+from pathlib import Path
+from multiprocessing.connection import Connection as Pipe
+from typing import Any, Callable
+
+from ...core.kit.ids import owner_of
+from ...core.kit.limits import Limits
+from ...core.kit.math3d import Quat, Vec3
+from ...core.kit.numbers import encode_numbers
+from ...core.kit.wire_messages import WarningMessage
+from ...core.physics.assets import AssetLibrary
+from ...core.protocol.command_log import replay
+from ...core.protocol.messages import encode
+from ...core.protocol.robot_files import place_robot
+from ...core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
+from ...core.protocol.ownership import SERVER_KEEPER
+from ...core.protocol.session import Session
+from .parent_death import end_with_parent
+from ...core.scene.scene import Scene
+from ...core.kit.errors import InternalError, UnknownRecording, VPError
+from . import heap
+from ..connections.outbox import Outgoing
+from ..recording.recording_file import SceneRecordings
+from .saving import SceneSaver
+from .scene_metrics import SceneMetrics
+from ..storage.scene_store import SceneStore
+
+log = logging.getLogger(__name__)
+Animator = Callable[[Scene, float], None]
+SceneSetup = Callable[[Scene], Animator | None]
+FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
+SERVER_OWNER = "demo"  # what the server's own setups make: never anyone's to leave
+SAVE_FAILED = 75  # exit code of a scene's process that stopped with changes it could not save
+
+
+def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
+          setup: SceneSetup | None, log_level: int, store: SceneStore | None = None,
+          recordings: Path | None = None, nice: int = 0) -> None:
+    """The process's main function: make the scene (as ``setup`` makes it, then as its
+    saved document says, when there is one), then serve it (``nice``: this much below the
+    server's own priority)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the server stops its scenes itself
+    _end_with_the_server()
+    if nice:
+        os.nice(nice)
+    logging.basicConfig(level=log_level)
+    scene = Scene(name, limits, assets)
+    worker = SceneWorker(pipe, scene, tick_rate, store, recordings)
+    worker.prepare(setup)
+    worker.ready()
+    heap.settle()
+    try:
+        worker.run()
+    finally:
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)  # stopping already: let it finish
+        if worker.recordings.current is not None:
+            worker.recordings.end("the scene stopped")
+            worker.flush()  # the server hears of it
+        durable = worker.saver.close()  # the server stopped it, or the server is gone
+        scene.close()
+    if not durable:
+        sys.exit(SAVE_FAILED)
+
+
+def _end_with_the_server() -> None:
+    """Stop (as the server would stop it: recording closed, document saved) once the
+    server's process has gone, kill -9 included: the pipe's end tells the loop so between
+    ticks, the parent-death signal also during one long call into PyBullet."""
+    signal.signal(signal.SIGTERM, _stop_now)
+    end_with_parent(signal.SIGTERM)
+
+
+def _stop_now(signum: int, frame: Any) -> None:
+    raise SystemExit(0)
+
+
+class SceneWorker:
+    """The loop of a scene's process: commands in arrival order, a tick whenever due."""
+
+    def __init__(self, pipe: Pipe, scene: Scene, tick_rate: float,
+                 store: SceneStore | None = None, recordings: Path | None = None) -> None:
+        self.scene = scene
+        self.tick_rate = tick_rate
+        self.metrics = SceneMetrics()
+        self._pipe = pipe
+        self._animator: Animator | None = None  # the setup's (prepare)
+        self._sessions: dict[int, Session] = {}
+        self._commands: deque[tuple[Any, ...]] = deque()
+        self._events: list[tuple[Any, ...]] = []
+        self._resync = False
+        self._stopping = False
+        self._departed: dict[str, tuple[float, Session]] = {}  # client -> (deadline, session)
+        self._left: set[str] = set()  # of those, the clients that were connected here
+        self._store = store
+        self._notices: list[Outgoing] = []  # warnings for every client, sent with the next tick
+        self.recordings = SceneRecordings(scene, recordings, lambda event: self._events.append(event))
+        scene.recorder = self.recordings  # a client's startRecording and stopRecording
+        self.saver = SceneSaver(scene, store, self._tell,
+                                lambda report: self._events.append(("saving", report)))
+
+    def run(self) -> None:
+        """Serve until ``stop`` or until the server's end of the pipe closes."""
+        period = 1.0 / self.tick_rate
+        last = deadline = time.monotonic()
+        while not self._stopping:
+            if self.idle():  # nobody to tell and nothing to do: wait for a command
+                self._events.append(("idle",))  # the server knows this silence is sleep
+                self._flush()
+                if not self._receive(None):
+                    return
+                if not self._commands:  # only figures asked for (answered): sleep on
+                    self._flush()
+                    continue
+                deadline = time.monotonic()  # and tick at once: the clock catches up
+                continue
+            now = time.monotonic()
+            if now >= deadline:
+                if self.scene.clock.paused:
+                    self._stand()
+                else:
+                    self._tick(now - last)
+                last, deadline = now, max(deadline + period, now - 5 * period)
+                # a scene whose ticks run late still hears its server (and its going)
+                # and still serves requests, half a period's worth after every tick
+                if not self._receive(0):
+                    return
+                self._serve(time.monotonic() + period / 2)
+            elif self._commands:
+                self._serve(deadline)
+            elif not self._receive(deadline - now):
+                return
+
+    def idle(self) -> bool:
+        """True when a tick would have nothing to do or tell: no client connected or within
+        its grace period, no animation, nothing changed, queued, unsaved or (dynamic mode)
+        still moving. The scene then stops ticking; its next tick (before any command is
+        served) advances its clock by the whole time it waited, so the time it reads is right."""
+        saver = self.saver
+        return not (self._sessions or self._departed or self._commands or self._notices
+                    or self._resync or self._events or self._animator is not None
+                    or self.scene.feed.pending or self.scene.moving
+                    or saver.saved is False or saver.at_risk)
+
+    def _serve(self, until: float) -> None:
+        """Apply queued commands until ``until`` (at least one), then send what they made."""
+        while self._commands:
+            self._command(self._commands.popleft())
+            if len(self._events) >= FLUSH_EVENTS:
+                self._flush()
+            if time.monotonic() >= until:
+                break
+        self._flush()
+
+    def _receive(self, wait: float | None) -> bool:
+        """Wait up to ``wait`` seconds (None: until one comes) for commands, then take every one sent so far;
+        False once the server is gone. ``metrics`` is answered at once, ahead of a backlog
+        of requests: a scene working through one is when its figures matter most."""
+        try:
+            ready = self._pipe.poll(wait)
+            while ready:
+                for command in self._pipe.recv():
+                    if command[0] == "metrics":
+                        self._command(command)
+                    else:
+                        self._commands.append(command)
+                ready = self._pipe.poll(0)
+        except (EOFError, OSError):
+            return False
+        return True
+
+    def flush(self) -> None:
+        """Send the events made so far."""
+        self._flush()
+
+    def _flush(self) -> None:
+        self.saver.commit()  # changes are on the disk before their answers leave
+        if self._events:
+            events, self._events = self._events, []
+            try:
+                self._pipe.send(events)
+            except (BrokenPipeError, OSError):
+                self._stopping = True
+
+    def _command(self, command: tuple[Any, ...]) -> None:
+        try:
+            getattr(self, "_" + command[0])(*command[1:])
+        except Exception:  # a bug in one command must not stop the scene
+            log.exception("command %s of scene %s failed", command[0], self.scene.name)
+
+    def _join(self, cid: int, client_id: str, role: str, resume: str | None = None,
+              keep: bool = False, trusted: bool = False) -> None:
+        self._departed.pop(client_id, None)  # back within the grace period: nothing goes
+        self._left.discard(client_id)
+        session = self._sessions[cid] = Session(self.scene, client_id, role, resume=resume,
+                                                trusted=trusted)
+        if role == "controller" and self.scene.keeper is None:
+            self.scene.keeper = client_id
+        session.operations.keep = keep
+        session.on_change = self.saver.changed
+        session.on_step = self._take_steps
+        self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
+                                            Outgoing.of(self.scene.snapshot())]))
+
+    def _text(self, cid: int, text: str | bytes) -> None:
+        session = self._sessions.get(cid)
+        now = time.monotonic()
+        if session is not None:
+            self.recordings.request(session.client_id, text)
+        answers = [] if session is None else [
+            Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
+        self.metrics.served(now, len(answers))
+        self._take_steps()  # a step's ticks, before its answer
+        self._events.append(("answers", cid, answers, len(text)))
+
+    def _take_steps(self) -> None:
+        """The ticks steps asked for, taken now (their frames go before the answers); after
+        a restoreState, everyone's snapshot first (a step in the same text ticks after it)."""
+        if self.scene.restored:
+            self.scene.restored = False
+            self._resync = True
+            self._stand()
+            self.saver.save(replaced=True)
+        for _ in range(self.scene.clock.take()):
+            self._tick(1.0 / self.tick_rate)
+
+    def _leave(self, cid: int) -> None:
+        session = self._sessions.pop(cid, None)
+        if session is None or \
+                any(s.client_id == session.client_id for s in self._sessions.values()):
+            return  # the client is back already (a new connection took over)
+        self._depart(session)
+        self._left.add(session.client_id)
+
+    def _depart(self, session: Session) -> None:
+        """What the client made and did not keep goes when its grace period is over."""
+        grace = self.scene.limits.leave_grace_seconds
+        self._departed[session.client_id] = (time.monotonic() + grace, session)
+
+    def _expire(self, now: float) -> None:
+        """Delete what clients that left made, once their grace period is over."""
+        for client_id, (deadline, session) in list(self._departed.items()):
+            if now >= deadline:
+                del self._departed[client_id]
+                self._left.discard(client_id)
+                if self.scene.keeper == client_id:  # gone for good: the longest-connected
+                    self.scene.keeper = next((s.client_id for s in self._sessions.values()
+                                              if s.role == "controller"), None)
+                deleted = session.close()
+                self.saver.left(client_id)
+                if deleted:
+                    heap.trim()  # what the client's objects used goes back to the system
+
+    def _read(self, number: int, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
+        try:
+            result = function(self.scene, *args)
+            body = result if isinstance(result, bytes) else encode(encode_numbers(result))
+            reply: tuple[Any, ...] = ("reply", number, True, body)
+        except VPError as error:
+            reply = ("reply", number, False, error)
+        except Exception:
+            log.exception("read %s of scene %s failed", function.__name__, self.scene.name)
+            reply = ("reply", number, False, InternalError("internal server error"))
+        self._events.append(reply)
+
+    def _import(self, number: int, body: bytes, replace: bool = False) -> None:
+        """Replace the scene by a document's bytes (``read``'s reply conventions), unless it
+        would take what a client here owns (:func:`check_import`)."""
+        def replace_scene(scene: Scene) -> dict[str, Any]:
+            document = parse_document(body)
+            check_import(scene, document, self._present(), replace)
+            with scene.journal.transaction():
+                summary = import_scene(scene, document)
+            self._restarted(summary["owners"])
+            self._tell("replaced", f"scene {scene.name} was replaced by an import "
+                                   f"({summary['objects']} objects)")
+            self.saver.save(replaced=True)
+            return {**summary, "owners": scene_owners(scene)}  # the ids it used too
+        self._read(number, replace_scene, ())
+
+    def _place(self, number: int, file: str, position: Vec3, quaternion: Quat) -> None:
+        """A robot from an uploaded robot file (``read``'s reply conventions), saved at once."""
+        def place(scene: Scene) -> dict[str, Any]:
+            with scene.journal.transaction():
+                report = place_robot(scene, file, position, quaternion)
+            self.saver.save(replaced=True)
+            return report
+        self._read(number, place, ())
+
+    def _present(self) -> set[str]:
+        """Clients connected to the scene, or that were and are within their grace period."""
+        return {s.client_id for s in self._sessions.values()} | self._left
+
+    def _tell(self, code: str, message: str) -> None:
+        """A warning for every client of the scene, sent with the next tick."""
+        self._notices.append(Outgoing.of(WarningMessage(op="warning", code=code, message=message)))
+
+    def ready(self) -> None:
+        """Tell the server the scene is made, with every owner of its objects and ids: no
+        newcomer may be given one of those ids."""
+        self._events.append(("ready", scene_owners(self.scene)))
+        self._flush()
+
+    def prepare(self, setup: SceneSetup | None) -> None:
+        """Make the scene as its store last saved it, the server's own objects as ``setup``
+        says: the saved ones (in their last state) when the file has them, new ones when it
+        has none (a server without this setup saved it), none without a setup."""
+        if setup is not None:
+            self.scene.keeper = SERVER_KEEPER
+        document = self._store.load() if self._store is not None else None
+        saved_own = _holds_server_objects(document)
+        if setup is not None and saved_own:
+            self._animator = setup(self.scene)  # the document's, of the same ids, replace them
+        restored = document is not None and self.restore(document)
+        if setup is not None and not saved_own:
+            self.scene.ids.forget(SERVER_OWNER)  # the setup's ids are its own to make again
+            try:
+                with self.scene.journal.transaction():
+                    self._animator = setup(self.scene)
+            except VPError as error:  # say, a saved client object in the way: no demo then
+                log.error("scene %s restored without its setup: %s", self.scene.name, error)
+        elif setup is None and saved_own and restored:
+            for node in self.scene.roots():
+                if owner_of(node.id) == SERVER_OWNER:
+                    self.scene.delete(node)  # with what clients attached to it
+            self.scene.ids.forget(SERVER_OWNER)
+            log.info("scene %s: the objects of a setup this server has not are gone",
+                     self.scene.name)
+        self._replay()
+        for owner in sorted({owner_of(node_id) for node_id in self.scene.nodes}):
+            if owner != SERVER_OWNER:  # nobody is connected yet: each may come back in time
+                self._depart(Session(self.scene, owner))
+
+    def _replay(self) -> None:
+        """Make again the changes journaled since the document was written."""
+        lines = self._store.journal() if self._store is not None else []
+        if lines:
+            applied, skipped = replay(self.scene, lines)
+            self.scene.clock.take()  # steps replayed are not taken again: their world is gone
+            log.info("scene %s: %d journaled changes made again (%d not)", self.scene.name,
+                     applied, skipped)
+
+    def restore(self, document: Any) -> bool:
+        """Put the scene back as ``document`` (its store's) says; whether it could."""
+        try:
+            with self.scene.journal.transaction():
+                summary = import_scene(self.scene, document)
+        except Exception as error:  # the scene starts as its setup makes it; the file is kept
+            if not isinstance(error, VPError):  # a bug
+                log.exception("restoring scene %s failed", self.scene.name)
+            self._store.set_aside(  # type: ignore[union-attr]
+                error.message if isinstance(error, VPError) else f"restoring it failed ({error!r})")
+            return False
+        self.saver.restored()  # as on the disk already
+        log.info("scene %s restored: %d objects", self.scene.name, summary["objects"])
+        return True
+
+    def _restarted(self, owners: list[str]) -> None:
+        """After the whole scene was replaced: a fresh snapshot for everyone, and owners
+        who are not here get a grace period to come back, as if they had just left."""
+        self.scene.restart_feed()
+        self._resync = True
+        here = {session.client_id for session in self._sessions.values()}
+        for owner in owners:
+            if owner not in here and owner != SERVER_OWNER:
+                self._depart(Session(self.scene, owner))
+
+    def _metrics(self, number: int) -> None:
+        summary = self.metrics.summary(time.monotonic(), time.process_time())
+        self._events.append(("reply", number, True, {**summary, **self.saver.report()}))
+
+    def _stop(self) -> None:
+        self._stopping = True
+
+    def _record(self, number: int, recording_id: str, path: str) -> None:
+        try:
+            self.recordings.begin(recording_id, Path(path))
+        except VPError as error:
+            self._events.append(("reply", number, False, error))
+            return
+        self._events.append(("reply", number, True, {"id": recording_id, "scene": self.scene.name,
+                                                     "sceneTime": self.scene.time}))
+
+    def _unrecord(self, number: int, recording_id: str) -> None:
+        current = self.recordings.current
+        if current is None or current.id != recording_id:
+            error = UnknownRecording(f"scene {self.scene.name!r} is not recording {recording_id!r}",
+                                     recording=recording_id)
+            self._events.append(("reply", number, False, error))
+            return
+        self._events.append(("reply", number, True, self.recordings.end("stopped")))
+
+    def _tick(self, dt: float | None) -> None:
+        """Run the animator, advance the scene (None: a paused scene's stand) and send its
+        messages to every client."""
+        started = time.perf_counter()
+        try:
+            if self._animator is not None and dt is not None:
+                self._animator(self.scene, self.scene.time + dt)
+            ticked = self.scene.stand() if dt is None else self.scene.tick(dt)
+            messages = self._notices + self._resynced() + [Outgoing.of(m) for m in ticked]
+            self._notices = []
+            self.recordings.tick(ticked)
+        except Exception:  # the scene kept what it had not sent; clients resync later
+            self.metrics.tick_failures += 1
+            self._resync = True
+            log.exception("tick of scene %s failed", self.scene.name)
+            return
+        self._expire(time.monotonic())  # deleted now, announced by the next tick
+        if messages:
+            self._events.append(("frame", messages))
+        self._flush()
+        self.saver.tick(time.monotonic())
+        self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
+                            time.process_time(), self.scene.bodies.peak_force())
+
+    def _stand(self) -> None:
+        """A due tick of a paused scene: its clock stands, but what requests changed still
+        reaches every client (a frame of no time), and clients that left still go."""
+        if self.scene.feed.pending or self._notices or self._resync:
+            self._tick(None)
+        else:
+            self._expire(time.monotonic())
+            self.saver.tick(time.monotonic())
+
+    def _resynced(self) -> list[Outgoing]:
+        """After a failed tick, a fresh snapshot first: every client rebuilds from it."""
+        if not self._resync:
+            return []
+        self._resync = False
+        return [Outgoing.of(self.scene.snapshot())]
+
+
+def _holds_server_objects(document: Any) -> bool:
+    """Whether a saved document (checked or not yet) holds objects of the server's own."""
+    nodes = document.get("nodes") if isinstance(document, dict) else None
+    return isinstance(nodes, list) and any(
+        isinstance(node, dict) and isinstance(node.get("id"), str)
+        and owner_of(node["id"]) == SERVER_OWNER for node in nodes)

@@ -1,0 +1,267 @@
+"""The server's handle on one scene's process (:mod:`server.web.process.worker`).
+
+Commands go out through a writer thread and events come back through a reader thread,
+so the event loop never blocks on a pipe: a scene busy with a flood fills its own pipe
+and slows only its own clients. Processes start from a fork server that has already
+imported the scene code, so a new scene is ready in milliseconds.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import itertools
+import logging
+import multiprocessing
+import queue
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import Any, Callable, Protocol
+
+from ...core.kit.limits import Limits
+from ...core.physics.assets import AssetLibrary
+from ...core.kit.errors import UnknownScene, VPError
+from ..process import worker
+from ..storage.state_dir import SceneStore
+
+log = logging.getLogger(__name__)
+Deliver = Callable[[list[tuple[Any, ...]]], None]
+COMMANDS_PER_SEND = 512  # commands pickled together: fewer, larger writes in a flood
+_STOP = ("stop",)
+PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecessor's last save
+
+CONTEXT = multiprocessing.get_context("forkserver")
+# scipy's hulls too: a dynamic scene's first hand measures its parts' volumes with them.
+# Not trimesh (meshes, imports, exports): a third of a CPU-second of every server's start,
+# paid instead by the first scene that reads a mesh. And the server's command line: every
+# new process runs the script that started the server again (multiprocessing's fix-up of
+# __main__; its own preload of __main__ never happens, as the fork server is not told the
+# script's path), and vp-server's one import is server.cli. Found loaded, it costs
+# nothing; imported anew (FastAPI, uvicorn) it cost each scene 0.33 CPU-seconds of its start.
+CONTEXT.set_forkserver_preload([worker.__name__, "scipy.spatial", "scipy.optimize",
+                                "server.cli",
+                                "server.web.process.forkserver_heap"])  # last: freezes what they loaded
+sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
+
+
+class Replies:
+    """The answered commands a runner has sent (``call``), by number, until their replies
+    come or the scene ends: one for a scene's process here and for one on a worker."""
+
+    def __init__(self) -> None:
+        self._waiting: dict[int, asyncio.Future[Any]] = {}
+        self._numbers = itertools.count(1)
+
+    def ask(self, post: Callable[..., None], verb: str, args: tuple[Any, ...],
+            refusal: Exception | None = None) -> asyncio.Future[Any]:
+        """``post(verb, number, *args)``; the reply, awaitable (``refusal`` at once, if given:
+        the scene has ended)."""
+        future = asyncio.get_running_loop().create_future()
+        if refusal is not None:
+            future.set_exception(refusal)
+            return future
+        number = next(self._numbers)
+        self._waiting[number] = future
+        post(verb, number, *args)
+        return future
+
+    def answer(self, number: int, ok: bool, value: Any) -> None:
+        future = self._waiting.pop(number, None)
+        if future is None or future.done():
+            return
+        if ok:
+            future.set_result(value)
+        else:
+            future.set_exception(value)
+
+    def fail(self, scene: str, why: VPError | None = None) -> None:
+        """The scene has ended: every reply still awaited is ``why`` (by default
+        ``unknown_scene``)."""
+        for future in self._waiting.values():
+            if not future.done():
+                future.set_exception(why or UnknownScene(f"scene {scene} has ended", scene=scene))
+        self._waiting.clear()
+
+
+class Runner(Protocol):
+    """A scene's process as the event loop drives it: :class:`SceneRunner` here, or a
+    cluster's worker over the bus (:mod:`server.cluster.remote_runner`)."""
+
+    name: str
+    tick_rate: float
+    last_posted: float
+    ended: bool
+    stopping: bool
+    expecting: bool  # a client waits for the scene (a cluster counts it as attended)
+
+    @property
+    def pid(self) -> int | None: ...
+
+    @property
+    def unsaved(self) -> bool: ...
+
+    def start(self, after: Runner | None = None) -> None: ...
+
+    def post(self, *command: Any) -> None: ...
+
+    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]: ...
+
+    def stop(self) -> None: ...
+
+    def join(self, timeout: float) -> None: ...
+
+
+# name, limits, tick rate, assets, setup, deliver, store, recordings' folder
+RunnerFactory = Callable[[str, Limits, float, AssetLibrary, "worker.SceneSetup | None", Deliver,
+                          "SceneStore | None", "Path | None"], Runner]
+
+
+class SceneRunner:
+    """Starts a scene's process, sends it commands, and hands its events to ``deliver``
+    on the event loop (a final ``("ended", failed)`` when the process is gone; a cluster's
+    runner may add why the scene never started: ``("ended", failed, refusal)``)."""
+
+    expecting = False  # (a cluster's runner tells its worker; here nothing counts it)
+
+    def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
+                 setup: worker.SceneSetup | None, deliver: Deliver,
+                 store: SceneStore | None = None, recordings: Path | None = None,
+                 nice: int = 0) -> None:
+        self.name = name
+        self.tick_rate = tick_rate
+        self._deliver = deliver
+        self._loop = asyncio.get_running_loop()
+        self._pipe, child = CONTEXT.Pipe()
+        self._process = CONTEXT.Process(
+            target=worker.serve, name=f"scene-{name}", daemon=True,
+            args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store,
+                  recordings, nice))
+        self._child = child
+        self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
+        self._replies = Replies()
+        self.last_posted = 0.0  # when the last command was sent (monotonic)
+        self.ended = False
+        self.stopping = False  # asked to stop: however the process ends, it is no failure
+        self._started = threading.Event()
+        # Only the reader waits on the process: two threads waiting at once both read the
+        # fork server's one report of its end, and one of them gets 255 for it.
+        self._gone = threading.Event()
+        self.exitcode: int | None = None  # once the process has ended
+
+    @property
+    def pid(self) -> int | None:
+        return self._process.pid
+
+    def start(self, after: Runner | None = None) -> None:
+        """Start the process and the two threads that talk to it; with ``after`` (the
+        scene's process still stopping), once that has ended: its last save is what this
+        one restores. Commands posted meanwhile wait."""
+        threading.Thread(target=self._launch, args=(after,), name=f"to-{self.name}",
+                         daemon=True).start()
+
+    def _launch(self, after: Runner | None) -> None:
+        if after is not None:
+            after.join(PREDECESSOR_SECONDS)
+        try:
+            self._process.start()
+        except Exception:  # out of processes or memory: the scene ends as a failed one
+            log.exception("the process of scene %s did not start", self.name)
+            self._hand_over(self._end, 1)
+            return
+        finally:
+            self._started.set()
+            self._child.close()  # the child's end lives in the child now: EOF when it dies
+        threading.Thread(target=self._read, name=f"from-{self.name}", daemon=True).start()
+        self._write()
+
+    def post(self, *command: Any) -> None:
+        """Send a command; the scene applies commands in the order they were posted."""
+        self.last_posted = time.monotonic()
+        self._commands.put(command)
+
+    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
+        """Send a command that is answered (``read``, ``metrics``); its reply, awaitable."""
+        return self._replies.ask(self.post, verb, args, UnknownScene(
+            f"scene {self.name} was removed", scene=self.name) if self.ended else None)
+
+    def stop(self) -> None:
+        """Ask the process to finish the commands sent so far, then end."""
+        self.stopping = True
+        self._commands.put(_STOP)
+
+    def kill(self) -> None:
+        """End the process at once, unsaved: another process owns the scene now."""
+        self.stopping = True
+        self._started.wait()
+        if self._process.pid is not None:
+            self._process.kill()
+
+    def join(self, timeout: float) -> None:
+        """Wait for the process to end (killed after ``timeout`` seconds)."""
+        self._started.wait(timeout)
+        if self._process.pid is None:
+            return  # never started
+        if not self._gone.wait(timeout):
+            self._process.kill()
+            self._gone.wait(5)
+
+    def _write(self) -> None:
+        while True:
+            commands = [self._commands.get()]
+            while len(commands) < COMMANDS_PER_SEND:
+                try:
+                    commands.append(self._commands.get_nowait())
+                except queue.Empty:
+                    break
+            try:
+                self._pipe.send(commands)
+            except (OSError, ValueError):  # the process is gone; the reader reports it
+                return
+            if commands[-1] is _STOP:
+                return
+
+    def _read(self) -> None:
+        while True:
+            try:
+                events = self._pipe.recv()
+            except (EOFError, OSError):
+                break
+            self._hand_over(self._receive, events)
+        self._process.join(5)  # its pipe is closed: it is ending, or hung on the way
+        if self._process.exitcode is None:
+            self._process.kill()
+            self._process.join()
+        self.exitcode = self._process.exitcode
+        self._gone.set()
+        self._hand_over(self._end, self.exitcode)
+
+    def _hand_over(self, function: Callable[[Any], None], argument: Any) -> None:
+        try:
+            self._loop.call_soon_threadsafe(function, argument)
+        except RuntimeError:  # the loop closed while the server stopped
+            pass
+
+    def _receive(self, events: list[tuple[Any, ...]]) -> None:
+        rest = []
+        for event in events:
+            if event[0] == "reply":
+                self._replies.answer(*event[1:])
+            else:
+                rest.append(event)
+        if rest:
+            self._deliver(rest)
+
+    @property
+    def unsaved(self) -> bool:
+        """Whether the process ended with changes it could not save."""
+        return self.exitcode == worker.SAVE_FAILED
+
+    def _end(self, exitcode: int | None) -> None:
+        self.ended = True
+        self._pipe.close()
+        failed = bool(exitcode) and not self.stopping
+        if failed:
+            log.error("the process of scene %s ended with exit code %s", self.name, exitcode)
+        self._replies.fail(self.name)
+        self._deliver([("ended", failed)])
