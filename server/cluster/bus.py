@@ -18,8 +18,9 @@ Buckets: ``vp_workers`` and ``vp_scenes`` (which worker runs which scene:
 :mod:`.leases`) and ``vp_cluster`` (the resume keys' secret, how far client ids have been
 handed out: :mod:`.client_ids`).
 
-Messages are pickled Python values, as on the pipes between a server and its scene
-processes (:mod:`server.web.scenes.runner`): the bus is part of one deployment and must be
+Messages are the typed values of :mod:`.bus_messages` (and the scene's own commands and
+events, :mod:`server.web.process.messages`), pickled as on the pipes between a server and
+its scene processes: the bus is part of one deployment and must be
 reachable by its processes only (NATS accounts or TLS when it leaves one machine).
 """
 
@@ -29,7 +30,6 @@ import asyncio
 import logging
 import pickle
 import time
-from dataclasses import dataclass
 from typing import Any, Awaitable, Callable
 from urllib.parse import urlsplit
 
@@ -50,31 +50,7 @@ CONNECT_SECONDS = 60.0  # a process started with its bus waits this long for it
 # PING_SECONDS * (PINGS_OUT + 1), not nats-py's default of minutes
 PING_SECONDS, PINGS_OUT = 2.0, 2
 WORKERS, SCENES, CLUSTER = "vp_workers", "vp_scenes", "vp_cluster"
-Handler = Callable[[Any, "Reply | None"], Awaitable[None] | None]
-
-
-@dataclass(frozen=True)
-class NoRoom:
-    """Why a worker takes no more scenes: the limit (a wire name of ``limit_exceeded``),
-    its value, the flag of ``vp-server --role worker`` that changes it, and in words."""
-
-    limit: str
-    value: float
-    flag: str
-    text: str
-
-
-@dataclass(frozen=True)
-class Load:
-    """How busy a worker is: its attended scenes and why it has no room (None: it has),
-    as it was at ``stamp``, the worker's own monotonic clock (of two loads of one worker,
-    the one stamped later is the newer, whichever way each came: a survey, a placement's
-    answer or a change told)."""
-
-    worker: str
-    scenes: int
-    room: NoRoom | None
-    stamp: float
+Handler = Callable[[Any, "ReturnAddress | None"], Awaitable[None] | None]
 
 
 def attach_subject(worker: str) -> str:
@@ -111,7 +87,7 @@ class Unanswered(Exception):
         self.gone = gone
 
 
-class Reply:
+class ReturnAddress:
     """The way back to a request's sender."""
 
     def __init__(self, bus: Bus, subject: str) -> None:
@@ -286,7 +262,7 @@ class Bus:
     async def subscribe(self, subject: str, handler: Handler) -> Any:
         """Call ``handler(value, reply)`` for each message, in order; the subscription."""
         async def receive(message: Msg) -> None:
-            reply = Reply(self, message.reply) if message.reply else None
+            reply = ReturnAddress(self, message.reply) if message.reply else None
             try:
                 outcome = handler(pickle.loads(message.data), reply)
                 if outcome is not None:

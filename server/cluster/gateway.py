@@ -22,7 +22,8 @@ from ..core.kit.errors import BusUnavailable
 from ..web.scenes.runner import Deliver
 from ..web.storage.scene_store import SceneStore
 from ..web.process.worker import SceneSetup
-from .bus import LOADS, Bus, OrderedSender, Reply, Unanswered, alive_subject, gateway_subject
+from .bus_messages import Attached
+from .bus import LOADS, Bus, OrderedSender, ReturnAddress, Unanswered, alive_subject, gateway_subject
 from .leases import break_worker, lease_holder
 from .placement import Placement
 from .remote_runner import RemoteRunner
@@ -52,7 +53,7 @@ class Gateway:
         self.placement = Placement(bus)
 
     async def place(self, attachment: str, scene: str,
-                    expecting: bool) -> tuple[str, dict[str, Any]] | None:
+                    expecting: bool) -> tuple[str, Attached] | None:
         return await self.placement.place(attachment, scene, expecting)
 
     def runner(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
@@ -71,7 +72,7 @@ class Gateway:
                        asyncio.create_task(self._watch_link()),
                        asyncio.create_task(self.placement.keep_surveying())]
 
-    async def _alive(self, value: Any, reply: Reply | None) -> None:
+    async def _alive(self, value: Any, reply: ReturnAddress | None) -> None:
         """A worker asks which of this gateway's attachments (``value``) it still holds."""
         if reply is not None:
             await reply.send([a for a in value or () if a in self._attached])

@@ -19,10 +19,10 @@ import logging
 import random
 import time
 from collections import Counter
-from typing import Any
 
 from ..core.kit.errors import LimitExceeded
-from .bus import PLACE, Bus, Load, Reply, Unanswered, attach_subject
+from .bus import PLACE, Bus, ReturnAddress, Unanswered, attach_subject
+from .bus_messages import Attach, Attached, Elsewhere, Full, Load
 from .leases import break_worker, lease_holder
 
 log = logging.getLogger(__name__)
@@ -44,7 +44,7 @@ class Placement:
         self._surveyed = float("-inf")
 
     async def place(self, attachment: str, scene: str,
-                    expecting: bool = True) -> tuple[str, dict[str, Any]] | None:
+                    expecting: bool = True) -> tuple[str, Attached] | None:
         """One try: attach to the lease holder, else to the least busy workers in turn
         (``expecting``: a client waits for the scene, which counts at once where it goes);
         the worker and its answer, or None (try again: a lease lapsing, no worker heard
@@ -61,7 +61,8 @@ class Placement:
             self._under_way[worker] += 1
             try:
                 answer = await self.bus.request(attach_subject(worker),
-                                                (attachment, scene, expecting), ATTACH_SECONDS)
+                                                Attach(attachment, scene, expecting),
+                                                ATTACH_SECONDS)
             except Unanswered as unanswered:
                 if unanswered.gone:  # it has left the bus: its lease need not lapse
                     self._loads.pop(worker, None)
@@ -69,13 +70,16 @@ class Placement:
                 continue  # (if slow, its lease lapses in time)
             finally:
                 self._under_way[worker] -= 1
-            if answer[0] == "attached":
-                self._heard(answer[1]["load"])
-                return worker, answer[1]
-            if answer[0] == "elsewhere":
-                return None  # placed meanwhile: its holder, next try
-            if answer[0] == "full":  # filled up since it was asked: the next one
-                self._heard(answer[1])
+            match answer:
+                case Attached(load=load):
+                    self._heard(load)
+                    return worker, answer
+                case Elsewhere():
+                    return None  # placed meanwhile: its holder, next try
+                case Full(load):  # filled up since it was asked: the next one
+                    self._heard(load)
+                case _:
+                    raise TypeError(f"not an answer to Attach: {answer!r}")
         return None
 
     async def _least_busy(self) -> list[str]:
@@ -95,7 +99,7 @@ class Placement:
         if known is None or known[0].stamp <= load.stamp:
             self._loads[load.worker] = (load, time.monotonic())
 
-    async def told(self, load: Load, reply: Reply | None) -> None:
+    async def told(self, load: Load, reply: ReturnAddress | None) -> None:
         """A worker's load, told as it changed (subscribed to ``LOADS``)."""
         self._heard(load)
 

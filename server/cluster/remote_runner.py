@@ -19,8 +19,11 @@ import time
 from typing import Any, Protocol
 
 from ..core.kit.errors import UnknownScene, VPError
+from ..web.process.messages import (Command, Detach, Detached, Ended, Event, Idle, Question,
+                                    Ready, Reply, Saving)
 from ..web.scenes.runner import Deliver, Replies, Runner
 from .bus import Bus, commands_subject, events_subject
+from .bus_messages import Attached, SceneCommands, SceneEvents
 
 log = logging.getLogger(__name__)
 PLACE_SECONDS = 30.0  # how long a scene waits for a worker (a dead one's lease lapses sooner)
@@ -37,7 +40,7 @@ class Attachments(Protocol):
         """Publish, in order with everything else the gateway sends."""
 
     async def place(self, attachment: str, scene: str,
-                    expecting: bool) -> tuple[str, dict[str, Any]] | None:
+                    expecting: bool) -> tuple[str, Attached] | None:
         """Attach to the scene's worker (placing the scene first if it runs nowhere;
         ``expecting``: a client waits for it): the worker and its answer, or None for
         "not yet"."""
@@ -62,14 +65,14 @@ class RemoteRunner:
         self.stopping = False
         self.expecting = False  # a client waits for the scene: its worker counts it at once
         self._deliver = deliver
-        self._waiting: list[tuple[Any, ...]] = []  # posted before it was placed
+        self._waiting: list[Command] = []  # posted before it was placed
         self._replies = Replies()
         self._events: Any = None  # the subscription to the scene's events
         self._placing: asyncio.Task[None] | None = None
         self._incarnation: str | None = None  # the scene's process on its worker, once placed
         # its events heard before the worker's answer (frames of a scene running already:
         # the newest are enough; only those after the answer was made matter)
-        self._early: deque[Any] = deque(maxlen=EARLY_EVENTS)
+        self._early: deque[SceneEvents] = deque(maxlen=EARLY_EVENTS)
         self._gone = threading.Event()  # join() waits in a thread
         self._pid: int | None = None
 
@@ -118,36 +121,36 @@ class RemoteRunner:
                 self._end(True, link.refusal(f"scene {self.name} cannot start"))
             return
         self.worker, answer = placed
-        self._pid, self._incarnation = answer["pid"], answer["incarnation"]
+        self._pid, self._incarnation = answer.pid, answer.incarnation
         self.gateway.attached(self)
-        if answer["ready"] is not None:  # made before this attachment: it will not say so again
-            self._deliver([("ready", answer["ready"])])
-        if answer["saving"]:
-            self._deliver([("saving", answer["saving"])])
-        if answer["asleep"]:  # it ticks no more until sent something: silent, not stuck
-            self._deliver([("idle",)])
+        if answer.ready is not None:  # made before this attachment: it will not say so again
+            self._deliver([Ready(answer.ready)])
+        if answer.saving:
+            self._deliver([Saving(answer.saving)])
+        if answer.asleep:  # it ticks no more until sent something: silent, not stuck
+            self._deliver([Idle()])
         early, self._early = list(self._early), deque()
         for message in early:
             self._receive(message, None)
-        self.gateway.send(commands_subject(self.worker, self.name),  # type: ignore[arg-type]
-                          (self.attachment, self._waiting))
+        self.gateway.send(commands_subject(self.worker, self.name),
+                          SceneCommands(self.attachment, self._waiting))
         self._waiting = []
 
-    def post(self, *command: Any) -> None:
+    def post(self, command: Command) -> None:
         """Send a command; the scene applies a gateway's commands in the order posted."""
         self.last_posted = time.monotonic()
         if self.worker is None:
             self._waiting.append(command)
         else:
             self.gateway.send(commands_subject(self.worker, self.name),
-                              (self.attachment, [command]))
+                              SceneCommands(self.attachment, [command]))
 
-    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
+    def call(self, question: Question) -> asyncio.Future[Any]:
         """Send a command that is answered; its reply, awaitable."""
         link = self.gateway.bus.link
         refusal = UnknownScene(f"scene {self.name} has ended", scene=self.name) if self.ended \
             else link.refusal(f"scene {self.name}") if link.down_since is not None else None
-        return self._replies.ask(self.post, verb, args, refusal)
+        return self._replies.ask(self.post, question, refusal)
 
     def stop(self) -> None:
         """Detach: the worker stops the scene when no other gateway is attached to it."""
@@ -156,35 +159,33 @@ class RemoteRunner:
             self._placing.cancel()
             self._end(False)
         elif not self.ended:
-            self.post("detach")
+            self.post(Detach())
 
     def join(self, timeout: float) -> None:
         """Wait until detached (the scene saved, if it stopped)."""
         self._gone.wait(timeout)
 
-    def _receive(self, message: tuple[str, list[tuple[str | None, tuple[Any, ...]]]],
-                 reply: Any) -> None:
-        incarnation, events = message
+    def _receive(self, message: SceneEvents, reply: Any) -> None:
         if self._incarnation is None:
             self._early.append(message)
             return
-        if incarnation != self._incarnation or self.ended:
+        if message.incarnation != self._incarnation or self.ended:
             return  # a predecessor's last words, or after the end
-        mine = []
-        for target, event in events:
-            if target is not None and target != self.attachment:
+        mine: list[Event] = []
+        for addressed in message.events:
+            if addressed.attachment not in (None, self.attachment):
                 continue
-            kind = event[0]
-            if kind == "reply":
-                self._replies.answer(*event[1:])
-            elif kind == "detached":
-                self._end(False)
-                return
-            elif kind == "ended":
-                self._end(bool(event[1]) and not self.stopping)
-                return
-            else:
-                mine.append(event)
+            match addressed.event:
+                case Reply() as reply_event:
+                    self._replies.answer(reply_event)
+                case Detached():
+                    self._end(False)
+                    return
+                case Ended(failed):
+                    self._end(failed and not self.stopping)
+                    return
+                case event:
+                    mine.append(event)
         if mine and not self.ended:
             self._deliver(mine)
 
@@ -204,5 +205,5 @@ class RemoteRunner:
         if self._events is not None:
             asyncio.create_task(self._events.unsubscribe())
         self._replies.fail(self.name, refusal)
-        self._deliver([("ended", failed, refusal)])
+        self._deliver([Ended(failed, refusal)])
         self._gone.set()

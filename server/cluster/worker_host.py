@@ -17,6 +17,7 @@ import itertools
 import json
 import logging
 import time
+from dataclasses import replace
 from typing import Any, Mapping
 
 from ..core.kit.limits import Limits
@@ -25,14 +26,17 @@ from ..web.scenes.hub import clients_objects
 from ..web.scenes.runner import SceneRunner
 from ..web.storage.state_dir import StateDir
 from ..web.process.worker import SceneSetup
-from .bus import (LOADS, PLACE, Bus, Load, NoRoom, OrderedSender, Reply, Unanswered,
+from ..web.process.messages import (Admit, Answers, Ask, Command, Detach, Detached, Ended,
+                                    Event, Idle, Join, Leave, Read, Ready, Reply, Saving, Text)
+from .bus import (LOADS, PLACE, Bus, OrderedSender, ReturnAddress, Unanswered,
                   alive_subject, attach_subject, commands_subject, events_subject, gateway_of,
                   gateway_subject)
+from .bus_messages import (Addressed, Attach, AttachAnswer, Attached, Elsewhere, Full, Load,
+                           NoRoom, SceneCommands, SceneEvents)
 from .leases import Leases
 from .process_cpu import ProcessCpu
 
 log = logging.getLogger(__name__)
-CALLS = frozenset({"read", "import", "place", "metrics", "record", "unrecord"})  # answered: ("reply", n, …)
 # Scenes run below the worker's own priority: when they want more than the cores give, the
 # worker still renews its lease and answers (else its scenes would hop to other workers)
 SCENE_NICE = 5
@@ -72,81 +76,93 @@ class HostedScene:
                                   nice=SCENE_NICE)
         self.runner.start(after)
 
-    def attach(self, attachment: str, expecting: bool) -> dict[str, Any]:
+    def attach(self, attachment: str, expecting: bool) -> Attached:
         self.heard[attachment] = time.monotonic()
         if expecting and not any(self.connections.values()):
             self.joining_until = time.monotonic() + JOINING_SECONDS
         self.connections.setdefault(attachment, set())
         self.alone_since = None
-        return {"pid": self.runner.pid, "incarnation": self.incarnation, "ready": self.owners,
-                "saving": self.saving, "asleep": self.asleep,
-                "load": self.host.load()}  # this scene included
+        return Attached(self.runner.pid, self.incarnation, self.owners, self.saving, self.asleep,
+                        self.host.load())  # (this scene included)
 
     def attended(self) -> bool:
         """Whether a client uses the scene, or is about to (made for it, not joined yet)."""
         joining = self.joining_until is not None and time.monotonic() < self.joining_until
         return joining or any(self.connections.values())
 
-    def command(self, attachment: str, commands: list[tuple[Any, ...]]) -> None:
+    def command(self, batch: SceneCommands) -> None:
         """A gateway's commands, in the order it sent them."""
+        attachment = batch.attachment
         if attachment not in self.heard:
             return  # detached, or silent too long: its clients have left
         self.heard[attachment] = time.monotonic()
-        for verb, *args in commands:
-            if verb in CALLS:
-                number, *rest = args
-                self.runner.call(verb, *rest).add_done_callback(
-                    lambda done, n=number: self._answer(attachment, n, done))
-            elif verb == "detach":
+        for command in batch.commands:
+            self._command(attachment, command)
+
+    def _command(self, attachment: str, command: Command) -> None:
+        match command:
+            case Ask(number, question):
+                self.runner.call(question).add_done_callback(
+                    lambda done: self._answer(attachment, number, done))
+            case Detach():
                 self.detach(attachment)
-            elif verb in ("join", "text", "leave"):
-                cid, *rest = args
-                if verb == "join":
-                    self.connections[attachment].add(cid)
-                    self.joining_until = None
-                elif verb == "leave":
-                    self.connections[attachment].discard(cid)
-                    self.host.tell_load()
-                self.runner.post(verb, (attachment, cid), *rest)
+            case Join(cid):
+                self.connections[attachment].add(cid)  # type: ignore[arg-type]
+                self.joining_until = None
+                self._post(attachment, command)
+            case Leave(cid):
+                self.connections[attachment].discard(cid)  # type: ignore[arg-type]
+                self.host.tell_load()
+                self._post(attachment, command)
+            case Text():
+                self._post(attachment, command)
+            case _:
+                raise TypeError(f"not a command a gateway sends: {command!r}")
+
+    def _post(self, attachment: str, command: Join | Text | Leave) -> None:
+        """A connection's command, the connection named by its attachment here: connections
+        of different gateways never collide."""
+        self.runner.post(replace(command, cid=(attachment, command.cid)))
 
     def _answer(self, attachment: str, number: int, done: asyncio.Future[Any]) -> None:
         failure = done.exception()
-        self._publish([(attachment, ("reply", number, failure is None,
-                                     failure if failure is not None else done.result()))])
+        self._publish([Addressed(attachment, Reply(number, failure is None,
+                                                   failure if failure is not None
+                                                   else done.result()))])
 
-    def _publish(self, events: list[tuple[str | None, tuple[Any, ...]]]) -> None:
-        self.host.publish(events_subject(self.name), (self.incarnation, events))
+    def _publish(self, events: list[Addressed]) -> None:
+        self.host.publish(events_subject(self.name), SceneEvents(self.incarnation, events))
 
     def detach(self, attachment: str) -> None:
         """The attachment is gone: its clients leave; the scene stops when none is left and
         the attachment asked (it found the scene idle), else it waits (``alone_since``)."""
         for cid in self.connections.pop(attachment, ()):
-            self.runner.post("leave", (attachment, cid))
+            self.runner.post(Leave((attachment, cid)))
         asked = self.heard.pop(attachment, None) is not None
         self.host.tell_load()
         if not self.heard:
             self.alone_since = time.monotonic()
             if asked:
                 self.runner.stop()
-        self._publish([(attachment, ("detached",))])
+        self._publish([Addressed(attachment, Detached())])
 
-    def _deliver(self, events: list[tuple[Any, ...]]) -> None:
+    def _deliver(self, events: list[Event]) -> None:
         routed = []
         for event in events:
-            kind = event[0]
-            if kind in ("admit", "answers"):  # a connection's: its attachment's alone
-                (attachment, number), rest = event[1], event[2:]
-                routed.append((attachment, (kind, number, *rest)))
-                continue
-            if kind != "reply":
-                self.asleep = kind == "idle"
-            if kind == "ready":
-                self.owners = event[1]
-            elif kind == "saving":
-                self.saving = event[1]
-            routed.append((None, event))
+            match event:
+                case Admit((attachment, number)) | Answers((attachment, number)):
+                    # a connection's: its attachment's alone, as the gateway numbered it
+                    routed.append(Addressed(attachment, replace(event, cid=number)))
+                    continue
+                case Ready(owners):
+                    self.owners = owners
+                case Saving(report):
+                    self.saving = report
+            if not isinstance(event, Reply):
+                self.asleep = isinstance(event, Idle)
+            routed.append(Addressed(None, event))
         self._publish(routed)
-        if events[-1][0] == "ended":
+        if isinstance(events[-1], Ended):
             self.host.ended(self)
 
 
@@ -184,7 +200,7 @@ class WorkerHost:
         """Publish in order (one sender for everything this worker says)."""
         self._outgoing.send(subject, value)
 
-    async def _load(self, value: Any, reply: Reply | None) -> None:
+    async def _load(self, value: Any, reply: ReturnAddress | None) -> None:
         if reply is not None:
             await reply.send(self.load())
 
@@ -228,32 +244,31 @@ class WorkerHost:
                           f"its {self.cores:g} cores, more than {CPU_SHARE:.0%}")
         return None
 
-    async def _attach(self, value: Any, reply: Reply | None) -> None:
-        attachment, scene, expecting = value
+    async def _attach(self, asked: Attach, reply: ReturnAddress | None) -> None:
         async with self._claims:
-            answer = await self._place(attachment, scene, expecting)
+            answer = await self._place(asked.attachment, asked.scene, asked.expecting)
         if reply is not None:
             await reply.send(answer)
 
-    async def _place(self, attachment: str, scene: str, expecting: bool) -> tuple[Any, ...]:
+    async def _place(self, attachment: str, scene: str, expecting: bool) -> AttachAnswer:
         hosted = self.scenes.get(scene)
         if hosted is not None and not hosted.runner.stopping:
-            return ("attached", hosted.attach(attachment, expecting))
+            return hosted.attach(attachment, expecting)
         if hosted is None and self.room() is not None:
-            return ("full", self.load())
+            return Full(self.load())
         holder = await self.leases.claim(scene)
         if holder is not None:
-            return ("elsewhere", holder)
+            return Elsewhere(holder)
         # (a predecessor still stopping: its last save is what the new process restores)
         after = hosted.runner if hosted is not None else None
         hosted = self.scenes[scene] = HostedScene(self, scene,
                                                   f"{self.name}.{next(self._incarnations)}", after)
         hosted.subscription = await self.bus.subscribe(
             commands_subject(self.name, scene),
-            lambda value, reply, hosted=hosted: hosted.command(*value))
-        return ("attached", hosted.attach(attachment, expecting))
+            lambda batch, reply, hosted=hosted: hosted.command(batch))
+        return hosted.attach(attachment, expecting)
 
-    async def _alive(self, value: Any, reply: Reply | None) -> None:
+    async def _alive(self, value: Any, reply: ReturnAddress | None) -> None:
         """A gateway's heartbeat for its attachments here; the ones still running."""
         now, alive = time.monotonic(), []
         for attachment, scene in value:
@@ -349,7 +364,7 @@ class WorkerHost:
         """Stop a scene no gateway has attached to for the grace period, unless it holds
         objects it would lose (it is not saved)."""
         if self.state is None:  # not saved: what it holds would be lost
-            held = json.loads(await hosted.runner.call("read", clients_objects, ()))
+            held = json.loads(await hosted.runner.call(Read(clients_objects)))
             if held:
                 return
         if hosted.alone_since is not None and not hosted.heard:

@@ -1,7 +1,7 @@
 """WebSocket frames made once and written whole to every socket that is keeping up.
 
 A server's frames are not masked (RFC 6455 §5.1), so one message is the same bytes on
-every connection: a scene's frame is framed once (:func:`frame_of`, websockets' own
+every connection: a scene's frame is framed once (:func:`.outgoing.frame_of`, websockets' own
 serializer) and those bytes are written straight to each viewer's transport. Through
 ASGI, Starlette and uvicorn encode and frame the text again for every connection, in a
 task woken per message: about 10 µs of the loop per viewer-frame, where the write itself
@@ -21,16 +21,10 @@ from typing import Any, Protocol
 
 from uvicorn.protocols.utils import ClientDisconnected
 from uvicorn.protocols.websockets.websockets_sansio_impl import WebSocketsSansIOProtocol
-from websockets.frames import Frame, Opcode
 from websockets.http11 import Request
 from websockets.protocol import State
 
 EXTENSION = "vp.framed"
-
-
-def frame_of(text: str) -> bytes:
-    """A text message as one whole, unmasked WebSocket frame."""
-    return Frame(Opcode.TEXT, text.encode()).serialize(mask=False, extensions=[])
 
 
 class FramedSocket(Protocol):

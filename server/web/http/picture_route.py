@@ -15,6 +15,7 @@ from fastapi import APIRouter, Request, Response
 from PIL import Image
 
 from ...core.scene.scene import Scene
+from ..process.messages import Read
 from .rest import NOT_FOUND, ErrorBody, hub_of
 
 router = APIRouter(prefix="/api")
@@ -28,7 +29,7 @@ PICTURE: dict[int | str, dict[str, Any]] = {
             summary="The scene from its camera, drawn by PyBullet's software renderer: PNG or raw RGB")
 async def scene_picture(request: Request, scene: str, width: int = 320, height: int = 240,
                         format: Literal["png", "rgb"] = "png") -> Response:
-    body = await hub_of(request, scene).runner.call("read", _drawn, (width, height, format))
+    body = await hub_of(request, scene).runner.call(Read(_drawn, (width, height, format)))
     media = "image/png" if format == "png" else "application/octet-stream"
     return Response(body, media_type=media, headers={"X-Width": str(width), "X-Height": str(height)})
 

@@ -16,6 +16,7 @@ from ...core.recording import replay
 from ...core.recording.resimulate import resimulate_file
 from ...core.kit.errors import OutOfRange
 from .access import changing_allowed
+from ..process.messages import Record, Unrecord
 from ..scenes.offload import hang_up_of
 from .rest import NOT_FOUND, ErrorBody, hub_of, hubs_of
 
@@ -39,7 +40,7 @@ async def start(request: Request, scene: str) -> dict[str, Any]:
     hubs = hubs_of(request)
     hub = hub_of(request, scene)
     recording_id, path = hubs.recordings.new(scene)
-    answer = await hub.runner.call("record", recording_id, str(path))
+    answer = await hub.runner.call(Record(recording_id, str(path)))
     hubs.recordings.started(recording_id, scene)
     return answer
 
@@ -53,7 +54,7 @@ async def stop(request: Request, recording_id: str) -> dict[str, Any]:
     if scene is None:
         return hubs.recordings.describe(recording_id)  # stopped already: as it is
     # (a cluster's other gateway may have started it: this one attaches to its scene)
-    answer = await (hubs.get(scene) or hubs.open(scene)).runner.call("unrecord", recording_id)
+    answer = await (hubs.get(scene) or hubs.open(scene)).runner.call(Unrecord(recording_id))
     hubs.recordings.ended(recording_id)
     return answer
 

@@ -29,6 +29,7 @@ from .access import changing_allowed
 from ..scenes.offload import hang_up_of
 from ..scenes.hub import Hubs
 from ..scenes.scene_hub import SceneHub
+from ..process.messages import Import, Metrics, Question, Read
 
 router = APIRouter(prefix="/api")
 VERSION = "0.1.0"
@@ -76,13 +77,13 @@ def hub_of(request: Request, scene: str) -> SceneHub:
     return hub
 
 
-async def _within(hub: SceneHub, verb: str, *args: Any) -> Any:
+async def _within(hub: SceneHub, question: Question) -> Any:
     """A scene's answer, or None when it has ended or has not answered in ANSWER_SECONDS
     (stopped, or working through a backlog): one scene never holds up a whole list."""
     if hub.ended:
         return None
     try:
-        return await asyncio.wait_for(hub.runner.call(verb, *args), ANSWER_SECONDS)
+        return await asyncio.wait_for(hub.runner.call(question), ANSWER_SECONDS)
     except (asyncio.TimeoutError, UnknownScene):
         return None
 
@@ -102,7 +103,7 @@ async def read_body(request: Request, limit: int, name: str, what: str) -> bytes
 async def _read(request: Request, scene: str, report: Callable[..., Any],
                 *args: Any) -> Response:
     """``report(scene, *args)``, computed and encoded as JSON in the scene's process."""
-    body = await hub_of(request, scene).runner.call("read", report, args)
+    body = await hub_of(request, scene).runner.call(Read(report, args))
     return Response(body, media_type="application/json")
 
 
@@ -111,9 +112,9 @@ async def _summary(hub: SceneHub, wait: bool = False) -> dict[str, Any]:
     in time, unless ``wait``."""
     viewers = sum(c.role == "viewer" for c in hub.connections)
     if wait:
-        hub.summary = json.loads(await hub.runner.call("read", reports.scene_summary, ()))
+        hub.summary = json.loads(await hub.runner.call(Read(reports.scene_summary)))
     else:
-        answer = await _within(hub, "read", reports.scene_summary, ())
+        answer = await _within(hub, Read(reports.scene_summary))
         if answer is not None:
             hub.summary = json.loads(answer)
     return {"name": hub.name, **(hub.summary or {}), "state": hub.state,
@@ -197,7 +198,7 @@ async def _file(request: Request, scene: str, job: Callable[..., bytes], robot_i
     process for files: the scene ticks on meanwhile), sent as a download named after the
     robot."""
     hubs = hubs_of(request)
-    packed = await hub_of(request, scene).runner.call("read", job, (robot_id,))
+    packed = await hub_of(request, scene).runner.call(Read(job, (robot_id,)))
     body = await hubs.files.run(robot_files.written, packed, hubs.assets,
                                 hung_up=hang_up_of(request))
     return Response(body, media_type=media_type, headers={
@@ -225,7 +226,7 @@ async def export(request: Request, scene: str,
     """Structure, angles, poses, names, recolours, owners and the uploaded mesh files it
     uses, by content hash (``assets=embed``: with their bytes, so that any server can
     import it; ``refer``: by hash alone). No clock: an unchanged scene gives the same bytes."""
-    body = await hub_of(request, scene).runner.call("read", _export, (assets == "embed",))
+    body = await hub_of(request, scene).runner.call(Read(_export, (assets == "embed",)))
     return Response(body, media_type="application/json",
                     headers={"Content-Disposition": f'attachment; filename="{scene}.json"'})
 
@@ -262,7 +263,7 @@ async def import_(request: Request, scene: str, replace: bool = False) -> JSONRe
     hub = hub_of(request, scene) if not made else hubs.open(scene)
     try:
         async with hub.importing():  # no newcomer gets an id the document brings meanwhile
-            summary = json.loads(await hub.runner.call("import", body, replace))
+            summary = json.loads(await hub.runner.call(Import(body, replace)))
             hubs.reserve(summary["owners"])
     except VPError:
         if made:
@@ -292,7 +293,7 @@ async def metrics(request: Request, format: Literal["json", "prometheus"] = "jso
 
 async def _scene_metrics(hub: SceneHub) -> dict[str, Any]:
     """A scene's figures; its last ones (``state`` says why) when it does not answer in time."""
-    stats = await _within(hub, "metrics")
+    stats = await _within(hub, Metrics())
     if stats is not None:
         hub.figures = stats
     return {"tickRate": hub.tick_rate, **(hub.figures or {}), "state": hub.state,

@@ -17,6 +17,7 @@ from fastapi.responses import JSONResponse
 
 from ...core.physics.robot_upload import store_robot_upload
 from ...core.kit.errors import BadArguments
+from ..process.messages import Place
 from .access import changing_allowed
 from .rest import NOT_FOUND, ErrorBody, hub_of, read_body
 
@@ -60,7 +61,7 @@ async def place_robot(request: Request, scene: str, file: str | None = None,
     pose = _numbers(position, 3, "position"), _numbers(rotation, 4, "rotation")
     hub = hub_of(request, scene)
     stored = await _stored(request, file)
-    report = json.loads(await hub.runner.call("place", stored["file"], *pose))
+    report = json.loads(await hub.runner.call(Place(stored["file"], *pose)))
     return JSONResponse({**report, "file": stored["file"]}, status_code=201)
 
 

@@ -20,7 +20,8 @@ from ...core.kit.errors import LimitExceeded, OutOfRange, VPError
 from .access import AccessPolicy
 from ..connections.framed_socket import framed_socket
 from ..scenes.hub import Hubs
-from ..connections.outbox import Outbox, Outgoing
+from ..connections.outbox import Outbox
+from ..connections.outgoing import Outgoing
 from ..scenes.scene_hub import Connection, SceneHub
 
 log = logging.getLogger(__name__)

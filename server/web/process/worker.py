@@ -6,40 +6,8 @@ each scene owns a process (and a core when it needs one); the event loop's proce
 moves text. This module is the process's side: :func:`serve` runs until told to stop or
 until the pipe to the server closes. No asyncio here.
 
-Commands (tuples) come from the server in lists; events go back in lists:
-
-========================================  =============================================
-command                                   events it causes
-========================================  =============================================
-``("join", cid, client_id, role, resume,   ``("admit", cid, [hello, snapshot])``
-keep, trusted)``
-``("text", cid, text)``                   ``("answers", cid, [answers], bytes_applied)``
-``("leave", cid)``                        the client's objects deleted (seen in frames)
-                                          after ``leaveGraceSeconds``, unless it comes
-                                          back (joins as the same client) or keeps them
-``("read", n, function, args)``           ``("reply", n, ok, JSON body or VPError)`` (a
-                                          function's bytes are the body as they are)
-``("import", n, body, replace)``          ``("reply", n, ok, JSON summary or VPError)``:
-                                          the document's bytes parsed and checked here,
-                                          the scene replaced (every client gets a warning
-                                          and a new snapshot) unless it would take what
-                                          clients here own; owners not connected get a
-                                          grace period, as if they had just left
-``("place", n, file, position,             ``("reply", n, ok, the robot's report or VPError)``:
-quaternion)``                             the robot of an uploaded robot file made, kept
-                                          and shared, as the server's (``api.<k>``)
-``("metrics", n)``                        ``("reply", n, True, recent figures)`` (scene_metrics)
-``("record", n, id, path)``               ``("reply", n, ok, {"id", …} or VPError)``: a
-                                          recording into ``path`` (recording_file) starts
-``("unrecord", n, id)``                   ``("reply", n, ok, what it holds)``: it stops
-a client's ``startRecording``             ``("recording", id)`` (recording_file)
-any recording's end (asked, a limit,      ``("recorded", what it holds, why)``
-the scene's end)
-``("stop",)``                             the process ends (its scene saved first; exit
-                                          code SAVE_FAILED if its changes could not be)
-once made (or restored)                   ``("ready", owners)``: the owners of its objects
-each tick                                 ``("frame", [messages])`` for every client
-========================================  =============================================
+Commands come from the server in lists and events go back in lists: the messages and
+what each causes are in :mod:`.messages`.
 """
 
 from __future__ import annotations
@@ -70,8 +38,11 @@ from .parent_death import end_with_parent
 from ...core.scene.scene import Scene
 from ...core.kit.errors import InternalError, UnknownRecording, VPError
 from . import heap
-from ..connections.outbox import Outgoing
+from ..connections.outgoing import Outgoing
 from ..recording.recording_file import SceneRecordings
+from .messages import (Admit, Answers, Ask, Command, ConnectionId, Event, Frame, Idle, Import,
+                       Join, Leave, Metrics, Place, Question, Read, Ready, Record, Recorded,
+                       RecordingStarted, Reply, Saving, Stop, Text, Unrecord)
 from .saving import SceneSaver
 from .scene_metrics import SceneMetrics
 from ..storage.scene_store import SceneStore
@@ -136,18 +107,20 @@ class SceneWorker:
         self._pipe = pipe
         self._animator: Animator | None = None  # the setup's (prepare)
         self._sessions: dict[int, Session] = {}
-        self._commands: deque[tuple[Any, ...]] = deque()
-        self._events: list[tuple[Any, ...]] = []
+        self._commands: deque[Command] = deque()
+        self._events: list[Event] = []
         self._resync = False
         self._stopping = False
         self._departed: dict[str, tuple[float, Session]] = {}  # client -> (deadline, session)
         self._left: set[str] = set()  # of those, the clients that were connected here
         self._store = store
         self._notices: list[Outgoing] = []  # warnings for every client, sent with the next tick
-        self.recordings = SceneRecordings(scene, recordings, lambda event: self._events.append(event))
+        self.recordings = SceneRecordings(
+            scene, recordings, lambda recording: self._events.append(RecordingStarted(recording)),
+            lambda summary: self._events.append(Recorded(summary)))
         scene.recorder = self.recordings  # a client's startRecording and stopRecording
         self.saver = SceneSaver(scene, store, self._tell,
-                                lambda report: self._events.append(("saving", report)))
+                                lambda report: self._events.append(Saving(report)))
 
     def run(self) -> None:
         """Serve until ``stop`` or until the server's end of the pipe closes."""
@@ -155,7 +128,7 @@ class SceneWorker:
         last = deadline = time.monotonic()
         while not self._stopping:
             if self.idle():  # nobody to tell and nothing to do: wait for a command
-                self._events.append(("idle",))  # the server knows this silence is sleep
+                self._events.append(Idle())  # the server knows this silence is sleep
                 self._flush()
                 if not self._receive(None):
                     return
@@ -210,7 +183,7 @@ class SceneWorker:
             ready = self._pipe.poll(wait)
             while ready:
                 for command in self._pipe.recv():
-                    if command[0] == "metrics":
+                    if isinstance(command, Ask) and isinstance(command.question, Metrics):
                         self._command(command)
                     else:
                         self._commands.append(command)
@@ -232,27 +205,39 @@ class SceneWorker:
             except (BrokenPipeError, OSError):
                 self._stopping = True
 
-    def _command(self, command: tuple[Any, ...]) -> None:
+    def _command(self, command: Command) -> None:
         try:
-            getattr(self, "_" + command[0])(*command[1:])
+            match command:
+                case Text(cid, text):
+                    self._text(cid, text)
+                case Join():
+                    self._join(command)
+                case Leave(cid):
+                    self._leave(cid)
+                case Ask(number, question):
+                    self._events.append(self._reply(number, question))
+                case Stop():
+                    self._stopping = True
+                case _:
+                    raise TypeError(f"not a command of a scene's process: {command!r}")
         except Exception:  # a bug in one command must not stop the scene
-            log.exception("command %s of scene %s failed", command[0], self.scene.name)
+            log.exception("command %r of scene %s failed", command, self.scene.name)
 
-    def _join(self, cid: int, client_id: str, role: str, resume: str | None = None,
-              keep: bool = False, trusted: bool = False) -> None:
+    def _join(self, join: Join) -> None:
+        client_id = join.client_id
         self._departed.pop(client_id, None)  # back within the grace period: nothing goes
         self._left.discard(client_id)
-        session = self._sessions[cid] = Session(self.scene, client_id, role, resume=resume,
-                                                trusted=trusted)
-        if role == "controller" and self.scene.keeper is None:
+        session = self._sessions[join.cid] = Session(self.scene, client_id, join.role,
+                                                     resume=join.resume, trusted=join.trusted)
+        if join.role == "controller" and self.scene.keeper is None:
             self.scene.keeper = client_id
-        session.operations.keep = keep
+        session.operations.keep = join.keep
         session.on_change = self.saver.changed
         session.on_step = self._take_steps
-        self._events.append(("admit", cid, [Outgoing.of(session.hello(self.tick_rate)),
-                                            Outgoing.of(self.scene.snapshot())]))
+        self._events.append(Admit(join.cid, [Outgoing.of(session.hello(self.tick_rate)),
+                                             Outgoing.of(self.scene.snapshot())]))
 
-    def _text(self, cid: int, text: str | bytes) -> None:
+    def _text(self, cid: ConnectionId, text: str | bytes) -> None:
         session = self._sessions.get(cid)
         now = time.monotonic()
         if session is not None:
@@ -261,7 +246,7 @@ class SceneWorker:
             Outgoing(answer["op"], encoded) for answer, encoded in session.receive_encoded(text, now)]
         self.metrics.served(now, len(answers))
         self._take_steps()  # a step's ticks, before its answer
-        self._events.append(("answers", cid, answers, len(text)))
+        self._events.append(Answers(cid, answers, len(text)))
 
     def _take_steps(self) -> None:
         """The ticks steps asked for, taken now (their frames go before the answers); after
@@ -274,7 +259,7 @@ class SceneWorker:
         for _ in range(self.scene.clock.take()):
             self._tick(1.0 / self.tick_rate)
 
-    def _leave(self, cid: int) -> None:
+    def _leave(self, cid: ConnectionId) -> None:
         session = self._sessions.pop(cid, None)
         if session is None or \
                 any(s.client_id == session.client_id for s in self._sessions.values()):
@@ -301,41 +286,55 @@ class SceneWorker:
                 if deleted:
                     heap.trim()  # what the client's objects used goes back to the system
 
-    def _read(self, number: int, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
+    def _reply(self, number: int, question: Question) -> Reply:
+        """The answer to a question, or the error that refused it."""
         try:
-            result = function(self.scene, *args)
-            body = result if isinstance(result, bytes) else encode(encode_numbers(result))
-            reply: tuple[Any, ...] = ("reply", number, True, body)
+            return Reply(number, True, self._answer(question))
         except VPError as error:
-            reply = ("reply", number, False, error)
+            return Reply(number, False, error)
         except Exception:
-            log.exception("read %s of scene %s failed", function.__name__, self.scene.name)
-            reply = ("reply", number, False, InternalError("internal server error"))
-        self._events.append(reply)
+            log.exception("question %r to scene %s failed", question, self.scene.name)
+            return Reply(number, False, InternalError("internal server error"))
 
-    def _import(self, number: int, body: bytes, replace: bool = False) -> None:
-        """Replace the scene by a document's bytes (``read``'s reply conventions), unless it
-        would take what a client here owns (:func:`check_import`)."""
-        def replace_scene(scene: Scene) -> dict[str, Any]:
-            document = parse_document(body)
-            check_import(scene, document, self._present(), replace)
-            with scene.journal.transaction():
-                summary = import_scene(scene, document)
-            self._restarted(summary["owners"])
-            self._tell("replaced", f"scene {scene.name} was replaced by an import "
-                                   f"({summary['objects']} objects)")
-            self.saver.save(replaced=True)
-            return {**summary, "owners": scene_owners(scene)}  # the ids it used too
-        self._read(number, replace_scene, ())
+    def _answer(self, question: Question) -> Any:
+        match question:
+            case Read(function, args):
+                result = function(self.scene, *args)
+                return result if isinstance(result, bytes) else encode(encode_numbers(result))
+            case Import(body, replace):
+                return encode(encode_numbers(self._import(body, replace)))
+            case Place(file, position, quaternion):
+                return encode(encode_numbers(self._place(file, position, quaternion)))
+            case Metrics():
+                summary = self.metrics.summary(time.monotonic(), time.process_time())
+                return {**summary, **self.saver.report()}
+            case Record(recording_id, path):
+                self.recordings.begin(recording_id, Path(path))
+                return {"id": recording_id, "scene": self.scene.name, "sceneTime": self.scene.time}
+            case Unrecord(recording_id):
+                return self._unrecord(recording_id)
+        raise TypeError(f"not a question for a scene's process: {question!r}")
 
-    def _place(self, number: int, file: str, position: Vec3, quaternion: Quat) -> None:
-        """A robot from an uploaded robot file (``read``'s reply conventions), saved at once."""
-        def place(scene: Scene) -> dict[str, Any]:
-            with scene.journal.transaction():
-                report = place_robot(scene, file, position, quaternion)
-            self.saver.save(replaced=True)
-            return report
-        self._read(number, place, ())
+    def _import(self, body: bytes, replace: bool) -> dict[str, Any]:
+        """Replace the scene by a document's bytes, unless it would take what a client here
+        owns (:func:`check_import`)."""
+        scene = self.scene
+        document = parse_document(body)
+        check_import(scene, document, self._present(), replace)
+        with scene.journal.transaction():
+            summary = import_scene(scene, document)
+        self._restarted(summary["owners"])
+        self._tell("replaced", f"scene {scene.name} was replaced by an import "
+                               f"({summary['objects']} objects)")
+        self.saver.save(replaced=True)
+        return {**summary, "owners": scene_owners(scene)}  # the ids it used too
+
+    def _place(self, file: str, position: Vec3, quaternion: Quat) -> dict[str, Any]:
+        """A robot from an uploaded robot file, saved at once."""
+        with self.scene.journal.transaction():
+            report = place_robot(self.scene, file, position, quaternion)
+        self.saver.save(replaced=True)
+        return report
 
     def _present(self) -> set[str]:
         """Clients connected to the scene, or that were and are within their grace period."""
@@ -348,7 +347,7 @@ class SceneWorker:
     def ready(self) -> None:
         """Tell the server the scene is made, with every owner of its objects and ids: no
         newcomer may be given one of those ids."""
-        self._events.append(("ready", scene_owners(self.scene)))
+        self._events.append(Ready(scene_owners(self.scene)))
         self._flush()
 
     def prepare(self, setup: SceneSetup | None) -> None:
@@ -415,30 +414,12 @@ class SceneWorker:
             if owner not in here and owner != SERVER_OWNER:
                 self._depart(Session(self.scene, owner))
 
-    def _metrics(self, number: int) -> None:
-        summary = self.metrics.summary(time.monotonic(), time.process_time())
-        self._events.append(("reply", number, True, {**summary, **self.saver.report()}))
-
-    def _stop(self) -> None:
-        self._stopping = True
-
-    def _record(self, number: int, recording_id: str, path: str) -> None:
-        try:
-            self.recordings.begin(recording_id, Path(path))
-        except VPError as error:
-            self._events.append(("reply", number, False, error))
-            return
-        self._events.append(("reply", number, True, {"id": recording_id, "scene": self.scene.name,
-                                                     "sceneTime": self.scene.time}))
-
-    def _unrecord(self, number: int, recording_id: str) -> None:
+    def _unrecord(self, recording_id: str) -> dict[str, Any]:
         current = self.recordings.current
         if current is None or current.id != recording_id:
-            error = UnknownRecording(f"scene {self.scene.name!r} is not recording {recording_id!r}",
-                                     recording=recording_id)
-            self._events.append(("reply", number, False, error))
-            return
-        self._events.append(("reply", number, True, self.recordings.end("stopped")))
+            raise UnknownRecording(f"scene {self.scene.name!r} is not recording {recording_id!r}",
+                                   recording=recording_id)
+        return self.recordings.end("stopped")
 
     def _tick(self, dt: float | None) -> None:
         """Run the animator, advance the scene (None: a paused scene's stand) and send its
@@ -458,7 +439,7 @@ class SceneWorker:
             return
         self._expire(time.monotonic())  # deleted now, announced by the next tick
         if messages:
-            self._events.append(("frame", messages))
+            self._events.append(Frame(messages))
         self._flush()
         self.saver.tick(time.monotonic())
         self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,

@@ -16,7 +16,6 @@ from ...core.kit.errors import RecordingBusy, StorageFailure, UnknownRecording
 from .recordings import new_recording
 
 log = logging.getLogger(__name__)
-Event = tuple[Any, ...]
 
 
 class RecordingFile:
@@ -55,11 +54,13 @@ class RecordingFile:
 
 class SceneRecordings:
     """The scene's recorder (its ``RecordingControl``): at most one recording at a time;
-    ``tell`` sends the server ``("recording", id)`` when a client started one and
-    ``("recorded", what it holds)`` whenever one ends."""
+    ``started`` is told a recording's id when a client started one, ``ended`` what a
+    recording holds whenever one ends (the server hears of both)."""
 
-    def __init__(self, scene: Scene, folder: Path | None, tell: Callable[[Event], None]) -> None:
-        self.scene, self.folder, self._tell = scene, folder, tell
+    def __init__(self, scene: Scene, folder: Path | None, started: Callable[[str], None],
+                 ended: Callable[[dict[str, Any]], None]) -> None:
+        self.scene, self.folder = scene, folder
+        self._started, self._ended = started, ended
         self.current: RecordingFile | None = None
 
     def start(self, client: str) -> str:
@@ -68,7 +69,7 @@ class SceneRecordings:
             raise StorageFailure("this server keeps no recordings")
         recording_id, path = new_recording(self.folder, self.scene.name, self.scene.limits)
         self.begin(recording_id, path)
-        self._tell(("recording", recording_id))
+        self._started(recording_id)
         return recording_id
 
     def stop(self) -> dict[str, Any]:
@@ -89,7 +90,7 @@ class SceneRecordings:
         recording, self.current = self.current, None
         assert recording is not None
         summary = recording.stop(reason)
-        self._tell(("recorded", summary))
+        self._ended(summary)
         return summary
 
     def request(self, client_id: str, text: str | bytes) -> None:

@@ -28,6 +28,7 @@ from .runner import PREDECESSOR_SECONDS, Runner, RunnerFactory, SceneRunner
 from .scene_hub import SceneHub
 from ..recording.recordings import Recordings
 from ..storage.state_dir import SCENE_NAME, SceneStore, StateDir
+from ..process.messages import Read
 from ..process.worker import SERVER_OWNER, SceneSetup
 
 __all__ = ["DEFAULT_SCENE", "Hubs", "SceneSetup"]
@@ -220,7 +221,7 @@ class Hubs:
     async def _ask(hub: SceneHub, question: Callable[[Scene], Any]) -> Any | None:
         """``question(scene)``, answered in the scene's process; None once it has ended."""
         try:
-            return json.loads(await hub.runner.call("read", question, ()))
+            return json.loads(await hub.runner.call(Read(question)))
         except UnknownScene:
             return None
 

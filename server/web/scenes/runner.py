@@ -23,12 +23,12 @@ from ...core.kit.limits import Limits
 from ...core.physics.assets import AssetLibrary
 from ...core.kit.errors import UnknownScene, VPError
 from ..process import worker
+from ..process.messages import Ask, Command, Ended, Event, Question, Reply, Stop
 from ..storage.state_dir import SceneStore
 
 log = logging.getLogger(__name__)
-Deliver = Callable[[list[tuple[Any, ...]]], None]
+Deliver = Callable[[list[Event]], None]
 COMMANDS_PER_SEND = 512  # commands pickled together: fewer, larger writes in a flood
-_STOP = ("stop",)
 PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecessor's last save
 
 CONTEXT = multiprocessing.get_context("forkserver")
@@ -53,27 +53,27 @@ class Replies:
         self._waiting: dict[int, asyncio.Future[Any]] = {}
         self._numbers = itertools.count(1)
 
-    def ask(self, post: Callable[..., None], verb: str, args: tuple[Any, ...],
+    def ask(self, post: Callable[[Command], None], question: Question,
             refusal: Exception | None = None) -> asyncio.Future[Any]:
-        """``post(verb, number, *args)``; the reply, awaitable (``refusal`` at once, if given:
-        the scene has ended)."""
+        """``post(Ask(number, question))``; the reply, awaitable (``refusal`` at once, if
+        given: the scene has ended)."""
         future = asyncio.get_running_loop().create_future()
         if refusal is not None:
             future.set_exception(refusal)
             return future
         number = next(self._numbers)
         self._waiting[number] = future
-        post(verb, number, *args)
+        post(Ask(number, question))
         return future
 
-    def answer(self, number: int, ok: bool, value: Any) -> None:
-        future = self._waiting.pop(number, None)
+    def answer(self, reply: Reply) -> None:
+        future = self._waiting.pop(reply.number, None)
         if future is None or future.done():
             return
-        if ok:
-            future.set_result(value)
+        if reply.ok:
+            future.set_result(reply.value)
         else:
-            future.set_exception(value)
+            future.set_exception(reply.value)
 
     def fail(self, scene: str, why: VPError | None = None) -> None:
         """The scene has ended: every reply still awaited is ``why`` (by default
@@ -103,9 +103,9 @@ class Runner(Protocol):
 
     def start(self, after: Runner | None = None) -> None: ...
 
-    def post(self, *command: Any) -> None: ...
+    def post(self, command: Command) -> None: ...
 
-    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]: ...
+    def call(self, question: Question) -> asyncio.Future[Any]: ...
 
     def stop(self) -> None: ...
 
@@ -119,8 +119,8 @@ RunnerFactory = Callable[[str, Limits, float, AssetLibrary, "worker.SceneSetup |
 
 class SceneRunner:
     """Starts a scene's process, sends it commands, and hands its events to ``deliver``
-    on the event loop (a final ``("ended", failed)`` when the process is gone; a cluster's
-    runner may add why the scene never started: ``("ended", failed, refusal)``)."""
+    on the event loop (a final :class:`Ended` when the process is gone; a cluster's runner
+    may say why the scene never started: its ``refusal``)."""
 
     expecting = False  # (a cluster's runner tells its worker; here nothing counts it)
 
@@ -138,7 +138,7 @@ class SceneRunner:
             args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store,
                   recordings, nice))
         self._child = child
-        self._commands: queue.SimpleQueue[tuple[Any, ...]] = queue.SimpleQueue()
+        self._commands: queue.SimpleQueue[Command] = queue.SimpleQueue()
         self._replies = Replies()
         self.last_posted = 0.0  # when the last command was sent (monotonic)
         self.ended = False
@@ -175,20 +175,20 @@ class SceneRunner:
         threading.Thread(target=self._read, name=f"from-{self.name}", daemon=True).start()
         self._write()
 
-    def post(self, *command: Any) -> None:
+    def post(self, command: Command) -> None:
         """Send a command; the scene applies commands in the order they were posted."""
         self.last_posted = time.monotonic()
         self._commands.put(command)
 
-    def call(self, verb: str, *args: Any) -> asyncio.Future[Any]:
-        """Send a command that is answered (``read``, ``metrics``); its reply, awaitable."""
-        return self._replies.ask(self.post, verb, args, UnknownScene(
+    def call(self, question: Question) -> asyncio.Future[Any]:
+        """Ask the scene (``Read``, ``Metrics``, …); its reply, awaitable."""
+        return self._replies.ask(self.post, question, UnknownScene(
             f"scene {self.name} was removed", scene=self.name) if self.ended else None)
 
     def stop(self) -> None:
         """Ask the process to finish the commands sent so far, then end."""
         self.stopping = True
-        self._commands.put(_STOP)
+        self._commands.put(Stop())
 
     def kill(self) -> None:
         """End the process at once, unsaved: another process owns the scene now."""
@@ -218,7 +218,7 @@ class SceneRunner:
                 self._pipe.send(commands)
             except (OSError, ValueError):  # the process is gone; the reader reports it
                 return
-            if commands[-1] is _STOP:
+            if isinstance(commands[-1], Stop):
                 return
 
     def _read(self) -> None:
@@ -242,11 +242,11 @@ class SceneRunner:
         except RuntimeError:  # the loop closed while the server stopped
             pass
 
-    def _receive(self, events: list[tuple[Any, ...]]) -> None:
+    def _receive(self, events: list[Event]) -> None:
         rest = []
         for event in events:
-            if event[0] == "reply":
-                self._replies.answer(*event[1:])
+            if isinstance(event, Reply):
+                self._replies.answer(event)
             else:
                 rest.append(event)
         if rest:
@@ -264,4 +264,4 @@ class SceneRunner:
         if failed:
             log.error("the process of scene %s ended with exit code %s", self.name, exitcode)
         self._replies.fail(self.name)
-        self._deliver([("ended", failed)])
+        self._deliver([Ended(failed)])

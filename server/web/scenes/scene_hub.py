@@ -20,10 +20,13 @@ from ...core.kit.limits import Limits
 from ...core.physics.assets import AssetLibrary
 from ...core.kit.errors import UnknownScene, VPError
 from ..connections.framed_socket import FramedSocket
-from ..connections.outbox import Outbox, Outgoing, SlowConsumer
+from ..connections.outbox import Outbox, SlowConsumer
+from ..connections.outgoing import Outgoing
 from ..recording.recordings import Recordings
 from .runner import RunnerFactory, SceneRunner
 from ..storage.scene_store import SceneStore
+from ..process.messages import (Admit, Answers, Ended, Event, Frame, Idle, Join, Leave, Ready,
+                                Recorded, RecordingStarted, Reply, Saving, Text)
 from ..process.worker import SceneSetup
 
 log = logging.getLogger(__name__)
@@ -173,32 +176,34 @@ class SceneHub:
             if not self._imports:
                 self._open.set()
 
-    def _events(self, events: list[tuple[Any, ...]]) -> None:
+    def _events(self, events: list[Event]) -> None:
         self.heard = time.monotonic()
         for event in events:
-            kind = event[0]
-            if kind == "idle":  # stopped ticking until it is sent a command
-                self.asleep = True
-            elif kind != "reply":  # (figures are answered without waking it)
-                self.asleep = False
-            if kind == "frame":
-                self.broadcast(event[1])
-            elif kind == "answers":
-                self._answered(*event[1:])
-            elif kind == "admit":
-                self._admit(*event[1:])
-            elif kind == "saving":
-                self.saving = event[1]
-            elif kind == "ready":
-                self._owners(event[1])
-                if not self._imports:
-                    self._open.set()
-            elif kind == "recording" and self._recordings is not None:  # a client started one
-                self._recordings.started(event[1], self.name)
-            elif kind == "recorded" and self._recordings is not None:
-                self._recordings.ended(event[1]["id"])
-            elif kind == "ended":
-                self._ended(*event[1:])
+            # asleep from Idle until the next event (figures are answered without waking it)
+            self.asleep = isinstance(event, Idle) or (self.asleep and isinstance(event, Reply))
+            match event:
+                case Frame(items):
+                    self.broadcast(items)
+                case Answers(cid, items, applied):
+                    self._answered(cid, items, applied)
+                case Admit(cid, items):
+                    self._admit(cid, items)
+                case Saving(report):
+                    self.saving = report
+                case Ready(owners):
+                    self._owners(owners)
+                    if not self._imports:
+                        self._open.set()
+                case RecordingStarted(recording_id) if self._recordings is not None:
+                    self._recordings.started(recording_id, self.name)
+                case Recorded(summary) if self._recordings is not None:
+                    self._recordings.ended(summary["id"])
+                case Ended(failed, refusal):
+                    self._ended(failed, refusal)
+                case Idle() | RecordingStarted() | Recorded():
+                    pass
+                case _:
+                    raise TypeError(f"not an event of a scene's process: {event!r}")
 
     def broadcast(self, items: list[Outgoing]) -> None:
         """Write a tick's messages to every connection (or queue them), counting the CPU
@@ -220,8 +225,8 @@ class SceneHub:
                 other.closed.set()
         self.members[connection.number] = connection
         self.idle_since = None
-        self.runner.post("join", connection.number, connection.client_id, connection.role,
-                         connection.resume, connection.keep, connection.trusted)
+        self.runner.post(Join(connection.number, connection.client_id, connection.role,
+                              connection.resume, connection.keep, connection.trusted))
         await connection.admitted.wait()
 
     def _admit(self, number: int, items: list[Outgoing]) -> None:
@@ -238,7 +243,7 @@ class SceneHub:
         """Forget a connection; its scene deletes what its client made."""
         self.connections.discard(connection)
         if self.members.pop(connection.number, None) is not None:
-            self.runner.post("leave", connection.number)
+            self.runner.post(Leave(connection.number))
         if not self.members:
             self.idle_since = time.monotonic()
 
@@ -247,7 +252,7 @@ class SceneHub:
         connection.inflight += len(text)
         if connection.inflight > INFLIGHT_BYTES:
             connection.drained.clear()
-        self.runner.post("text", connection.number, text)
+        self.runner.post(Text(connection.number, text))
 
     def _answered(self, number: int, answers: list[Outgoing], size: int) -> None:
         connection = self.members.get(number)

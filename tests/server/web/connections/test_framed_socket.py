@@ -13,7 +13,8 @@ from websockets.frames import Frame, Opcode
 from websockets.streams import StreamReader
 from websockets.sync.client import connect
 
-from server.web.connections.framed_socket import FramedSocketProtocol, frame_of, framed_socket
+from server.web.connections.framed_socket import FramedSocketProtocol, framed_socket
+from server.web.connections.outgoing import frame_of
 from tests.conftest import WAIT_SECONDS, eventually, free_port
 
 

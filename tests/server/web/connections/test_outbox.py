@@ -5,7 +5,8 @@ import weakref
 
 import pytest
 
-from server.web.connections.outbox import Outbox, Outgoing, SlowConsumer
+from server.web.connections.outbox import Outbox, SlowConsumer
+from server.web.connections.outgoing import Outgoing
 
 
 def frame(seq, **angles):

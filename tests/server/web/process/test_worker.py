@@ -4,6 +4,8 @@ import json
 import multiprocessing
 import os
 import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -14,8 +16,10 @@ from server.core.kit.limits import DEFAULT
 from server.core.scene.scene import Scene
 from server.core.kit.errors import UnknownObject
 from server.web.http.rest import _robot
+from server.web.process.messages import (Admit, Answers, Ask, Frame, Idle, Join, Leave, Metrics, Read,
+                                         Reply, Stop, Text)
 from server.web.process.worker import SceneWorker
-from tests.conftest import WAIT_SECONDS, alive, descendants, eventually, start_server, stop_server
+from tests.conftest import ROOT, WAIT_SECONDS, alive, descendants, eventually, start_server, stop_server
 
 from ..ws_requests import request_all, wait_ticks
 
@@ -29,7 +33,7 @@ def worker():
     server_end.born = time.monotonic()  # the scene's clock starts after this
     thread.start()
     yield server_end
-    server_end.send([("stop",)])
+    server_end.send([Stop()])
     thread.join(timeout=WAIT_SECONDS)
     assert not thread.is_alive()
     scene.close()
@@ -39,46 +43,46 @@ def events_until(pipe, kind, count=1):
     """Events received until ``count`` of ``kind`` came; those of that kind."""
     found = []
     while len(found) < count:
-        assert pipe.poll(WAIT_SECONDS), f"no {kind} event"
-        found += [event for event in pipe.recv() if event[0] == kind]
+        assert pipe.poll(WAIT_SECONDS), f"no {kind.__name__} event"
+        found += [event for event in pipe.recv() if isinstance(event, kind)]
     return found
 
 
 def test_a_client_joins_sends_and_gets_its_answers_in_order(worker):
-    worker.send([("join", 7, "c7", "controller")])
-    (_, number, (hello, snapshot)), = events_until(worker, "admit")
+    worker.send([Join(7, "c7", "controller")])
+    (number, (hello, snapshot)), = [(a.cid, a.items) for a in events_until(worker, Admit)]
     assert number == 7 and hello.message["client"] == "c7" and snapshot.op == "snapshot"
     texts = [json.dumps({"op": "create", "object": f"c7.{k}", "type": "Box", "id": k})
              for k in range(1, 4)]
-    worker.send([("text", 7, text) for text in texts])
-    answers = events_until(worker, "answers", 3)
-    assert [(a[1], a[2][0].message["id"], a[3]) for a in answers] == [
+    worker.send([Text(7, text) for text in texts])
+    answers = events_until(worker, Answers, 3)
+    assert [(a.cid, a.items[0].message["id"], a.applied) for a in answers] == [
         (7, k, len(texts[k - 1])) for k in range(1, 4)]
-    frame, = events_until(worker, "frame")
-    assert frame[1][0].op in ("added", "frame")
+    frame, = events_until(worker, Frame)
+    assert frame.items[0].op in ("added", "frame")
 
 
 def test_reads_reply_with_json_or_the_error_with_its_details(worker):
-    worker.send([("join", 1, "c1", "controller"),
-                 ("text", 1, json.dumps({"op": "create", "object": "c1.r", "type": "Robot"})),
-                 ("read", 5, _robot, ("c1.r",)), ("read", 6, _robot, ("c1.nope",))])
-    ok, refused = events_until(worker, "reply", 2)
-    assert ok[:3] == ("reply", 5, True) and json.loads(ok[3])["id"] == "c1.r"
-    assert refused[:3] == ("reply", 6, False) and isinstance(refused[3], UnknownObject)
-    assert refused[3].details == {"object": "c1.nope"}
+    worker.send([Join(1, "c1", "controller"),
+                 Text(1, json.dumps({"op": "create", "object": "c1.r", "type": "Robot"})),
+                 Ask(5, Read(_robot, ("c1.r",))), Ask(6, Read(_robot, ("c1.nope",)))])
+    ok, refused = events_until(worker, Reply, 2)
+    assert (ok.number, ok.ok) == (5, True) and json.loads(ok.value)["id"] == "c1.r"
+    assert (refused.number, refused.ok) == (6, False) and isinstance(refused.value, UnknownObject)
+    assert refused.value.details == {"object": "c1.nope"}
 
 
 def nodes_of(worker, number):
-    worker.send([("read", number, Scene.snapshot, ())])
-    (_, _, ok, body), = events_until(worker, "reply")
-    assert ok
-    return [node["id"] for node in json.loads(body)["nodes"]]
+    worker.send([Ask(number, Read(Scene.snapshot))])
+    reply, = events_until(worker, Reply)
+    assert reply.ok
+    return [node["id"] for node in json.loads(reply.value)["nodes"]]
 
 
 def test_a_leaving_client_takes_its_objects_along_after_the_grace_period(worker):
-    worker.send([("join", 1, "c1", "controller"),
-                 ("text", 1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
-                 ("leave", 1)])
+    worker.send([Join(1, "c1", "controller"),
+                 Text(1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
+                 Leave(1)])
     left = time.monotonic()
     assert nodes_of(worker, 2) == ["c1.b"]  # still there: it may come back
     while nodes_of(worker, 3) and time.monotonic() < left + 5:
@@ -87,19 +91,20 @@ def test_a_leaving_client_takes_its_objects_along_after_the_grace_period(worker)
 
 
 def test_a_client_back_within_the_grace_period_keeps_everything(worker):
-    worker.send([("join", 1, "c1", "controller"),
-                 ("text", 1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
-                 ("leave", 1), ("join", 2, "c1", "controller", "c1:key", False)])
-    (_, _, (hello, _)), = events_until(worker, "admit", 2)[1:]
+    worker.send([Join(1, "c1", "controller"),
+                 Text(1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
+                 Leave(1), Join(2, "c1", "controller", "c1:key", False)])
+    admitted, = events_until(worker, Admit, 2)[1:]
+    hello = admitted.items[0]
     assert hello.message["client"] == "c1" and hello.message["resume"] == "c1:key"
     time.sleep(1.5)
     assert nodes_of(worker, 3) == ["c1.b"]
 
 
 def test_a_client_that_keeps_leaves_its_objects_for_good(worker):
-    worker.send([("join", 1, "c1", "controller", None, True),
-                 ("text", 1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
-                 ("leave", 1)])
+    worker.send([Join(1, "c1", "controller", None, True),
+                 Text(1, json.dumps({"op": "create", "object": "c1.b", "type": "Box"})),
+                 Leave(1)])
     time.sleep(1.5)
     assert nodes_of(worker, 2) == ["c1.b"]
 
@@ -109,50 +114,49 @@ def scene_clock(scene):
 
 
 def test_a_scene_nobody_is_in_stops_ticking_and_its_clock_catches_up_when_asked(worker):
-    events_until(worker, "idle")  # says so, then sends nothing: no frames for nobody
+    events_until(worker, Idle)  # says so, then sends nothing: no frames for nobody
     idle = time.monotonic()  # the scene's clock started before this
     assert not worker.poll(0.3)
     asked = time.monotonic()
-    worker.send([("read", 1, scene_clock, ())])
-    _, _, ok, body = events_until(worker, "reply")[0]
-    clock, answered = json.loads(body), time.monotonic()
+    worker.send([Ask(1, Read(scene_clock))])
+    reply = events_until(worker, Reply)[0]
+    ok, clock, answered = reply.ok, json.loads(reply.value), time.monotonic()
     tick = 1 / 60
     assert ok and asked - idle - tick <= clock["time"] <= answered - worker.born + tick
     assert clock["seq"] <= 5  # a tick or two, not 20 a third of a second
-    worker.send([("join", 2, "c2", "viewer")])
-    events_until(worker, "admit")
-    frames = events_until(worker, "frame", 5)  # someone is in: 60 ticks a second again
+    worker.send([Join(2, "c2", "viewer")])
+    events_until(worker, Admit)
+    frames = events_until(worker, Frame, 5)  # someone is in: 60 ticks a second again
     assert len(frames) == 5
 
 
 def test_asking_a_sleeping_scene_for_its_figures_does_not_wake_it(worker):
-    events_until(worker, "idle")
+    events_until(worker, Idle)
     for number in range(3):
-        worker.send([("metrics", number)])
-        (_, _, ok, figures), = events_until(worker, "reply")
-        assert ok and figures["ticks"] <= 2
-        assert worker.poll(WAIT_SECONDS) and worker.recv() == [("idle",)]  # asleep again at once
+        worker.send([Ask(number, Metrics())])
+        reply, = events_until(worker, Reply)
+        assert reply.ok and reply.value["ticks"] <= 2
+        assert worker.poll(WAIT_SECONDS) and worker.recv() == [Idle()]  # asleep again at once
     assert not worker.poll(0.3)  # and nothing more: it did not tick for the questions
-    worker.send([("read", 9, scene_clock, ())])
-    _, _, ok, body = events_until(worker, "reply")[0]
-    assert json.loads(body)["seq"] <= 3
+    worker.send([Ask(9, Read(scene_clock))])
+    assert json.loads(events_until(worker, Reply)[0].value)["seq"] <= 3
 
 
 def test_a_dynamic_scene_nobody_watches_ticks_until_everything_rests(worker):
-    worker.send([("join", 1, "c1", "controller"),
-                 ("text", 1, json.dumps({"op": "batch", "ops": [
+    worker.send([Join(1, "c1", "controller"),
+                 Text(1, json.dumps({"op": "batch", "ops": [
                      {"op": "create", "object": "c1.b", "type": "Ball", "args": [0.2]},
                      {"op": "call", "object": "c1.b", "method": "keep", "args": []},
                      {"op": "call", "object": "c1.b", "method": "setPosition", "args": [0, 3, 0]},
                      {"op": "call", "object": "scene", "method": "setPhysics", "args": ["dynamic"]}]})),
-                 ("leave", 1)])
-    events_until(worker, "answers")
+                 Leave(1)])
+    events_until(worker, Answers)
     started = time.monotonic()
-    events_until(worker, "idle")  # once the ball lies still (the grace period is over before)
+    events_until(worker, Idle)  # once the ball lies still (the grace period is over before)
     assert time.monotonic() - started > 0.7  # three metres take 0.78 s to fall
-    worker.send([("read", 2, _height, ())])
-    (_, _, ok, body), = events_until(worker, "reply")
-    assert ok and json.loads(body) == pytest.approx(0.2, abs=0.01)  # it fell while nobody watched
+    worker.send([Ask(2, Read(_height))])
+    reply, = events_until(worker, Reply)
+    assert reply.ok and json.loads(reply.value) == pytest.approx(0.2, abs=0.01)  # it fell while nobody watched
 
 
 def _height(scene):
@@ -160,45 +164,46 @@ def _height(scene):
 
 
 def test_a_paused_scene_ticks_only_when_stepped_and_the_steps_frames_come_before_the_answer(worker):
-    worker.send([("join", 1, "c1", "controller"),
-                 ("text", 1, json.dumps({"op": "call", "object": "scene", "method": "pause",
+    worker.send([Join(1, "c1", "controller"),
+                 Text(1, json.dumps({"op": "call", "object": "scene", "method": "pause",
                                          "id": 1}))])
-    events_until(worker, "answers")
+    events_until(worker, Answers)
     time.sleep(0.3)  # 18 ticks' time: a running scene would have sent frames of it
-    worker.send([("text", 1, json.dumps({"op": "call", "object": "scene", "method": "getTime",
+    worker.send([Text(1, json.dumps({"op": "call", "object": "scene", "method": "getTime",
                                          "id": 2}))])
-    (_, _, (answer,), _), = events_until(worker, "answers")
-    paused_at = answer.message["result"]
-    worker.send([("text", 1, json.dumps({"op": "call", "object": "scene", "method": "step",
+    answers, = events_until(worker, Answers)
+    paused_at = answers.items[0].message["result"]
+    worker.send([Text(1, json.dumps({"op": "call", "object": "scene", "method": "step",
                                          "args": [3], "id": 3}))])
     events = []
-    while not any(event[0] == "answers" for event in events):
+    while not any(isinstance(event, Answers) for event in events):
         assert worker.poll(WAIT_SECONDS), "no answer to step"
         events += worker.recv()
-    frames = [m.message for event in events if event[0] == "frame" for m in event[1]
+    frames = [m.message for event in events if isinstance(event, Frame) for m in event.items
               if m.op == "frame"]
     assert [f["time"] - paused_at for f in frames] == pytest.approx([1 / 60, 2 / 60, 3 / 60])
-    assert events[-1][0] == "answers" and events[-1][2][0].message["id"] == 3
+    assert isinstance(events[-1], Answers) and events[-1].items[0].message["id"] == 3
 
 
 def physics_answer(worker, cid, number):
-    worker.send([("text", cid, json.dumps({"op": "call", "object": "scene", "method": "setPhysics",
+    worker.send([Text(cid, json.dumps({"op": "call", "object": "scene", "method": "setPhysics",
                                           "args": ["dynamic"], "id": number}))])
     while True:
-        (_, _, [answer], _), = events_until(worker, "answers")
+        answers, = events_until(worker, Answers)
+        answer, = answers.items
         if answer.message["id"] == number:
             return answer.message
 
 
 def test_the_first_controller_keeps_the_scene_until_it_has_gone_for_good(worker):
-    worker.send([("join", 1, "v1", "viewer"), ("join", 2, "c2", "controller"),
-                 ("join", 3, "c3", "controller"), ("join", 4, "c4", "controller", None, False, True)])
-    events_until(worker, "admit", 4)
+    worker.send([Join(1, "v1", "viewer"), Join(2, "c2", "controller"),
+                 Join(3, "c3", "controller"), Join(4, "c4", "controller", None, False, True)])
+    events_until(worker, Admit, 4)
     refused = physics_answer(worker, 3, 10)
     assert refused["code"] == "forbidden" and "c2's" in refused["message"]
     assert physics_answer(worker, 4, 11)["op"] == "ok"  # it presented the control token
     assert physics_answer(worker, 2, 12)["op"] == "ok"
-    worker.send([("leave", 2)])
+    worker.send([Leave(2)])
     time.sleep(0.2)
     assert physics_answer(worker, 3, 13)["code"] == "forbidden"  # c2 may still come back
     deadline = time.monotonic() + WAIT_SECONDS
@@ -237,3 +242,13 @@ def test_a_busy_recording_scene_ends_with_the_server_and_its_recording_stays_rea
         assert again.get(f"/api/recordings/{started['id']}/at?time=0")["messages"]
     finally:
         stop_server(again)
+
+
+def test_a_scene_process_loads_no_asyncio():
+    """Its loop is plain: commands from a pipe, ticks on a clock (an event loop's machinery
+    in every scene's process would be memory and start-up time for nothing)."""
+    loaded = subprocess.run(
+        [sys.executable, "-c", "import sys, server.web.process.worker; "
+                               "print(sorted(m for m in sys.modules if m.startswith('asyncio')))"],
+        cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    assert loaded.strip() == "[]"

@@ -15,6 +15,7 @@ from server.core.protocol.operations import Operations
 from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene
 
+from server.web.process.messages import Join, Read, Text
 from server.web.scenes.hub import Hubs, clients_objects
 from server.web.storage.state_dir import StateDir
 from tests.conftest import WAIT_SECONDS, eventually, start_server, stop_server
@@ -34,12 +35,12 @@ def test_a_saved_scene_opened_again_while_it_stops_gets_its_last_change(tmp_path
         hubs = Hubs(state=StateDir(tmp_path))
         try:
             first = hubs.open("lab")
-            first.runner.post("join", 1, "c7", "controller", None, True)
-            first.runner.post("text", 1, boxes(400))
-            assert json.loads(await first.runner.call("read", clients_objects, ())) == 400
+            first.runner.post(Join(1, "c7", "controller", None, True))
+            first.runner.post(Text(1, boxes(400)))
+            assert json.loads(await first.runner.call(Read(clients_objects))) == 400
             assert await hubs.remove_idle(float("inf")) == ["lab"]
             again = hubs.open("lab")
-            held = json.loads(await again.runner.call("read", clients_objects, ()))
+            held = json.loads(await again.runner.call(Read(clients_objects)))
             return held, again.runner.pid != first.runner.pid
         finally:
             await hubs.stop()

@@ -12,6 +12,7 @@ from websockets.exceptions import ConnectionClosed
 
 from server.core.physics.assets import AssetLibrary
 from server.core.kit.limits import DEFAULT
+from server.web.process.messages import Join, Text
 from server.web.scenes.runner import SceneRunner
 from server.web.storage.scene_store import SceneStore
 from tests.conftest import WAIT_SECONDS, start_server, stop_server, unwritable
@@ -111,9 +112,9 @@ def test_how_a_scene_process_ended_is_read_once_however_many_wait_for_it(tmp_pat
     read the fork server's report of its end and the other an empty pipe (code 255), and
     the server exited 0 with a scene's changes lost."""
     def ended(runner: SceneRunner) -> None:
-        runner.post("join", 1, "c1", "controller")
-        runner.post("text", 1, json.dumps({"op": "create", "id": 1, "object": "c1.b",
-                                           "type": "Box", "args": [0.1]}))
+        runner.post(Join(1, "c1", "controller"))
+        runner.post(Text(1, json.dumps({"op": "create", "id": 1, "object": "c1.b",
+                                         "type": "Box", "args": [0.1]})))
         runner.stop()
         waiters = [threading.Thread(target=runner.join, args=(20,)) for _ in range(4)]
         for waiter in waiters:
