@@ -19,7 +19,7 @@ from ...core.kit.limits import DEFAULT, Limits
 from ...core.physics.assets import AssetLibrary
 from ...core.kit.errors import (BusUnavailable, Forbidden, InternalError, LimitExceeded, LookupFailure,
                       RecordingBusy, RecordingDamaged, StorageFailure, TooLarge, VPError)
-from . import assets, picture_route, recording_routes, rest, robot_routes, socket
+from . import assets, picture_route, recording_routes, rest, rest_base, robot_routes, socket
 from ..process import heap
 from .access import AccessPolicy, HostCheck, redact_tokens_in_logs, viewing_allowed
 from .cors import PageOrigins
@@ -119,7 +119,7 @@ def _answer_errors(app: FastAPI) -> None:
     @app.exception_handler(VPError)
     async def vp_error(request: Request, error: VPError) -> JSONResponse:
         status = next((s for kind, s in HTTP_STATUS.items() if isinstance(error, kind)), 400)
-        return rest.error_response(error, status)
+        return rest_base.error_response(error, status)
 
     @app.exception_handler(CallerGone)
     async def caller_gone(request: Request, error: CallerGone) -> Response:
@@ -128,7 +128,7 @@ def _answer_errors(app: FastAPI) -> None:
     @app.exception_handler(Exception)
     async def internal_error(request: Request, error: Exception) -> JSONResponse:
         # a bug: logged with its traceback by the server; the client gets the usual form
-        return rest.error_response(InternalError("internal server error"), 500)
+        return rest_base.error_response(InternalError("internal server error"), 500)
 
     @app.exception_handler(StarletteHTTPException)
     async def http_error(request: Request, error: StarletteHTTPException) -> Response:

@@ -22,7 +22,7 @@ from fastapi.responses import FileResponse, JSONResponse
 from ...core.physics.assets import AssetLibrary, plain_name
 from ...core.kit.errors import LimitExceeded, UnknownAsset
 from .access import changing_allowed
-from .rest import NOT_FOUND, ErrorBody, read_body
+from .rest_base import NOT_FOUND, ErrorBody, read_body
 
 log = logging.getLogger(__name__)
 router = APIRouter(prefix="/api")

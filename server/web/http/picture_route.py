@@ -16,7 +16,7 @@ from PIL import Image
 
 from ...core.scene.scene import Scene
 from ..process.messages import Read
-from .rest import NOT_FOUND, ErrorBody, hub_of
+from .rest_base import NOT_FOUND, ErrorBody, hub_of
 
 router = APIRouter(prefix="/api")
 PICTURE: dict[int | str, dict[str, Any]] = {

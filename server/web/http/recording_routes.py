@@ -18,7 +18,7 @@ from ...core.kit.errors import OutOfRange
 from .access import changing_allowed
 from ..process.messages import Record, Unrecord
 from ..scenes.offload import hang_up_of
-from .rest import NOT_FOUND, ErrorBody, hub_of, hubs_of
+from .rest_base import NOT_FOUND, ErrorBody, hub_of, hubs_of
 
 router = APIRouter(prefix="/api")
 WINDOW_SECONDS = 10.0  # of ticks one request may ask for (a player asks for the next second)

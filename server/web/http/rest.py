@@ -14,7 +14,6 @@ from typing import Any, Callable, Literal
 
 from fastapi import APIRouter, Request, Response
 from fastapi.responses import JSONResponse
-from pydantic import BaseModel
 
 from ...core.model.robot import Robot
 from ...core.model.sensor import Sensor
@@ -23,58 +22,19 @@ from ...core.protocol import reports, robot_files
 from ...core.protocol.messages import PROTOCOL_VERSION
 from ...core.protocol.scene_document import check_document_bytes, export_scene
 from ...core.scene.scene import Scene
-from ...core.kit.errors import TooLarge, UnknownObject, UnknownScene, VPError
+from ...core.kit.errors import UnknownObject, UnknownScene, VPError
 from . import prometheus
 from .access import changing_allowed
+from .rest_base import NOT_FOUND, ErrorBody, hub_of, hubs_of, read_body
 from ..scenes.offload import hang_up_of
-from ..scenes.hub import Hubs
 from ..scenes.scene_hub import SceneHub
 from ..process.messages import Import, Metrics, Question, Read
 
 router = APIRouter(prefix="/api")
 VERSION = "0.1.0"
 ANSWER_SECONDS = 1.0  # what lists and metrics wait for one scene before using its last answer
-
-
-class ErrorBody(BaseModel):
-    """What a refused REST request gets: the same code and message as on the WebSocket."""
-
-    code: str
-    message: str
-    details: dict[str, Any] | None = None
-
-
-NOT_FOUND: dict[int | str, dict[str, Any]] = {
-    404: {"model": ErrorBody, "description": "No such scene (or robot, sensor, object)"}}
 FILE_OR_NOT_FOUND: dict[int | str, dict[str, Any]] = {
     **NOT_FOUND, 200: {"content": {"application/octet-stream": {}}, "description": "The file"}}
-
-
-def error_response(error: VPError, status: int) -> JSONResponse:
-    """A structured error body: the same code and message as on the WebSocket."""
-    wire = error.to_wire()
-    body = {"code": wire["code"], "message": wire["message"]}
-    if error.details:
-        body["details"] = wire["details"]
-    return JSONResponse(body, status_code=status)
-
-
-def hubs_of(request: Request) -> Hubs:
-    """The server's scenes (and recordings), as the app keeps them."""
-    return request.app.state.hubs
-
-
-def hub_of(request: Request, scene: str) -> SceneHub:
-    """A running scene's hub; a saved scene that is not running starts (from its file), as
-    does one whose process failed (a cluster's worker died) with nobody there to restart it."""
-    hubs = hubs_of(request)
-    hub = hubs.get(scene)
-    if (hub is None or hub.ended and hub.stored) and hubs.state is not None and \
-            scene in hubs.state.saved_scenes():
-        hub = hubs.open(scene)
-    if hub is None:
-        raise UnknownScene(f"no scene named {scene[:80]!r}", scene=scene)
-    return hub
 
 
 async def _within(hub: SceneHub, question: Question) -> Any:
@@ -86,18 +46,6 @@ async def _within(hub: SceneHub, question: Question) -> Any:
         return await asyncio.wait_for(hub.runner.call(question), ANSWER_SECONDS)
     except (asyncio.TimeoutError, UnknownScene):
         return None
-
-
-async def read_body(request: Request, limit: int, name: str, what: str) -> bytes:
-    """A request's body, refused (``too_large``, naming the limit) past ``limit`` bytes
-    without reading the rest."""
-    data = bytearray()
-    async for chunk in request.stream():
-        data += chunk
-        if len(data) > limit:
-            raise TooLarge(f"{what} has more than {limit} bytes, the most taken", limit=name,
-                           value=limit)
-    return bytes(data)
 
 
 async def _read(request: Request, scene: str, report: Callable[..., Any],

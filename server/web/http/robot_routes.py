@@ -19,7 +19,7 @@ from ...core.physics.robot_upload import store_robot_upload
 from ...core.kit.errors import BadArguments
 from ..process.messages import Place
 from .access import changing_allowed
-from .rest import NOT_FOUND, ErrorBody, hub_of, read_body
+from .rest_base import NOT_FOUND, ErrorBody, hub_of, read_body
 
 router = APIRouter(prefix="/api")
 REFUSED: dict[int | str, dict[str, Any]] = {

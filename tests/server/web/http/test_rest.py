@@ -68,21 +68,6 @@ def test_infinite_limits_are_strings_in_rest(server, scene_name):
         assert (motor["min"], motor["max"]) == ("-Infinity", "Infinity")
 
 
-@pytest.mark.parametrize("path,code", [
-    ("/api/scenes/no-such-scene", "unknown_scene"),
-    ("/api/scenes/default/robots/nobody.1", "unknown_object"),
-    ("/api/scenes/default/sensors/nobody.1", "unknown_object"),
-    ("/api/scenes/no-such-scene/contacts", "unknown_scene"),
-    ("/api/scenes/default/robots/nobody.1/urdf", "unknown_object"),
-    ("/api/scenes/no-such-scene/robots/nobody.1/glb", "unknown_scene"),
-])
-def test_unknown_things_are_structured_404s(server, path, code):
-    with pytest.raises(urllib.error.HTTPError) as caught:
-        server.get(path)
-    assert caught.value.code == 404
-    assert json.loads(caught.value.read())["code"] == code
-
-
 def test_a_robot_downloads_as_a_urdf_zip_and_a_glb(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}") as ws:
         client = json.loads(ws.recv(timeout=WAIT_SECONDS))["client"]
