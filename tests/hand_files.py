@@ -117,10 +117,11 @@ def stored_hand(library, extra: str = "") -> str:
     from server.core.kit.limits import DEFAULT
     from server.core.physics.robot_archive import open_archive
     from server.core.physics.urdf_reading import read_urdf
+    from server.web.storage.upload_folder import UploadFolder
 
     robot = read_urdf(open_archive(hand_zip(extra), None, DEFAULT), DEFAULT,
-                      lambda glb: library.store(glb, DEFAULT)["name"])
-    return library.store_robot(robot, DEFAULT)["name"]
+                      lambda glb: UploadFolder(library).store(glb, DEFAULT)["name"])
+    return UploadFolder(library).store_robot(robot, DEFAULT)["name"]
 
 
 # --- an MJCF hand: includes, default classes, degrees, meshdir, a tendon and an equality ---

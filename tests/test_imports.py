@@ -1,6 +1,7 @@
 """The server and the Python client import one way: no circle, counting every import
 (inside functions and under ``TYPE_CHECKING`` too); the core's layers import only the
-layers below them, and the core does no I/O."""
+layers below them, and the core does no network or event-loop I/O and writes no file (it
+reads its own: meshes, the schema, recordings)."""
 
 from __future__ import annotations
 
@@ -120,6 +121,51 @@ def test_the_core_does_no_io():
                 [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else []
             bad = [n for n in names if any(n == io or n.startswith(f"{io}.") for io in NO_IO)]
             assert bad == [], f"{path.relative_to(ROOT)} imports {bad}"
+
+
+# what writes, moves or deletes a file (the uploads, the scenes' files and recordings are
+# kept by server/web/storage and server/web/recording, which hand the core open streams):
+# Path's methods, and os's and shutil's functions
+PATH_WRITES = {"write_bytes", "write_text", "unlink", "rename", "mkdir", "rmdir", "touch"}
+MODULE_WRITES = {"os": {"remove", "replace", "rename", "unlink", "mkdir", "makedirs", "rmdir",
+                        "utime", "truncate"}, "shutil": {"copy", "copyfile", "copytree", "move",
+                                                         "rmtree"}}
+
+
+def file_writes(source: str) -> list[str]:
+    """The calls in ``source`` that change files: ``x.write_bytes(…)``, ``os.replace(…)``,
+    ``x.replace(y)`` (a ``Path``'s: ``str.replace`` takes two), ``open(…, "w")``…"""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        if not isinstance(node, ast.Call):
+            continue
+        function = node.func
+        if isinstance(function, ast.Attribute):
+            owner = function.value.id if isinstance(function.value, ast.Name) else None
+            if function.attr in MODULE_WRITES.get(owner or "", ()) or owner not in MODULE_WRITES \
+                    and (function.attr in PATH_WRITES
+                         or function.attr == "replace" and len(node.args) == 1):
+                found.append(ast.unparse(node))
+        elif isinstance(function, ast.Name) and function.id == "open":
+            modes = node.args[1:2] + [k.value for k in node.keywords if k.arg == "mode"]
+            if any(isinstance(m, ast.Constant) and set(str(m.value)) & set("wax+") for m in modes):
+                found.append(ast.unparse(node))
+    return found
+
+
+def test_the_core_writes_no_file():
+    writes = {str(path.relative_to(ROOT)): file_writes(path.read_text())
+              for path in (ROOT / "server" / "core").rglob("*.py")}
+    assert {path: calls for path, calls in writes.items() if calls} == {}
+
+
+def test_file_writes_are_found():
+    assert file_writes("p.write_bytes(b'x')\nos.replace(a, b)\nopen(p, 'wb')\n"
+                       "q.unlink(missing_ok=True)\nopen(p, mode='a')") == [
+        "p.write_bytes(b'x')", "os.replace(a, b)", "open(p, 'wb')", "q.unlink(missing_ok=True)",
+        "open(p, mode='a')"]
+    assert file_writes("s.replace('a', 'b')\nopen(p, 'rb')\nopen(p)\nx.write(b)\n"
+                       "items.remove(x)\nos.getpid()") == []
 
 
 def test_the_python_client_has_no_import_circle():

@@ -6,27 +6,24 @@ prefixes, what is left must be a plain file name (letters, digits, ``_-.``, endi
 ``.glb`` or ``.gltf``) of a bundled or uploaded file. Anything else (other folders, ``..``,
 absolute paths, URLs, percent-encoding, backslashes) is refused before any file is opened.
 
-The mesh of a file is read once per process (trimesh). :meth:`AssetLibrary.store` takes
-an upload: it must be a self-contained glTF (GLB, or JSON with its buffers as ``data:``
-URIs) whose mesh trimesh reads, within the size limits; it is kept under the hash of its
-bytes (``<sha256>.glb``), so the same file uploaded twice is one file with one name.
+The mesh of a file is read once per process (trimesh). An upload must be a self-contained
+glTF (GLB, or JSON with its buffers as ``data:`` URIs) whose mesh trimesh reads, within
+the size limits (:func:`checked_mesh`); the server keeps it under the hash of its bytes
+(:mod:`server.web.storage.upload_folder`: the core reads files, it writes none).
 """
 
 from __future__ import annotations
 
-import hashlib
 import io
-import os
 import re
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import Any, Collection
+from typing import Any, Protocol
 
 import numpy as np
 
-from ..kit.errors import (BadAsset, Forbidden, InternalError, LimitExceeded, TooLarge,
-                      UnknownAsset)
+from ..kit.errors import BadAsset, Forbidden, UnknownAsset
 from ..kit.limits import DEFAULT, MAX_SIZE, Limits
 from . import gltf_file
 from .robot_description import RobotDescription
@@ -45,6 +42,16 @@ class MeshFile:
     url: str
     vertices: np.ndarray   # (n, 3) float
     triangles: np.ndarray  # (m, 3) vertex indices, counter-clockwise seen from outside
+
+
+class Uploads(Protocol):
+    """Where uploaded files are kept (the core writes none itself)."""
+
+    def store(self, data: bytes, limits: Limits) -> dict[str, Any]:
+        """Keep a checked glTF mesh: its ``name`` (and URL, size, triangles)."""
+
+    def store_robot(self, description: RobotDescription, limits: Limits) -> dict[str, Any]:
+        """Keep a robot read from a file: its ``name`` (and URL, size)."""
 
 
 class AssetLibrary:
@@ -67,58 +74,6 @@ class AssetLibrary:
         raise UnknownAsset(f"no mesh file {name!r}: bundled files are "
                            f"{', '.join(self.bundled_names())}; others must be uploaded "
                            f"first (POST /api/assets)", filename=filename)
-
-    def store(self, data: bytes, limits: Limits) -> dict[str, Any]:
-        """Keep an uploaded glTF file; its name, URL, size and triangle count."""
-        if self.uploads is None:
-            raise Forbidden("this server takes no uploads")
-        if len(data) > limits.asset_bytes:
-            raise TooLarge(f"the file has {len(data)} bytes; at most {limits.asset_bytes} "
-                           f"are taken", limit="assetBytes", value=limits.asset_bytes)
-        kind, faces, _ = _checked_mesh(data, limits)
-        return {**self._keep(data, kind, limits), "triangles": len(faces)}
-
-    def store_robot(self, description: RobotDescription, limits: Limits) -> dict[str, Any]:
-        """Keep a robot read from a file (its links' meshes kept already); its name, URL
-        and size."""
-        return self._keep(description.to_json(), "robot", limits)
-
-    def _keep(self, data: bytes, kind: str, limits: Limits) -> dict[str, Any]:
-        """Keep checked bytes under their hash, once."""
-        if self.uploads is None:
-            raise Forbidden("this server takes no uploads")
-        name = f"{hashlib.sha256(data).hexdigest()[:32]}.{kind}"
-        path = self.uploads / name
-        if path.is_file():
-            os.utime(path)  # uploaded again: as new (see collect)
-        else:
-            if len(self.uploaded_names()) >= limits.assets:
-                raise LimitExceeded(f"the server keeps at most {limits.assets} uploaded files",
-                                    limit="assets", value=limits.assets)
-            partial = path.with_name(f".{name}.{os.getpid()}.part")
-            try:
-                partial.write_bytes(data)
-                os.replace(partial, path)  # never a half-written file under the name
-            except OSError as error:
-                partial.unlink(missing_ok=True)
-                raise InternalError(f"the upload folder cannot be written ({error.strerror}); "
-                                    f"nothing was kept") from None
-        return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data)}
-
-    def collect(self, in_use: Collection[str], before: float) -> list[str]:
-        """Remove the uploaded files not ``in_use`` last uploaded before ``before`` (a
-        ``time.time()``), to make room for new ones; their names. Recent ones stay: a
-        script may have uploaded a file it has not used yet."""
-        removed = []
-        for name in self.uploaded_names():
-            path = self.uploads / name  # type: ignore[operator]
-            try:
-                if name not in in_use and path.stat().st_mtime < before:
-                    path.unlink()
-                    removed.append(name)
-            except FileNotFoundError:
-                pass
-        return removed
 
     def uploaded_names(self) -> list[str]:
         """Names of the files uploaded so far."""
@@ -177,7 +132,7 @@ def plain_name(filename: str) -> str:
     return name
 
 
-def _checked_mesh(data: bytes, limits: Limits) -> tuple[str, np.ndarray, np.ndarray]:
+def checked_mesh(data: bytes, limits: Limits) -> tuple[str, np.ndarray, np.ndarray]:
     """The kind (``glb``/``gltf``), triangles and vertices of a self-contained glTF file's
     mesh, judged from its layout before anything is loaded (:mod:`server.core.physics.gltf_file`),
     then read once; or :class:`BadAsset` / :class:`LimitExceeded`."""
@@ -211,5 +166,5 @@ def _read_robot(path: str, version: int) -> RobotDescription:
 @lru_cache(maxsize=64)
 def _read_mesh(path: str, url: str, version: int, limits: Limits) -> MeshFile:
     data = Path(path).read_bytes()  # checked again: a file may have been put there by hand
-    _, faces, vertices = _checked_mesh(data, limits)
+    _, faces, vertices = checked_mesh(data, limits)
     return MeshFile(url, vertices, faces)

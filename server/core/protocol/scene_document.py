@@ -274,6 +274,8 @@ def _store_assets(scene: Scene, assets: list[dict[str, Any]]) -> None:
                 decoded = base64.b64decode(data, validate=True)
             except ValueError:
                 raise BadMessage(f"asset {name}: its data is not base64") from None
+            if _here(scene, name) == decoded:
+                continue  # (the same file: nothing to keep)
             stored = _store(scene, name, decoded)
             if stored["name"] != name:
                 raise BadMessage(f"asset {name}: its data has another content hash "
@@ -285,11 +287,22 @@ def _store_assets(scene: Scene, assets: list[dict[str, Any]]) -> None:
                                    f"(another content hash)", filename=name)
 
 
+def _here(scene: Scene, name: str) -> bytes | None:
+    """The bytes of the file ``name`` on this server, if it has one by that name."""
+    try:
+        return scene.assets.locate(name)[0].read_bytes()
+    except (UnknownAsset, Forbidden):  # (a name no file may have: refused when kept)
+        return None
+
+
 def _store(scene: Scene, name: str, data: bytes) -> dict[str, Any]:
     """Keep a document's file: a mesh as an upload is kept, a robot file once it reads."""
+    if scene.uploads is None:
+        raise Forbidden(f"asset {name} is not on this server, and scene {scene.name} keeps "
+                        f"no uploaded files")
     if name.endswith(".robot"):
-        return scene.assets.store_robot(RobotDescription.from_json(data), scene.limits)
-    return scene.assets.store(data, scene.limits)
+        return scene.uploads.store_robot(RobotDescription.from_json(data), scene.limits)
+    return scene.uploads.store(data, scene.limits)
 
 
 def _make(scene: Scene, entry: dict[str, Any]) -> None:

@@ -26,7 +26,7 @@ from typing import IO, Any, Iterator
 from mcap.reader import make_reader
 
 from ..kit.limits import Limits
-from ..physics.assets import AssetLibrary
+from ..physics.assets import AssetLibrary, Uploads
 from ..protocol.messages import encode
 from ..protocol.scene_document import import_scene
 from ..protocol.session import Session
@@ -87,9 +87,11 @@ def resimulate(stream: IO[bytes], scene: Scene, tolerance: float = 0.0) -> dict[
     return report
 
 
-def resimulate_file(path: str, limits: Limits, assets: AssetLibrary, tolerance: float) -> dict[str, Any]:
-    """:func:`resimulate` of the recording at ``path`` in a scene made for it (and closed)."""
-    scene = Scene("resimulation", limits, assets)
+def resimulate_file(path: str, limits: Limits, assets: AssetLibrary, tolerance: float,
+                    uploads: Uploads | None = None) -> dict[str, Any]:
+    """:func:`resimulate` of the recording at ``path`` in a scene made for it (and closed;
+    files its document brings that are not here are kept in ``uploads``)."""
+    scene = Scene("resimulation", limits, assets, uploads)
     try:
         with open(path, "rb") as stream, reading(path):
             return resimulate(stream, scene, tolerance)

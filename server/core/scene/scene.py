@@ -21,7 +21,7 @@ from ..model.motor import Motor
 from ..model.node import Node
 from ..model.readings import Reading
 from ..model.watches import Watches
-from ..physics.assets import AssetLibrary
+from ..physics.assets import AssetLibrary, Uploads
 from ..physics.dynamics import Physics
 from . import frames
 from .bodies import SceneBodies
@@ -55,13 +55,14 @@ class Scene:
     """
 
     def __init__(self, name: str = "default", limits: Limits = DEFAULT,
-                 assets: AssetLibrary | None = None) -> None:
+                 assets: AssetLibrary | None = None, uploads: Uploads | None = None) -> None:
         self.name = name
         self.limits = limits
         self.journal = Journal()
         self.registry = Registry(name, limits, self.journal)
         self.nodes = self.registry.nodes
         self.assets = assets or AssetLibrary()
+        self.uploads = uploads  # where a document's files not here are kept (None: refused)
         self.recorder: RecordingControl | None = None  # set by the process serving it
         self.bodies = SceneBodies(self.nodes, limits, self.assets, name)
         self.feed = ChangeFeed()

@@ -3,7 +3,7 @@
 Uploads are checked (size, layout, what they expand to, indices, then read) in the checking
 process (:mod:`server.web.scenes.offload`), so no file holds the event loop or its memory, and
 kept under the hash of their bytes
-(:meth:`server.core.physics.assets.AssetLibrary.store`). Scenes read them by that name:
+(:meth:`server.web.storage.upload_folder.UploadFolder.store`). Scenes read them by that name:
 ``GLTFPart('<hash>.glb')``. When the folder holds as many files as the ``assets`` limit
 allows, an upload first removes those that no scene (running or saved) is made of and
 that were not uploaded in the last hour; the folder is the server's own.
@@ -21,6 +21,7 @@ from fastapi.responses import FileResponse, JSONResponse
 
 from ...core.physics.assets import AssetLibrary, plain_name
 from ...core.kit.errors import LimitExceeded, UnknownAsset
+from ..storage.upload_folder import UploadFolder
 from .access import changing_allowed
 from .rest_base import NOT_FOUND, ErrorBody, read_body
 
@@ -51,20 +52,21 @@ async def upload(request: Request) -> JSONResponse:
     give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene. With a server token,
     ``Authorization: Bearer <token>`` is needed."""
     changing_allowed(request)
-    hubs, library = request.app.state.hubs, _library(request)
+    hubs, uploads = request.app.state.hubs, UploadFolder(_library(request))
     data = await read_body(request, hubs.limits.asset_bytes, "assetBytes", "the file")
     try:
-        stored = await hubs.offload.run(library.store, data, hubs.limits)
+        stored = await hubs.offload.run(uploads.store, data, hubs.limits)
     except LimitExceeded as full:
         if full.details.get("limit") != "assets":
             raise
         in_use = await hubs.uploads_in_use()
-        removed = await asyncio.to_thread(library.collect, in_use, time.time() - KEEP_SECONDS)
+        removed = await asyncio.to_thread(uploads.collect, in_use,
+                                          time.time() - KEEP_SECONDS)
         if not removed:
             raise LimitExceeded(f"{full.message}, each used by a scene or uploaded in the "
                                 f"last {KEEP_SECONDS // 60} minutes", **full.details) from None
         log.info("%d uploaded files no scene used were removed to make room", len(removed))
-        stored = await hubs.offload.run(library.store, data, hubs.limits)
+        stored = await hubs.offload.run(uploads.store, data, hubs.limits)
     return JSONResponse(stored, status_code=201)
 
 

@@ -46,6 +46,7 @@ from .messages import (Admit, Answers, Ask, Command, ConnectionId, Event, Frame,
 from .saving import SceneSaver
 from .scene_metrics import SceneMetrics
 from ..storage.scene_store import SceneStore
+from ..storage.upload_folder import UploadFolder
 
 log = logging.getLogger(__name__)
 Animator = Callable[[Scene, float], None]
@@ -66,7 +67,7 @@ def serve(pipe: Pipe, name: str, limits: Limits, tick_rate: float, assets: Asset
     if nice:
         os.nice(nice)
     logging.basicConfig(level=log_level)
-    scene = Scene(name, limits, assets)
+    scene = Scene(name, limits, assets, UploadFolder(assets))
     worker = SceneWorker(pipe, scene, tick_rate, store, recordings)
     worker.prepare(setup)
     worker.ready()

@@ -28,6 +28,7 @@ import trimesh
 from server.core.physics.assets import AssetLibrary
 from server.core.kit.limits import DEFAULT
 from server.core.kit.errors import VPError
+from server.web.storage.upload_folder import UploadFolder
 
 ODD = [-1, 0, 1, 2, 3, 7, 255, 65535, 2 ** 31, 2 ** 32 - 1, 2 ** 40, 2 ** 63, 1e300, -0.0,
        float("nan"), "x", "", None, True, [], {}, [0], [0, 0], {"a": 1}, 5120, 5121, 5123,
@@ -142,7 +143,7 @@ def fuzz(cases: int, seed: int = 0) -> dict[str, Any]:
     for number in range(cases):
         data = case(rng, starts)
         try:
-            name = library.store(data, DEFAULT)["name"]
+            name = UploadFolder(library).store(data, DEFAULT)["name"]
             library.mesh(name)  # as a part reads it in a scene's process
             outcome["taken"] += 1
         except VPError:

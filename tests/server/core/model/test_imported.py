@@ -17,6 +17,7 @@ from server.core.physics.robot_archive import open_archive
 from server.core.physics.urdf_reading import read_urdf
 from server.core.scene.scene import Scene
 from server.core.kit.errors import BadAsset, UnknownAsset
+from server.web.storage.upload_folder import UploadFolder
 from tests import hand_files
 from tests.hand_files import hand_zip
 
@@ -29,8 +30,8 @@ def library(tmp_path):
 @pytest.fixture
 def hand_file(library):
     robot = read_urdf(open_archive(hand_zip(), None, DEFAULT), DEFAULT,
-                      lambda glb: library.store(glb, DEFAULT)["name"])
-    return library.store_robot(robot, DEFAULT)["name"]
+                      lambda glb: UploadFolder(library).store(glb, DEFAULT)["name"])
+    return UploadFolder(library).store_robot(robot, DEFAULT)["name"]
 
 
 @pytest.fixture
@@ -105,8 +106,8 @@ def test_an_mjcf_hands_bodies_sit_where_mujoco_puts_them(lab, library):
         return tuple(-c for c in rotate(turn, (px, py, pz))), turn
     from server.core.physics.mjcf_reading import read_mjcf
     from tests.server.core.physics.test_mjcf_reading import compiled
-    robot_file = library.store_robot(read_mjcf(open_archive(hand_files.mjcf_zip(), None, DEFAULT), DEFAULT,
-                                               lambda glb: library.store(glb, DEFAULT)["name"]), DEFAULT)["name"]
+    robot_file = UploadFolder(library).store_robot(read_mjcf(open_archive(hand_files.mjcf_zip(), None, DEFAULT), DEFAULT,
+                                               lambda glb: UploadFolder(library).store(glb, DEFAULT)["name"]), DEFAULT)["name"]
     robot = ImportedRobot(lab, "c1.1", robot_file)
     by_name = {m.name: m for m in robot.get_motors()}
     for name, angle in {"thumb_knuckle": 0.4, "thumb_middle_joint": 0.6, "index_middle_joint": 0.9,

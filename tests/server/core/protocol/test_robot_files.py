@@ -20,6 +20,7 @@ from server.core.model.robot import Robot
 from server.core.physics.assets import BUNDLED_DIR
 from server.core.protocol.robot_files import file_names, robot_glb, robot_mjcf, robot_urdf
 from server.core.kit.errors import UnknownObject
+from server.web.storage.upload_folder import UploadFolder
 
 HANDS = [EdgedHand, RoundHand, AnthroHand]
 
@@ -205,8 +206,8 @@ def _reimported(scene, robot, library, form):
     from server.core.physics.urdf_reading import read_urdf
     read, export = (read_urdf, robot_urdf) if form == "urdf" else (read_mjcf, robot_mjcf)
     description = read(open_archive(export(scene, robot.id), None, DEFAULT), DEFAULT,
-                       lambda glb: library.store(glb, DEFAULT)["name"])
-    again = ImportedRobot(scene, "again", library.store_robot(description, DEFAULT)["name"])
+                       lambda glb: UploadFolder(library).store(glb, DEFAULT)["name"])
+    again = ImportedRobot(scene, "again", UploadFolder(library).store_robot(description, DEFAULT)["name"])
     again.set_position(robot.position)
     again.set_quaternion(robot.quaternion)
     names = file_names(robot)

@@ -18,7 +18,8 @@ from server.core.protocol.messages import schema
 from server.core.protocol.operations import Operations
 from server.core.scene.scene import Scene
 from server.core.protocol.scene_document import encode_document, export_scene, import_scene
-from server.core.kit.errors import BadMessage, DuplicateId, UnknownAsset, VPError
+from server.core.kit.errors import BadMessage, DuplicateId, Forbidden, UnknownAsset, VPError
+from server.web.storage.upload_folder import UploadFolder
 from tests.hand_files import stored_hand
 
 
@@ -37,14 +38,15 @@ def library(tmp_path):
 
 
 def new_scene(name, library):
-    return Scene(name, assets=library)
+    """A scene as a server's process makes it: what documents bring is kept with its uploads."""
+    return Scene(name, assets=library, uploads=UploadFolder(library))
 
 
 @pytest.fixture
 def busy(library):
     """A scene with every creatable type, changed after it was made in every saved way."""
     scene = new_scene("lab", library)
-    upload = library.store(cube_glb(), scene.limits)["name"]
+    upload = UploadFolder(library).store(cube_glb(), scene.limits)["name"]
     ops = Operations(scene, "c1")
     for object_id, type_name, args in [
             ("c1.1", "RoundHand", [False]), ("c1.2", "AnthroHand", []), ("c1.3", "EdgedHand", [False]),
@@ -161,6 +163,10 @@ def test_an_upload_travels_inside_the_document(busy, tmp_path):
     with pytest.raises(UnknownAsset), without.journal.transaction():
         import_scene(without, export_scene(busy, embed_assets=False))
     assert not without.nodes
+    keeps_nothing = Scene("keeps-nothing", assets=AssetLibrary(uploads=tmp_path / "none"))
+    with pytest.raises(Forbidden), keeps_nothing.journal.transaction():
+        import_scene(keeps_nothing, export_scene(busy))
+    assert not keeps_nothing.nodes and not list((tmp_path / "none").iterdir())
 
 
 def test_slot_numbers_and_ids_go_on_where_they_were(busy, library):
