@@ -22,7 +22,7 @@ def locked():
 
 
 def test_pages_with_the_token_build_and_watch(browser, pages, locked):
-    open_page(browser, pages, f"{locked.http}/examples/edged-hand.html?scene=locked&token={CONTROL}")
+    open_page(browser, pages, f"{locked.http}/examples/two-hands.html?scene=locked&token={CONTROL}")
     deadline = time.monotonic() + WAIT_SECONDS
     while len(locked.robots("locked")) < 2:
         assert time.monotonic() < deadline, "the page's hands never reached the server"

@@ -67,18 +67,20 @@ def _seen_by_a_viewer(browser, pages, server, scene: str) -> None:
 
 @pytest.mark.parametrize("example, robots, moving", [
     ("simple-robot-2", 1, False), ("simple-robot-3", 1, True), ("simple-robot-4", 1, True),
-    ("edged-hand", 2, True), ("round-hand", 2, True), ("anthro-hand", 2, True)])
+    ("two-hands", 2, True), ("two-hands?hand=RoundHand", 2, True),
+    ("two-hands?hand=AnthroHand", 2, True)])
 def test_an_example_page_builds_its_robot_on_the_server(browser, pages, server, scene_name,
                                                         example, robots, moving):
-    open_page(browser, pages, f"{server.http}/examples/{example}.html?scene={scene_name}")
+    page, _, query = example.partition("?")
+    open_page(browser, pages, f"{server.http}/examples/{page}.html?scene={scene_name}&{query}")
     _wait_for_robots(server, scene_name, robots)
     assert _moves(server, scene_name, moving) == moving
-    if example.endswith("hand"):
+    if page == "two-hands":
         hands = sorted(server.robots(scene_name), key=lambda n: n["position"][0])
         assert [n["position"][0] for n in hands] == [-2, 2]
-        # chained as 1.0 pages chain them, the right one's z left out (round-hand)
+        # chained as 1.0 pages chain them, the right one's z left out
         assert [round(_yaw(n["quaternion"]), 6) for n in hands] == [0.3, -0.3]
-        assert {n["type"] for n in hands} == {example.split("-")[0].capitalize() + "Hand"}
+        assert {n["type"] for n in hands} == {query.partition("=")[2] or "EdgedHand"}
         _seen_by_a_viewer(browser, pages, server, scene_name)
 
 

@@ -1,5 +1,6 @@
 """The JavaScript client in Node: its own tests (node:test, against the real server), and
-the manual's Steps 2-5 run unchanged but for the import and connect()."""
+the example pages (the manual's Steps 2-5 among them) run in Node unchanged but for the
+import line."""
 
 from __future__ import annotations
 
@@ -25,14 +26,15 @@ def test_the_javascript_client_tests_pass(server):
 
 
 def _angles(server, scene: str) -> list[float]:
-    return [n["angle"] for n in server.nodes(scene) if n["type"] == "MotorZ"]
+    return [n["angle"] for n in server.nodes(scene) if n["type"].startswith("Motor")]
 
 
-@pytest.mark.parametrize("step, robots, moving", [(2, 1, False), (3, 1, True), (4, 1, True),
-                                                  (5, 3, True)])
-def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
-    env = {**os.environ, "VP_URL": server.ws, "VP_SCENE": scene_name}
-    node = subprocess.Popen(["node", f"examples/step{step}.mjs"], cwd=CLIENT, env=env,
+@pytest.mark.parametrize("page, robots, moving", [
+    ("simple-robot-2", 1, False), ("simple-robot-3", 1, True), ("simple-robot-4", 1, True),
+    ("digger", 3, True), ("two-hands?hand=AnthroHand", 2, True)])
+def test_the_example_pages_run_in_node(server, scene_name, page, robots, moving):
+    env = {**os.environ, "VP_URL": server.ws}
+    node = subprocess.Popen(["node", "examples/page.mjs", page, scene_name], cwd=CLIENT, env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + WAIT_SECONDS
@@ -57,3 +59,12 @@ def test_the_manual_steps_run_in_node(server, scene_name, step, robots, moving):
     while server.robots(scene_name) and time.monotonic() < deadline:
         time.sleep(0.1)
     assert server.robots(scene_name) == []
+
+
+def test_a_page_that_is_not_there_is_named():
+    result = subprocess.run(["node", "examples/page.mjs", "no-such-page"], cwd=CLIENT,
+                            capture_output=True, text=True, timeout=WAIT_SECONDS)
+    assert result.returncode != 0 and "no-such-page.html" in result.stderr
+    result = subprocess.run(["node", "examples/page.mjs", "../../etc/passwd"], cwd=CLIENT,
+                            capture_output=True, text=True, timeout=WAIT_SECONDS)
+    assert result.returncode == 2 and "usage" in result.stderr
