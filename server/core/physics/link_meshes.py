@@ -104,6 +104,11 @@ class ArchiveResolver:
         reference = posixpath.relpath(posixpath.join(self.folder, name), self.archive.folder or ".")
         return self.archive.resolve(reference)[1]
 
+    def __getitem__(self, name: str) -> bytes:
+        # how trimesh's OBJ reader asks for a material file (without it an OBJ's colours
+        # were silently dropped: its Resolver base class maps this to get())
+        return self.get(name)
+
     def namespaced(self, namespace: str) -> ArchiveResolver:
         return ArchiveResolver(self.archive, posixpath.join(self.folder, namespace))
 
@@ -161,7 +166,7 @@ def _colours(mesh: Any, rgba: Sequence[float] | None) -> np.ndarray:
     count = len(mesh.vertices)
     if rgba is None:
         try:
-            own = mesh.visual.to_color().vertex_colors  # a material's colour, a texture's mean
+            own = _own_colours(mesh)
             if len(own) == count:
                 return np.asarray(own, dtype=np.uint8)
         except Exception:  # a mesh without usable colours: the default below
@@ -169,6 +174,19 @@ def _colours(mesh: Any, rgba: Sequence[float] | None) -> np.ndarray:
         rgba = DEFAULT_RGBA
     return np.tile(np.round(np.clip(np.asarray(rgba, dtype=float), 0, 1) * 255).astype(np.uint8),
                    (count, 1))
+
+
+def _own_colours(mesh: Any) -> np.ndarray:
+    """A mesh's colours by vertex: a material's colour, a texture's mean, the file's own."""
+    visual = mesh.visual
+    material = getattr(visual, "material", None)
+    if material is not None and getattr(visual, "uv", None) is None:
+        # a material without texture coordinates (an OBJ's Kd alone): trimesh's to_color()
+        # then paints it grey, not in the material's colour
+        return np.tile(np.asarray(material.main_color, dtype=np.uint8), (len(mesh.vertices), 1))
+    colours = visual.to_color()
+    colours.mesh = mesh  # (made apart from the mesh, it counts no vertices)
+    return colours.vertex_colors
 
 
 def envelope(elements: Sequence[Element]) -> tuple[Vec3, ...] | None:
