@@ -186,36 +186,3 @@ def test_loopback_pages_are_allowed_only_by_a_server_on_loopback(address, allowe
     assert policy.allows_origin("http://127.0.0.1:8080") is allowed
     assert policy.allows_origin("http://localhost:3000") is allowed
     assert not policy.allows_origin("https://evil.example")
-
-
-def answer_headers(server, method: str, path: str, headers: dict) -> tuple[int, dict]:
-    connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=WAIT_SECONDS)
-    try:
-        connection.request(method, path, headers=headers)
-        answer = connection.getresponse()
-        answer.read()
-        return answer.status, {k.lower(): v for k, v in answer.getheaders()}
-    finally:
-        connection.close()
-
-
-def test_rest_answers_pages_of_allowed_origins_with_cors_headers(locked):
-    """A page served from elsewhere reads scenes (and, with the token, may send changes);
-    a page of another site gets no CORS headers, so its browser keeps the answer from it."""
-    for origin in ("http://127.0.0.1:8080", "https://friend.example"):
-        status, headers = answer_headers(locked, "GET", f"/api/scenes?token={VIEW}",
-                                         {"Origin": origin})
-        assert status == 200 and headers["access-control-allow-origin"] == origin
-        assert "Origin" in headers["vary"]
-        status, headers = answer_headers(locked, "OPTIONS", "/api/scenes/a/import", {
-            "Origin": origin, "Access-Control-Request-Method": "POST",
-            "Access-Control-Request-Headers": "authorization, content-type"})
-        assert status == 200 and headers["access-control-allow-origin"] == origin
-        assert "authorization" in headers["access-control-allow-headers"].lower()
-    status, headers = answer_headers(locked, "GET", f"/api/scenes?token={VIEW}",
-                                     {"Origin": "https://evil.example"})
-    assert "access-control-allow-origin" not in headers
-    status, headers = answer_headers(locked, "OPTIONS", "/api/scenes/a/import", {
-        "Origin": "https://evil.example", "Access-Control-Request-Method": "POST"})
-    assert status == 400 and "access-control-allow-origin" not in headers
-
