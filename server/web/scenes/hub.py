@@ -27,7 +27,8 @@ from .offload import Offload
 from .runner import PREDECESSOR_SECONDS, Runner, RunnerFactory, SceneRunner
 from .scene_hub import SceneHub
 from ..recording.recordings import Recordings
-from ..storage.state_dir import SCENE_NAME, SceneStore, StateDir
+from ..storage.scene_store import SceneStore
+from ..storage.state_dir import SCENE_NAME, StateDir
 from ..process.messages import Read
 from ..process.worker import SERVER_OWNER, SceneSetup
 

@@ -24,7 +24,7 @@ from ...core.physics.assets import AssetLibrary
 from ...core.kit.errors import UnknownScene, VPError
 from ..process import worker
 from ..process.messages import Ask, Command, Ended, Event, Question, Reply, Stop
-from ..storage.state_dir import SceneStore
+from ..storage.scene_store import SceneStore
 
 log = logging.getLogger(__name__)
 Deliver = Callable[[list[Event]], None]

@@ -37,8 +37,6 @@ SCENE_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}")
 SCENE_FILES = (".json", ".journal")
 _SECRET = re.compile(r"[0-9a-f]{64}")
 
-__all__ = ["CLIENT_BLOCK", "SCENE_NAME", "SceneStore", "StateDir", "write_atomically"]
-
 
 class StateDir:
     """The folder: the scenes saved in it, its upload folder, the server's lasting key, and
