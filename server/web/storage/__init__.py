@@ -1,4 +1,4 @@
-"""What a server keeps on disk: the state folder's layout and one scene's document and
-journal.
+"""What a server keeps on disk: the state folder's layout, one scene's document and
+journal, and the upload folder (meshes and robot files kept under their hash).
 
 May import the core only."""

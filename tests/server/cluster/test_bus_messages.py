@@ -11,6 +11,7 @@ from server.cluster.bus import Bus, ReturnAddress
 from server.cluster.bus_messages import (Addressed, Attach, Attached, Elsewhere, Full, Load,
                                          NoRoom, SceneCommands, SceneEvents)
 from server.web.process.messages import Event
+from tests.conftest import WAIT_SECONDS
 from tests.server.web.process.test_messages import SAMPLES, message_classes, same
 
 LOAD = Load("w1", 2, None, 812.5)
@@ -42,7 +43,8 @@ def test_every_message_comes_back_whole_over_the_bus(bus_url):
                 assert reply is not None
                 await reply.send(value)
             await bus.subscribe("vp.test.echo", echo)
-            return [await bus.request("vp.test.echo", sample, 5.0) for sample in BUS_SAMPLES]
+            return [await bus.request("vp.test.echo", sample, WAIT_SECONDS)
+                    for sample in BUS_SAMPLES]
         finally:
             await bus.close()
     back = asyncio.run(round_trips())

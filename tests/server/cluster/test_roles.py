@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import time
 
 from server.cluster.bus import PLACE, Bus
 from server.cluster.roles import ClusterMember, WorkerSettings, plain_name
 from server.core.kit.limits import DEFAULT
 from server.core.physics.assets import AssetLibrary
+from tests.conftest import WAIT_SECONDS
 
 
 def test_a_name_is_made_fit_for_a_bus_subject():
@@ -23,6 +25,16 @@ def worker(bus_url: str, name: str, lease_seconds: float) -> ClusterMember:
     return ClusterMember(bus_url, "worker", settings, lease_seconds)
 
 
+async def answering(bus: Bus, wanted: list[str]) -> list[str]:
+    """The workers answering placements, asked until they are ``wanted`` (a loaded machine
+    answers late) or WAIT_SECONDS passed."""
+    deadline = time.monotonic() + WAIT_SECONDS
+    while True:
+        found = sorted(load.worker for load in await bus.gather(PLACE, None, 0.2))
+        if found == wanted or time.monotonic() > deadline:
+            return found
+
+
 def test_a_worker_answers_on_the_bus_until_it_stops(bus_url, caplog):
     async def run() -> tuple[list[str], list[str], list[str]]:
         asking = await Bus.connect(bus_url, "test", 3.0)  # the first: leases last 3 s
@@ -30,10 +42,9 @@ def test_a_worker_answers_on_the_bus_until_it_stops(bus_url, caplog):
             first, second = worker(bus_url, "w-one", 3.0), worker(bus_url, "w-two", 10.0)
             await first.start(None)
             await second.start(None)
-            running = sorted(load.worker for load in await asking.gather(PLACE, None, 0.3))
+            running = await answering(asking, ["w-one", "w-two"])
             unsaved = await first.stop() + await second.stop()
-            left = sorted(load.worker for load in await asking.gather(PLACE, None, 0.3))
-            return running, left, unsaved
+            return running, await answering(asking, []), unsaved
         finally:
             await asking.close()
     with caplog.at_level(logging.WARNING, logger="server.cluster.roles"):
