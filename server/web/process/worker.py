@@ -222,7 +222,7 @@ class SceneWorker:
                 case _:
                     raise TypeError(f"not a command of a scene's process: {command!r}")
         except Exception:  # a bug in one command must not stop the scene
-            log.exception("command %r of scene %s failed", command, self.scene.name)
+            log.exception("command %s of scene %s failed", type(command).__name__, self.scene.name)
 
     def _join(self, join: Join) -> None:
         client_id = join.client_id
@@ -294,7 +294,9 @@ class SceneWorker:
         except VPError as error:
             return Reply(number, False, error)
         except Exception:
-            log.exception("question %r to scene %s failed", question, self.scene.name)
+            asked = question.function.__name__ if isinstance(question, Read) else \
+                type(question).__name__
+            log.exception("question %s to scene %s failed", asked, self.scene.name)
             return Reply(number, False, InternalError("internal server error"))
 
     def _answer(self, question: Question) -> Any:

@@ -22,14 +22,19 @@ from server.core.protocol.robot_files import file_names, robot_urdf
 HANDS = [EdgedHand, RoundHand, AnthroHand]
 
 
-def _posed(scene, kind):
-    """A hand turned and moved off the origin, every motor at a random angle in its range."""
-    hand = kind(scene, "h", True)
-    hand.set_position((1, 2, 3))
-    hand.set_rotation(0.3, -0.5, 1.1)
-    draw = random.Random(7)
-    for motor in hand.get_motors():
+def posed(robot, position=(1, 2, 3), seed=7):
+    """A robot turned and moved off the origin, every motor at a random angle in its range."""
+    robot.set_position(position)
+    robot.set_rotation(0.3, -0.5, 1.1)
+    draw = random.Random(seed)
+    for motor in robot.get_motors():
         motor.set_angle(draw.uniform(max(motor.min, -1.2), min(motor.max, 1.2)))
+    return robot
+
+
+def _posed(scene, kind):
+    """A hand of ``kind``, posed, its parts placed."""
+    hand = posed(kind(scene, "h", True))
     scene.tick(1 / 60)
     return hand
 

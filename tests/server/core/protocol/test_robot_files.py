@@ -2,7 +2,6 @@
 own URDF or MJCF is the same robot, and a 1.0 hand exports at a human hand's size."""
 
 import io
-import random
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -15,7 +14,7 @@ from server.core.model.parts import Ball
 from server.core.protocol.robot_files import file_names, robot_glb, robot_mjcf, robot_urdf
 from server.core.kit.errors import UnknownObject
 from server.web.storage.upload_folder import UploadFolder
-from tests.server.core.physics.test_urdf_file import HANDS, _unzipped
+from tests.server.core.physics.test_urdf_file import HANDS, _unzipped, posed
 
 
 def test_an_unknown_robot_is_refused_by_name(scene):
@@ -60,11 +59,7 @@ def test_a_robot_made_again_from_its_urdf_or_mjcf_is_the_same_robot(kind, form, 
         robot = ImportedRobot(scene, "h", stored_hand(library, JAWS if kind == "jaws" else ""))
     else:
         robot = kind(scene, "h", True)
-    robot.set_position((0.1, 0.2, 0.3))
-    robot.set_rotation(0.3, -0.5, 1.1)
-    draw = random.Random(3)
-    for motor in robot.get_motors():
-        motor.set_angle(draw.uniform(max(motor.min, -1.2), min(motor.max, 1.2)))
+    posed(robot, (0.1, 0.2, 0.3), seed=3)
     again, names = _reimported(scene, robot, library, form)
     parts = {p.name: p for p in again.get_parts() if getattr(p, "name", None)}
     for part in robot.get_parts():
