@@ -26,7 +26,7 @@ from ..recording.recordings import Recordings
 from .runner import RunnerFactory, SceneRunner
 from ..storage.scene_store import SceneStore
 from ..process.messages import (Admit, Answers, Ended, Event, Frame, Idle, Join, Leave, Ready,
-                                Recorded, RecordingStarted, Reply, Saving, Text)
+                                Recorded, RecordingStarted, Saving, Text)
 from ..process.worker import SceneSetup
 
 log = logging.getLogger(__name__)
@@ -179,8 +179,9 @@ class SceneHub:
     def _events(self, events: list[Event]) -> None:
         self.heard = time.monotonic()
         for event in events:
-            # asleep from Idle until the next event (figures are answered without waking it)
-            self.asleep = isinstance(event, Idle) or (self.asleep and isinstance(event, Reply))
+            # asleep from Idle until the next event (a question's reply, answered without
+            # waking it, is its runner's: never seen here)
+            self.asleep = isinstance(event, Idle)
             match event:
                 case Frame(items):
                     self.broadcast(items)
