@@ -22,8 +22,8 @@ from ..core.kit.errors import BusUnavailable
 from ..web.scenes.runner import Deliver
 from ..web.storage.scene_store import SceneStore
 from ..web.process.worker import SceneSetup
-from .bus_messages import Attached
 from .bus import LOADS, Bus, OrderedSender, ReturnAddress, Unanswered, alive_subject, gateway_subject
+from .bus_messages import Attached
 from .leases import break_worker, lease_holder
 from .placement import Placement
 from .remote_runner import RemoteRunner

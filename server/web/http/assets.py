@@ -21,7 +21,6 @@ from fastapi.responses import FileResponse, JSONResponse
 
 from ...core.physics.assets import AssetLibrary, plain_name
 from ...core.kit.errors import LimitExceeded, UnknownAsset
-from ..storage.upload_folder import UploadFolder
 from .access import changing_allowed
 from .rest_base import NOT_FOUND, ErrorBody, read_body
 
@@ -52,21 +51,21 @@ async def upload(request: Request) -> JSONResponse:
     give ``name`` to ``GLTFPart`` (or ``RoundFinger``…) in any scene. With a server token,
     ``Authorization: Bearer <token>`` is needed."""
     changing_allowed(request)
-    hubs, uploads = request.app.state.hubs, UploadFolder(_library(request))
+    hubs = request.app.state.hubs
     data = await read_body(request, hubs.limits.asset_bytes, "assetBytes", "the file")
     try:
-        stored = await hubs.offload.run(uploads.store, data, hubs.limits)
+        stored = await hubs.offload.run(hubs.uploads.store, data, hubs.limits)
     except LimitExceeded as full:
         if full.details.get("limit") != "assets":
             raise
         in_use = await hubs.uploads_in_use()
-        removed = await asyncio.to_thread(uploads.collect, in_use,
+        removed = await asyncio.to_thread(hubs.uploads.collect, in_use,
                                           time.time() - KEEP_SECONDS)
         if not removed:
             raise LimitExceeded(f"{full.message}, each used by a scene or uploaded in the "
                                 f"last {KEEP_SECONDS // 60} minutes", **full.details) from None
         log.info("%d uploaded files no scene used were removed to make room", len(removed))
-        stored = await hubs.offload.run(uploads.store, data, hubs.limits)
+        stored = await hubs.offload.run(hubs.uploads.store, data, hubs.limits)
     return JSONResponse(stored, status_code=201)
 
 

@@ -17,7 +17,6 @@ from ...core.recording.resimulate import resimulate_file
 from ...core.kit.errors import OutOfRange
 from .access import changing_allowed
 from ..process.messages import Record, Unrecord
-from ..storage.upload_folder import UploadFolder
 from ..scenes.offload import hang_up_of
 from .rest_base import NOT_FOUND, ErrorBody, hub_of, hubs_of
 
@@ -73,7 +72,7 @@ async def resimulate(request: Request, recording_id: str, tolerance: float = 0.0
     if not 0 <= tolerance <= 1e6:
         raise OutOfRange(f"tolerance must be within [0, 1000000], got {tolerance}", argument="tolerance")
     return await hubs.resimulations.run(resimulate_file, str(path), hubs.limits, hubs.assets,
-                                        tolerance, UploadFolder(hubs.assets),
+                                        tolerance, hubs.uploads,
                                         hung_up=hang_up_of(request))
 
 

@@ -18,7 +18,6 @@ from fastapi.responses import JSONResponse
 from ...core.physics.robot_upload import store_robot_upload
 from ...core.kit.errors import BadArguments
 from ..process.messages import Place
-from ..storage.upload_folder import UploadFolder
 from .access import changing_allowed
 from .rest_base import NOT_FOUND, ErrorBody, hub_of, read_body
 
@@ -39,7 +38,7 @@ async def _stored(request: Request, file: str | None) -> dict[str, Any]:
     changing_allowed(request)
     hubs = request.app.state.hubs
     data = await read_body(request, hubs.limits.robot_bytes, "robotBytes", "the robot")
-    return await hubs.offload.run(store_robot_upload, UploadFolder(hubs.assets), data, file, hubs.limits)
+    return await hubs.offload.run(store_robot_upload, hubs.uploads, data, file, hubs.limits)
 
 
 @router.post("/robots", status_code=201, responses=REFUSED, openapi_extra=BODY,

@@ -28,6 +28,7 @@ from .runner import PREDECESSOR_SECONDS, Runner, RunnerFactory, SceneRunner
 from .scene_hub import SceneHub
 from ..recording.recordings import Recordings
 from ..storage.scene_store import SceneStore
+from ..storage.upload_folder import UploadFolder
 from ..storage.state_dir import SCENE_NAME, StateDir
 from ..process.messages import Read
 from ..process.worker import SERVER_OWNER, SceneSetup
@@ -63,7 +64,8 @@ class Hubs:
                  runners: RunnerFactory = SceneRunner, ids: ClientIdSource | None = None) -> None:
         self.tick_rate = tick_rate
         self.limits = limits
-        self.assets = assets or AssetLibrary()  # uploads land here; every scene reads them
+        self.assets = assets or AssetLibrary()  # every scene reads uploads through it
+        self.uploads = UploadFolder(self.assets)  # uploads are kept in its folder
         self.state = state
         self.scenes: dict[str, SceneHub] = {}
         self._stopping: dict[str, Runner] = {}  # removed scenes whose process may run on

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+from pathlib import Path
 from typing import Any, Collection
 
 from ...core.kit.errors import Forbidden, InternalError, LimitExceeded, TooLarge
@@ -23,8 +24,7 @@ class UploadFolder:
 
     def store(self, data: bytes, limits: Limits) -> dict[str, Any]:
         """Keep an uploaded glTF file; its name, URL, size and triangle count."""
-        if self.library.uploads is None:
-            raise Forbidden("this server takes no uploads")
+        self._folder()  # (refused before the file is read)
         if len(data) > limits.asset_bytes:
             raise TooLarge(f"the file has {len(data)} bytes; at most {limits.asset_bytes} "
                            f"are taken", limit="assetBytes", value=limits.asset_bytes)
@@ -38,10 +38,8 @@ class UploadFolder:
 
     def _keep(self, data: bytes, kind: str, limits: Limits) -> dict[str, Any]:
         """Keep checked bytes under their hash, once."""
-        if self.library.uploads is None:
-            raise Forbidden("this server takes no uploads")
         name = f"{hashlib.sha256(data).hexdigest()[:32]}.{kind}"
-        path = self.library.uploads / name
+        path = self._folder() / name
         if path.is_file():
             os.utime(path)  # uploaded again: as new (see collect)
         else:
@@ -57,6 +55,12 @@ class UploadFolder:
                 raise InternalError(f"the upload folder cannot be written ({error.strerror}); "
                                     f"nothing was kept") from None
         return {"name": name, "url": UPLOADED_URL + name, "bytes": len(data)}
+
+    def _folder(self) -> Path:
+        """The folder uploads are kept in; :class:`Forbidden` when the server has none."""
+        if self.library.uploads is None:
+            raise Forbidden("this server takes no uploads")
+        return self.library.uploads
 
     def collect(self, in_use: Collection[str], before: float) -> list[str]:
         """Remove the uploaded files not ``in_use`` last uploaded before ``before`` (a
