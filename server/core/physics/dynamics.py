@@ -35,11 +35,10 @@ Defaults, and why (:class:`Physics`):
 - ``warmStart`` 0 (off): a contact's solve begins each step from this share of its
   impulse of the step before, not from nothing (:mod:`.warm_start`: Bullet's articulated
   warm starting, which PyBullet builds but does not offer; Bullet's own figure is 0.85).
-  At the same iterations a tower of boxes sinks about half as far, and with 80
-  iterations instead of 150 a grasp trial costs about two thirds of the CPU. Off by default: it
-  changes which grasps hold (at seed 3 the anthro hand's ball slipped at 150 iterations,
-  the round hand's light ball at 80), so the tasks keep 150 iterations cold until their
-  tables are measured again with it.
+  At the same iterations a tower of boxes sinks about half as far. The grasping tasks
+  run warm at 60 iterations (their table measured again: about as many grasps hold as
+  cold at 150, in 70 % of the CPU). Off by default: it changes which grasps hold, and a
+  script's world stays as it was tuned.
 - ``friction`` 1.0 (lateral): rubber-like fingers on hard objects, PyBullet's examples'
   value; spinning friction is a tenth of it and rolling friction a thousandth, so a held
   ball neither spins nor rolls out. Every body has Bullet's friction anchors: without them

@@ -5,7 +5,8 @@ Bullet's multibody solver can start each step's contact impulses from the last s
 every step of a hand holding a ball starts from nothing: the grasp task takes 150 solver
 iterations and runs at 1.7× real time on one core, Bullet's solver most of it. Warm
 started, the edged hand held both balls with 30, in half the CPU time. A scene asks for it
-(``Physics.warmStart``); it is off by default because it changes which grasps hold.
+(``Physics.warmStart``; the grasping tasks do); it is off by default because it changes
+which grasps hold.
 
 PyBullet 3.2.7 compiles Bullet's C API for it (``b3PhysicsParamSetArticulatedWarmStartingFactor``,
 exported by its library) but ``setPhysicsEngineParameter`` has no argument that calls it.

@@ -19,7 +19,7 @@ import numpy as np
 from ..http_api import request, scene_path
 from ..runtime import connect
 from ..tasks.controller import PHASES, prepare
-from ..tasks.grasp import FRICTION_SPREAD, MASS_SPREAD, PATTERNS, SOLVER_ITERATIONS
+from ..tasks.grasp import FRICTION_SPREAD, MASS_SPREAD, PATTERNS, PHYSICS
 from ..tasks.hands import hand_source
 from ..tasks.observation import apply
 from ..tasks.relocate import turn_between
@@ -71,7 +71,7 @@ class HandTaskEnv(gymnasium.Env):  # type: ignore[misc]
               ticks_per_step: int) -> None:
         """The scene paused and dynamic, the first trial laid out and kept, the spaces."""
         self.session.pause()  # held until close (not a with block: a lost env must not hang)
-        self.session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
+        self.session.set_physics("dynamic", **PHYSICS)
         self.hands = TaskHand(hand_source(hand, self.session), dict(grip_map) if grip_map else None)
         self.ticks_per_step = ticks_per_step
         self.period = ticks_per_step / self.session.tick_rate

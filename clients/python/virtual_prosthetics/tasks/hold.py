@@ -11,7 +11,7 @@ from ..session import Session
 from . import progress
 from .controller import PHASES, Arm, Grip, approach, baseline
 from .observation import HandController
-from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, Score, drawn, draws, rows, run_trials
+from .grasp import LIFTED, PATTERNS, PHYSICS, Score, drawn, draws, rows, run_trials
 from .scale import Scale
 from .trial import TaskHand, Trial
 
@@ -56,7 +56,7 @@ def hold(session: Session, hands: TaskHand, trials: int, seed: int, *, side_by_s
     path; the drops."""
     # paused first: a scene another run steps is refused before anything of it changes
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
+        session.set_physics("dynamic", **PHYSICS)
         session.sync()
         scale = Scale.of(session)
         pattern = PATTERNS[0]

@@ -15,7 +15,7 @@ from typing import Any, Callable
 from ..session import Session
 from . import progress
 from .controller import PHASES, Arm, Grip, approach, baseline, smooth
-from .grasp import LIFTED, PATTERNS, SOLVER_ITERATIONS, Score, drawn, draws, rows, run_trials
+from .grasp import LIFTED, PATTERNS, PHYSICS, Score, drawn, draws, rows, run_trials
 from .observation import HandController, conjugate, product, rotate
 from .scale import Scale
 from .trial import TaskHand, Trial
@@ -107,7 +107,7 @@ def relocate(session: Session, hands: TaskHand, trials: int, seed: int, *, side_
     """``trials`` of each pattern's light object (masses and frictions drawn from
     ``seed``), each taken to its target; the successes."""
     with session.paused():  # stepped tick by tick (drive): the same run on any load
-        session.set_physics("dynamic", solver_iterations=SOLVER_ITERATIONS)
+        session.set_physics("dynamic", **PHYSICS)
         session.sync()
         scale = Scale.of(session)
         rng = random.Random(seed)
