@@ -1,6 +1,8 @@
 // The viewer's URL options: /view?scene=NAME&role=viewer|controller&touch-color=red
 //   &debug-physics&show-slots&engine=NAME&token=TOKEN (a server that asks for one)
 //   &physics=dynamic|kinematic (a page: the scene's physics once connected)
+//   &fps=N (pictures a second at most; 0: the display's rate; left out: 15 where WebGL
+//   draws in software, the display's rate elsewhere)
 //   /view?recording=ID: a recording played (replay.js) instead of a live scene
 
 export function readOptions(search = window.location.search) {
@@ -16,6 +18,7 @@ export function readOptions(search = window.location.search) {
 		token: params.get('token') || null,
 		physics: ['dynamic', 'kinematic'].includes(params.get('physics')) ? params.get('physics') : null,
 		recording: params.get('recording') || null,   // play a recording instead of a scene
+		fps: /^\d+(\.\d+)?$/.test(params.get('fps') ?? '') ? Number(params.get('fps')) : null,
 	};
 }
 

@@ -11,11 +11,17 @@ import { Quality, softwareWebGL } from './quality.js';
 import { setMeshDetail } from './meshes.js';
 
 const BACKGROUND = 'gainsboro';
+// Pictures a second at most where WebGL draws in software, unless the page's ?fps= says
+// otherwise (0: the display's rate): SwiftShader draws on every core, and a viewer of an
+// empty scene (its logo spinning) took 1.7 cores drawing 29 pictures a second.
+export const SOFTWARE_FPS = 15;
 const FRAME_MARGIN = 1.15;   // frame(): room around what is framed
 
 export class Stage {
-	constructor(container = document.body) {
+	constructor(container = document.body, fps = null) {
 		const software = softwareWebGL();
+		const most = fps ?? (software ? SOFTWARE_FPS : 0);
+		this.gapMs = most > 0 ? 1000 / most : 0;  // between the starts of two pictures
 		// antialiasing is fixed when the context is made: software draws every sample
 		const renderer = this.renderer = new THREE.WebGLRenderer({ antialias: !software });
 		container.appendChild(renderer.domElement);
@@ -41,6 +47,7 @@ export class Stage {
 		this.afterRender = [];
 		this.needsRender = true;
 		this.wantedAt = performance.now();  // since when a picture is wanted
+		this.nextAt = 0;                    // no picture starts before this (gapMs)
 		this.pictures = 0;                 // drawn so far (the status line counts them)
 		this.quality = new Quality(software, (level) => this.applyLevel(level));
 		this.applyLevel(this.quality.level);
@@ -154,13 +161,15 @@ export class Stage {
 
 	draw(time) {
 		for (const step of this.beforeRender) step(time);
-		if (!this.needsRender) return;
-		this.needsRender = false;
 		const started = performance.now();
+		if (!this.needsRender || started < this.nextAt) return;  // (still wanted: a later frame)
+		this.needsRender = false;
 		this.renderer.render(this.scene, this.camera);
 		this.renderMs = performance.now() - started;
 		this.pictures++;
-		this.quality.drawn(this.wantedAt, started);
+		// the quality judges the wait it causes, not the one the cap asked for
+		this.quality.drawn(Math.max(this.wantedAt, this.nextAt), started);
+		this.nextAt = started + this.gapMs;
 		for (const step of this.afterRender) step(time);
 	}
 }
