@@ -37,8 +37,8 @@ Defaults, and why (:class:`Physics`):
   warm starting, which PyBullet builds but does not offer; Bullet's own figure is 0.85).
   At the same iterations a tower of boxes sinks about half as far. The grasping tasks
   run warm at 60 iterations (their table measured again: about as many grasps hold as
-  cold at 150, in 70 % of the CPU; Box and Blocks at 30). Off by default: it changes which grasps hold, and a
-  script's world stays as it was tuned.
+  cold at 150, in 70 % of the CPU), Box and Blocks at 30. Off by default: it changes
+  which grasps hold, and a script's world stays as it was tuned.
 - ``friction`` 1.0 (lateral): rubber-like fingers on hard objects, PyBullet's examples'
   value; spinning friction is a tenth of it and rolling friction a thousandth, so a held
   ball neither spins nor rolls out. Every body has Bullet's friction anchors: without them
