@@ -1,9 +1,9 @@
 // The picture around the robots (parts.md, "Scene"): background and fog, the ground disc,
 // a shadow-casting directional light and a hemisphere light, the 30° camera with orbit
 // controls, and the render loop at the display's rate. A picture is drawn only when
-// something changed (invalidate), so an idle viewer costs no CPU or battery, and no
-// sooner than the quality controller allows (quality.js), so that messages keep flowing
-// on software WebGL.
+// something changed (invalidate), so an idle viewer costs no CPU or battery, at the
+// level the quality controller chose (quality.js), so that messages keep flowing on
+// software WebGL, and there no more than SOFTWARE_FPS a second (or ?fps=).
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
