@@ -258,7 +258,7 @@ class SceneWorker:
             self._stand()
             self.saver.save(replaced=True)
         for _ in range(self.scene.clock.take()):
-            self._tick(1.0 / self.tick_rate)
+            self._tick(1.0 / self.tick_rate, send=False)  # with the answer: one send
 
     def _leave(self, cid: ConnectionId) -> None:
         session = self._sessions.pop(cid, None)
@@ -424,9 +424,10 @@ class SceneWorker:
                                    recording=recording_id)
         return self.recordings.end("stopped")
 
-    def _tick(self, dt: float | None) -> None:
+    def _tick(self, dt: float | None, send: bool = True) -> None:
         """Run the animator, advance the scene (None: a paused scene's stand) and send its
-        messages to every client."""
+        messages to every client (``send`` False: with the next events sent, as a step's
+        frames go with its answer)."""
         started = time.perf_counter()
         try:
             if self._animator is not None and dt is not None:
@@ -443,7 +444,8 @@ class SceneWorker:
         self._expire(time.monotonic())  # deleted now, announced by the next tick
         if messages:
             self._events.append(Frame(messages))
-        self._flush()
+        if send:
+            self._flush()
         self.saver.tick(time.monotonic())
         self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
                             time.process_time(), self.scene.bodies.peak_force())

@@ -19,7 +19,7 @@ from .controller import Grip, prepare, smooth
 from .grip import HandGrip
 from .observation import rotate
 from .scale import Scale
-from .trial import TaskHand, drive, under_hand
+from .trial import TaskHand, drive, framed, under_hand
 
 INSIDE = (0.537, 0.254)  # metres: the box inside, x (both compartments) by z
 WALL_HEIGHT = 0.085
@@ -54,8 +54,8 @@ class Stage:
     owned: bool = True
 
     def block_positions(self) -> list[list[float]]:
-        return self.session.read(lambda mirror: [list(mirror.nodes[b.id]["position"])
-                                                 for b in self.blocks if b.id in mirror.nodes])
+        return framed(self.session, lambda mirror: [list(mirror.nodes[b.id]["position"])
+                                                    for b in self.blocks if b.id in mirror.nodes])
 
     def past(self, x: float) -> bool:
         """Whether a place ``x`` along the box is past the partition (every block starts
@@ -80,7 +80,7 @@ class Stage:
                 return blocks, False
             return blocks, all(self.past(hand["position"][0] + rotate(hand["quaternion"], tip)[0])
                                for tip in tips)
-        return self.session.read(read)
+        return framed(self.session, read)
 
     def remove(self) -> None:
         for node in ((self.hand,) if self.owned else ()) + (*self.blocks, *self.walls):
@@ -243,8 +243,8 @@ def run(stage: Stage, hand: Callable[[float], None], seconds: float) -> tuple[Ta
     tally = Tally(seen=stage.across()[0])
 
     def step(t: float) -> None:
+        counted(t)  # what the last tick left, before this one's orders
         hand(t)
-        counted(t)
 
     def counted(t: float) -> None:
         tally.step(stage)

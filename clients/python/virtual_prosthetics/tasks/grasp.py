@@ -88,12 +88,14 @@ def run_batch(trials: list[Trial], grip: Grip, arm: Arm, controller: Callable[[G
         prepare(trial.hand, grip)
 
     def step(t: float) -> None:
-        for trial, hand, torques in zip(trials, hands, sent):
-            arm(trial, t)
-            apply(trial, hand(Observation(trial, t)), torques)
+        for trial in trials:  # first what the last tick left, then this tick's orders
             trial.watch_contact()
             if t >= PHASES.holding:
                 trial.observe()
+        targets = [hand(Observation(trial, t)) for trial, hand in zip(trials, hands)]
+        for trial, aim, torques in zip(trials, targets, sent):
+            arm(trial, t)
+            apply(trial, aim, torques)
 
     drive(session, seconds, step)
 

@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Protocol, Sequence
+from typing import Any, Callable, Protocol, Sequence, TypeVar
 
+from ..mirror import Mirror
 from ..objects import Box, Part
 from ..robots import Robot
 from ..sensor import Sensor
@@ -21,6 +22,8 @@ TABLE_TOP = 0.4  # × the hand's length: the tables' height
 SPACING = 2.2    # × the hand's length: from one trial's hand to the next
 # how a cylinder is laid: a quarter turn about z, on its side (x, y, z, w)
 LYING = (0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4))
+
+T = TypeVar("T")
 
 
 class Placement(Protocol):
@@ -85,7 +88,7 @@ class Trial:
         return self.grip.layout
 
     def _node(self, node_id: str, key: str) -> list[float]:
-        return self.session.read(lambda mirror: list(mirror.nodes[node_id][key]))
+        return framed(self.session, lambda mirror: list(mirror.nodes[node_id][key]))
 
     def object_position(self) -> list[float]:
         return self._node(self.obj.id, "position")
@@ -117,7 +120,7 @@ class Trial:
         self.heights.append(bottom - self.table_top)
         self.offsets.append(tuple(self.object_offset()))
         self.poses.append((position, self.object_quaternion()))
-        force = self.session.read(lambda mirror: mirror.forces.get(self.obj.id, 0.0))
+        force = framed(self.session, lambda mirror: mirror.forces.get(self.obj.id, 0.0))
         self.forces.append(force)
 
     def watch_contact(self) -> None:
@@ -196,9 +199,19 @@ def lay_out(session: Session, hands: TaskHand, item: TestObject, draws: Sequence
     return trials
 
 
+def framed(session: Session, reader: Callable[[Mirror], T]) -> T:
+    """``reader`` on the mirror as the last frame left it, without waiting for answers
+    (:meth:`Session.read` waits): inside :func:`drive` every tick ends answered, so a
+    step's reads see the moment the step began, whatever it has sent since, and none
+    costs a round trip (a read that waited sent what the step had gathered and waited
+    for its answer: two messages a tick instead of one)."""
+    with session.lock:
+        return reader(session.mirror)
+
+
 def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> None:
     """Call ``step(t)`` once a tick, ``t`` the scene seconds since the start, until
-    ``seconds`` have passed; what a step sends leaves as one message, then the scene,
+    ``seconds`` have passed; what a step sends leaves with the tick as one message, then the scene,
     paused (:meth:`Session.paused`; a task holds it paused from start to end), takes one
     tick. A controller driven so sees the same world however loaded the server is, and a
     trial runs as fast as the server computes it."""
@@ -210,5 +223,5 @@ def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> Non
                 step(tick * period)
                 if tick % progress.CAPTION_TICKS == 0 or tick == last:
                     progress.caption_to(session)
-            session.step()
+                session.step()  # with the step's setters: one message, one answer a tick
             progress.advance(period)
