@@ -104,7 +104,7 @@ def apply(trial: Trial, targets: Targets | None, previous: dict[int, float]) -> 
         return
     if isinstance(targets, Angles):
         previous.clear()
-        trial.hand.set_angles(*targets.values)
+        trial.set_motors(*targets.values)
         return
     motors = trial.hand.get_motors()
     angles: list[float | None] = [None] * len(motors)
@@ -116,7 +116,7 @@ def apply(trial: Trial, targets: Targets | None, previous: dict[int, float]) -> 
         # far beyond any limit: the server clamps it to the limit, and the motor strains
         # at its bound all the way there
         angles[index] = math.copysign(FAR, torque)
-    trial.hand.set_angles(*angles)
+    trial.set_motors(*angles)
 
 
 # Written here, not imported: the client depends on websockets alone
