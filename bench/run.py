@@ -63,8 +63,9 @@ class Sizes:
     cluster_idle_wait: float  # seconds for the busy scenes to go before that
     loaded_scenes: int  # animated while a script connects (busy_connect)
     piles: tuple[int, int, float]  # balls made in one spot, boxes in a tower, seconds watched
-    # Box and Blocks' scene seconds and blocks, grasp trials side by side (bench/tasks.py)
-    tasks: tuple[float, int, int]
+    # Box and Blocks' scene seconds and blocks, grasp trials side by side, runs of one trial
+    # (bench/tasks.py)
+    tasks: tuple[float, int, int, int]
     gym: tuple[int, int]  # environment steps and resets measured (bench/gym.py)
 
 
@@ -77,7 +78,7 @@ FULL = Sizes(ticks=600, hands_large=50, sensor_counts=(100, 1000), sensing_ticks
              dynamic=(10, 50, 240, 300), recorded_ticks=36_000, seeks=50,
              cluster_viewers=(500, 750, 875, 1000, 1125, 1250, 2000), cluster_busy=200, cluster_objects=50,
              cluster_idle_wait=20.0, loaded_scenes=13, piles=(2000, 300, 180.0),
-             tasks=(20.0, 150, 10), gym=(600, 30))
+             tasks=(20.0, 150, 10, 3), gym=(600, 30))
 QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, requests=50,
               frames=3, hand_counts=(2, 3), hand_ticks=3, outside_seconds=1.5,
               latency_rounds=5, viewer_counts=(1, 3), viewer_seconds=2.0, busy_hands=2,
@@ -85,7 +86,7 @@ QUICK = Sizes(ticks=5, hands_large=3, sensor_counts=(4,), sensing_ticks=3, reque
               cluster_chaos_faults=len(chaos_cluster.KINDS), idle_scenes=3, hands_most=4,
               dynamic=(2, 4, 3, 3), recorded_ticks=5, seeks=2,
               cluster_viewers=(2,), cluster_busy=2, cluster_objects=3, cluster_idle_wait=0.0,
-              loaded_scenes=2, piles=(60, 10, 1.5), tasks=(1.0, 20, 1), gym=(6, 2))
+              loaded_scenes=2, piles=(60, 10, 1.5), tasks=(1.0, 20, 1, 1), gym=(6, 2))
 
 
 def measure(sizes: Sizes) -> dict[str, Any]:
