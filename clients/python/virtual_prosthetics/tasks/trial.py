@@ -221,10 +221,11 @@ def framed(session: Session, reader: Callable[[Mirror], T]) -> T:
 
 def drive(session: Session, seconds: float, step: Callable[[float], Any]) -> None:
     """Call ``step(t)`` once a tick, ``t`` the scene seconds since the start, until
-    ``seconds`` have passed; what a step sends leaves with the tick as one message, then the scene,
-    paused (:meth:`Session.paused`; a task holds it paused from start to end), takes one
-    tick. A controller driven so sees the same world however loaded the server is, and a
-    trial runs as fast as the server computes it."""
+    ``seconds`` have passed; what a step sends leaves with the tick as one message, then
+    the scene, paused (:meth:`Session.paused`; a task holds it paused from start to end),
+    takes one tick. A controller driven so sees the same world however loaded the server
+    is, and a trial runs as fast as the server computes it. A step reads the last frame
+    with :func:`framed`."""
     period = 1.0 / session.tick_rate
     last = round(seconds / period)
     with session.paused():
