@@ -99,9 +99,20 @@ class Resting:
         if len(self.free) <= CROWD:
             thawing = list(self.held)
         else:
-            movers, reach = self._moving_boxes(seconds, robots)
+            movers, reach = self._moving_boxes(seconds)
             asked = list(self.held) + [b for b, rested in self._calm.items() if rested >= CALM]
-            near = self._near(movers, reach, asked)
+            boxes = self._boxes(asked)
+            robots = list(robots)
+            p, client = self.p, self.client
+            links = sum(p.getNumJoints(robot, physicsClientId=client) + 1 for robot in robots)
+            # robots' links as movers (a box read each) or from the bodies' side (a
+            # broadphase question each), whichever is fewer: ten hands' 210 boxes read
+            # every tick were a tenth of their dynamic tick's Python
+            if links <= len(boxes):
+                movers.update(self._robot_boxes(robots))
+                near = self._near(movers, reach, boxes)
+            else:
+                near = self._near(movers, reach, boxes) | self._near_robots(set(robots), boxes)
             thawing = [body for body in self.held if body in near]
             for body in asked[len(self.held):]:
                 if body not in near:
@@ -110,12 +121,15 @@ class Resting:
             self._thaw(body)
         return bool(thawing)
 
-    def _near(self, movers: dict[Link, Box], reach: float, asked: list[int]) -> set[int]:
-        """Which of the bodies ``asked`` overlap a box of what moves (each widened by at
-        most ``reach`` beyond the body or link's own box). Bullet's broadphase names the
-        candidates, a few µs a box, from whichever side is smaller: every body tested
-        against every box took a third of a 2 000-ball pile's process."""
-        boxes = {body: self.held[body].box if body in self.held else self._box(body) for body in asked}
+    def _boxes(self, bodies: list[int]) -> dict[int, Box]:
+        """The boxes of these bodies: a held one's as kept, an awake one's now."""
+        return {body: self.held[body].box if body in self.held else self._box(body) for body in bodies}
+
+    def _near(self, movers: dict[Link, Box], reach: float, boxes: dict[int, Box]) -> set[int]:
+        """Which of the bodies whose ``boxes`` are given overlap a box of what moves (each
+        widened by at most ``reach`` beyond the body or link's own box). Bullet's
+        broadphase names the candidates, a few µs a box, from whichever side is smaller:
+        every body tested against every box took a third of a 2 000-ball pile's process."""
         ask, client, near = self.p.getOverlappingObjects, self.client, set()
         if len(movers) <= len(boxes):
             for mover in movers.values():
@@ -131,17 +145,33 @@ class Resting:
                 near.add(body)
         return near
 
-    def _moving_boxes(self, seconds: float, robots: Iterable[int]) -> tuple[dict[Link, Box], float]:
-        """The boxes of every robot link (widened by ROBOT_MARGIN), of every awake free body
-        that moves (by MARGIN and the way it goes in LOOKAHEAD), and of the bodies taken
-        away (by MARGIN; keyed -1, -2 …), and the most any was widened; each body's time
+    def _near_robots(self, robots: set[int], boxes: dict[int, Box]) -> set[int]:
+        """Which of the bodies whose ``boxes`` are given lie within ROBOT_MARGIN of a link
+        of ``robots``: the broadphase's boxes hold Bullet's own (they are wider by the
+        contact threshold), so it names every candidate link, whose box is then read."""
+        ask, client, near, margin = self.p.getOverlappingObjects, self.client, set(), self._robot_margin
+        for body, box in boxes.items():
+            wide = _widened(box, margin)
+            for other, link in ask(wide[:3], wide[3:], physicsClientId=client) or ():
+                if other in robots and _overlap(box, _widened(self._box(other, link), margin)):
+                    near.add(body)
+                    break
+        return near
+
+    def _robot_boxes(self, robots: list[int]) -> dict[Link, Box]:
+        """The box of every link of ``robots``, widened by ROBOT_MARGIN."""
+        p, client, margin = self.p, self.client, self._robot_margin
+        return {(robot, link): _widened(self._box(robot, link), margin)
+                for robot in robots for link in range(-1, p.getNumJoints(robot, physicsClientId=client))}
+
+    def _moving_boxes(self, seconds: float) -> tuple[dict[Link, Box], float]:
+        """The boxes of every awake free body that moves (widened by MARGIN and the way
+        it goes in LOOKAHEAD) and of the bodies taken away (by MARGIN; keyed -1, -2 …),
+        and the most any box may be widened (robots' links' included); each body's time
         at rest counted on."""
         p, client = self.p, self.client
         boxes = {(-1 - k, -1): _widened(box, self._margin) for k, box in enumerate(self._gone)}
         self._gone = []
-        for robot in robots:
-            for link in range(-1, p.getNumJoints(robot, physicsClientId=client)):
-                boxes[robot, link] = _widened(self._box(robot, link), self._robot_margin)
         rest, spin, stir = self._speed ** 2, REST_SPIN ** 2, self._stir ** 2
         reach = max(self._margin, self._robot_margin)
         for body in self._calm:

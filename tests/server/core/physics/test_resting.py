@@ -148,15 +148,33 @@ def test_what_moves_is_found_near_from_either_side_alike(scene):
     rest = scene.bodies.physics.dynamics.resting
     for _ in range(60):  # until it falls onto the heap and some of it moves
         scene.tick(1 / 60)
-        movers, reach = rest._moving_boxes(0.0, ())
+        movers, reach = rest._moving_boxes(0.0)
         if len(movers) > 3:
             break
     movers[-1, -1] = heap[0][0].position * 2  # and a body gone from the heap's corner
     asked = sorted(rest.free)
     assert 2 < len(movers) < len(asked)
-    from_movers = rest._near(movers, reach, asked)
+    from_movers = rest._near(movers, reach, rest._boxes(asked))
     size = len(movers) - 1  # (fewer asked than movers: asked from their side)
-    from_asked = set().union(*(rest._near(movers, reach, asked[k:k + size])
+    from_asked = set().union(*(rest._near(movers, reach, rest._boxes(asked[k:k + size]))
                                for k in range(0, len(asked), size)))
     corner = scene.bodies.physics._trees[heap[0][0].id].body
     assert from_asked == from_movers and corner in from_movers
+
+
+def test_a_robot_is_found_near_from_either_side_alike(scene):
+    # a robot's links are read box by box when they are fewer than the bodies asked
+    # about, else each body asks the broadphase which links lie near it (ten hands' 210)
+    heap = _heap(scene, layers=1)
+    robot = Robot(scene, "r")
+    finger = EdgedFinger(scene, "f")
+    robot.attach_chain(finger)
+    robot.set_position((1.0, SIZE + 0.05, 1.0))  # its finger up from just over the heap
+    for _ in range(10):
+        scene.tick(1 / 60)
+    rest = scene.bodies.physics.dynamics.resting
+    robots = {scene.bodies.physics._trees["r"].body}
+    boxes = rest._boxes(sorted(rest.free))  # (those near it move again: held or not)
+    by_links = rest._near(rest._robot_boxes(sorted(robots)), rest._robot_margin, boxes)
+    by_bodies = rest._near_robots(robots, boxes)
+    assert by_links == by_bodies and 0 < len(by_links) < len(heap[0]) / 4
