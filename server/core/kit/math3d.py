@@ -78,7 +78,11 @@ def rotate(q: Quat, v: Sequence[float]) -> Vec3:
 
 def between(a: Pose, b: Pose, f: float) -> Pose:
     """The pose a fraction ``f`` of the way from ``a`` to ``b`` (positions straight, rotations
-    along the shorter arc, normalised: near enough a slerp for the small turns of one tick)."""
+    along the shorter arc, normalised: near enough a slerp for the small turns of one tick);
+    at ``f`` 1, ``b`` itself (normalised, its last bit could differ, and a pose put again
+    where it was would look moved)."""
+    if f >= 1.0:
+        return b
     (ap, aq), (bp, bq) = a, b
     if sum(x * y for x, y in zip(aq, bq)) < 0:
         bq = tuple(-x for x in bq)  # type: ignore[assignment]

@@ -7,7 +7,7 @@ from typing import Any
 
 from ..kit.errors import WrongType
 from ..kit.ids import owner_of
-from ..kit.math3d import Vec3
+from ..kit.math3d import Pose, Vec3
 from ..physics.grip_map import grip_map
 from .motor import Motor
 from .node import Node, World
@@ -30,6 +30,10 @@ class Robot(Node):
         super().__init__(scene, node_id)
         self.gui: str | None = None
         self.shared = False  # others may steer it and attach their parts (ownership.py)
+        # dynamic mode: where its mount holds it, as a script last put it (None: not built
+        # in a dynamic world yet); its node's pose is where the physics has it (a loaded
+        # hand turns a little at its mount), and documents keep both
+        self.mount: Pose | None = None
         self._listing: tuple[int, list[Part], list[Motor]] | None = None
         self._grip_map: tuple[Any, dict[str, Any]] | None = None  # (its tree as of, the map)
 

@@ -27,18 +27,20 @@ Defaults, and why (:class:`Physics`):
   constraint row's velocity by more than this share of the speed gravity gives anything in
   a step (Bullet's residual threshold: Bullet measures a row's change as a velocity, so a
   share of an impulse, as this was first, let fingers of grams sag 0.07 rad at a human
-  unit while ones of a 1.0 hand's Bullet masses held). A hand touching nothing settles
-  in a few iterations instead of all of them: the bench's 10 hands and 50 objects tick in
-  about 16 ms instead of 20. Held objects hold as with every iteration (the grasp task's
-  table), and a heavy hand under strong gravity stays within 1 mm of its mount; 0 runs
-  every iteration of every step.
+  unit while ones of a 1.0 hand's Bullet masses held). Free bodies alone settle in a few
+  iterations instead of all of them (an animated hand's motors do not: it used every
+  iteration in 86 % of its steps); held objects hold as with every iteration (the grasp
+  task's table), and a heavy hand under strong gravity stays within 1 mm of its mount; 0
+  runs every iteration of every step.
 - ``warmStart`` 0 (off): a contact's solve begins each step from this share of its
   impulse of the step before, not from nothing (:mod:`.warm_start`: Bullet's articulated
   warm starting, which PyBullet builds but does not offer; Bullet's own figure is 0.85).
   At the same iterations a tower of boxes sinks about half as far. The grasping tasks
   run warm at 60 iterations (their table measured again: about as many grasps hold as
   cold at 150, in 70 % of the CPU), Box and Blocks at 30. Off by default: it changes
-  which grasps hold, and a script's world stays as it was tuned.
+  which grasps hold, and a script's world stays as it was tuned (warm at 25 or 30 a heavy
+  ball dropped on a heap sank into it, and a ball squeezed in a lifted hand crept 5 mm in
+  2 s at 30, 100 and 150 iterations, where every cold count from 50 held it).
 - ``friction`` 1.0 (lateral): rubber-like fingers on hard objects, PyBullet's examples'
   value; spinning friction is a tenth of it and rolling friction a thousandth, so a held
   ball neither spins nor rolls out. Every body has Bullet's friction anchors: without them
@@ -233,7 +235,7 @@ class Dynamics:
         self.sleeping = False  # resting free bodies sleep (more than SLEEP_CROWD of them)
         self._wake_all = False  # before the next step (a free body went)
         self.units = physics.bullet
-        self.resting = Resting(pybullet, client, physics.unit)
+        self.resting = Resting(pybullet, client, physics.unit, self.units.acceleration(physics.gravity))
         self.woke = False  # the last steps' review let resting bodies move again
         pybullet.setGravity(0, -self.units.acceleration(physics.gravity), 0, physicsClientId=client)
         pybullet.setPhysicsEngineParameter(fixedTimeStep=physics.step,
@@ -275,12 +277,16 @@ class Dynamics:
         """A part-less base's inertia, in Bullet's units: that of its links' masses about
         it at rest. The mount holds the base's turn only through the solver, and a base of
         a small ball's inertia let a motor's 0.1 kg arm turn it 0.7 rad (the motor reading
-        no torque); as hard to turn as its load, it holds to 1e-3 rad."""
+        no torque); as hard to turn as its load, it holds to 1e-3 rad. The load lies at its
+        links' centres of mass (measured to their parts' frames, a finger's at its joint, an
+        arm on a motor weighed nothing, and its base turned under it)."""
         _, masses = self.masses(tree)
+        _, centres = self.centres(tree)
         poses: list[Pose] = []
         for link in tree.links:
             poses.append(compose(NO_POSE if link.parent < 0 else poses[link.parent], link.origin))
-        reach = [math.dist(ORIGIN, compose(pose, link.shape)[0]) for pose, link in zip(poses, tree.links)]
+        reach = [math.dist(ORIGIN, compose(compose(pose, link.shape), (centre, NO_POSE[1]))[0])
+                 for pose, link, centre in zip(poses, tree.links, centres)]
         return max(SHAPELESS_INERTIA, sum(m * r * r for m, r in zip(masses, reach)))
 
     def centres(self, tree: Articulation) -> tuple[Vec3, list[Vec3]]:
@@ -292,9 +298,10 @@ class Dynamics:
                                         of(link.geometry) for link in tree.links]
 
     def made(self, body: int, tree: Articulation, base_pose: Pose,
-             joint_links: Sequence[int]) -> int | None:
+             joint_links: Sequence[int], mount_pose: Pose | None = None) -> int | None:
         """Finish a tree built as ``body``: its friction, joint limits and motors (driven by
-        :meth:`drive` only), and for a robot its mount (the constraint's id)."""
+        :meth:`drive` only), and for a robot its mount (the constraint's id), at
+        ``mount_pose`` (None: where its base is)."""
         p, client = self.p, self.client
         self._surface(body, tree)
         self._note_moving(body, tree)
@@ -332,7 +339,7 @@ class Dynamics:
         mount = p.createConstraint(body, -1, -1, -1, p.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
                                    base_pose[0], childFrameOrientation=base_pose[1],
                                    physicsClientId=client)
-        self._put(mount, base_pose)  # (Bullet's own bound lets a heavy hand sink)
+        self._put(mount, mount_pose or base_pose)  # (Bullet's own bound lets a heavy hand sink)
         return mount
 
     def _note_moving(self, body: int, tree: Articulation) -> None:
@@ -389,6 +396,11 @@ class Dynamics:
         tick jerked what the hand held, and more so when a busy server took two ticks'
         steps at once), and its base follows, pulled with at most MOUNT_FORCE."""
         self._glides[constraint] = pose
+
+    def place_mount(self, constraint: int, pose: Pose) -> None:
+        """Put a robot's mount at ``pose`` at once, without a glide."""
+        self._glides.pop(constraint, None)
+        self._put(constraint, pose)
 
     def removed(self, body: int, mount: int | None) -> None:
         """A tree gone, with its mount (Bullet gives their ids to the next ones made)."""

@@ -144,9 +144,11 @@ class PhysicsWorld:
         the engine cut it short)."""
         return pybullet.getNumJoints(self._trees[root].body, physicsClientId=self._client)
 
-    def add_tree(self, tree: Articulation, base_pose: Pose, angles: Mapping[str, float]) -> None:
+    def add_tree(self, tree: Articulation, base_pose: Pose, angles: Mapping[str, float],
+                 mount: Pose | None = None) -> None:
         """Build ``tree`` as one multibody, its base at ``base_pose``, its joints at ``angles``
-        (a tree past the engine's links is refused: PyBullet would cut it short)."""
+        and (dynamic mode, a robot) its mount at ``mount`` (None: at its base) (a tree past
+        the engine's links is refused: PyBullet would cut it short)."""
         check_links(tree.root, len(tree.links))
         client, dynamics = self._client, self.dynamics
         free = self._clearance is not None and not tree.mounted and not tree.static
@@ -167,7 +169,7 @@ class PhysicsWorld:
         for link in range(-1, len(tree.links)):  # kinematic: crowded until its neighbourhood is known
             self._filter(body, link, crowded=dynamics is None)
         if dynamics is not None:
-            built.mount = dynamics.made(body, tree, base_pose, built.joint_links)
+            built.mount = dynamics.made(body, tree, base_pose, built.joint_links, mount)
             built.base_centre = base_centre
             built.part_centres = [centres[k] for k in links]
         places = ([(tree.base_part, -1, tree.base_geometry)] if tree.base_part is not None else []) \
@@ -229,6 +231,13 @@ class PhysicsWorld:
             if not built.tree.static:
                 self._clearance.place(built.body, *_shifted(pose, built.base_centre))  # type: ignore[union-attr]
         built.base_pose = pose
+
+    def place_mount(self, root: str, pose: Pose) -> None:
+        """Dynamic mode: a robot's mount put at ``pose`` at once, its base left where it is
+        (a restored robot's: it holds from its first step as it did when it was saved)."""
+        built = self._trees[root]
+        if self.dynamics is not None and built.mount is not None:
+            self.dynamics.place_mount(built.mount, pose)
 
     def turn(self, root: str, angles: list[float]) -> None:
         """Set every joint of the tree of ``root`` in one call, to ``angles`` in the order

@@ -13,8 +13,10 @@ than STIR_SPEED, becomes static in Bullet (a fixed base, mass 0: Bullet's own sw
 ground or other resting bodies: Bullet then neither pairs nor solves the heap's resting
 contacts. When a robot's link comes within ROBOT_MARGIN, or a moving body within MARGIN
 and the distance it travels in LOOKAHEAD, a resting body gets its mass, inertia and group
-back before the next step, so whatever touches it meets a body that moves. A body put somewhere by a script, and the bodies near one taken away,
-move again at once.
+back before the next step, so whatever touches it meets a body that moves; so does one
+that a robot, or a body not at rest, pressed on with more than PRESSED times its weight
+(pushed too slowly to stir it). A body put somewhere by a script, and the bodies near one
+taken away, move again at once.
 
 No library does this: Bullet's deactivation is per island (above), and PyBullet offers
 no per-body freezing beyond the fixed base used here.
@@ -47,6 +49,9 @@ ROBOT_MARGIN = 0.02  # m: ... and a robot's link nothing this near (a block's si
 # this (4.5 with 0.01, 4.2 with 0.03, 4.3 letting move what touches what a hand touches;
 # one seed's count changes by ±2 with any change, even of rounding)
 LOOKAHEAD = 2 / 60  # s: and a moving body's box is widened by how far it goes in this
+PRESSED = 10.0  # × its weight: a held body pressed harder than this moves again (a block
+# squeezed by a finger into its held neighbours pressed them with 5-32 times their weight;
+# at 2 or 5 a ball of eight blocks' weight dropped on a heap moved blocks 3 blocks away)
 
 
 @dataclass
@@ -61,8 +66,9 @@ class _Held:
 class Resting:
     """The resting free bodies of one dynamic world (``unit``: metres per scene unit)."""
 
-    def __init__(self, pybullet: Any, client: int, unit: float) -> None:
+    def __init__(self, pybullet: Any, client: int, unit: float, gravity: float = 0.0) -> None:
         self.p, self.client = pybullet, client
+        self._gravity = abs(gravity)  # in Bullet's units (a held body's weight: PRESSED)
         self._speed, self._stir, self._margin = REST_SPEED / unit, STIR_SPEED / unit, MARGIN / unit
         self._robot_margin = ROBOT_MARGIN / unit
         self.free: set[int] = set()   # single free bodies (those that may rest)
@@ -113,6 +119,7 @@ class Resting:
                 near = self._near(movers, reach, boxes)
             else:
                 near = self._near(movers, reach, boxes) | self._near_robots(set(robots), boxes)
+            near |= self._pressed(set(robots))
             thawing = [body for body in self.held if body in near]
             for body in asked[len(self.held):]:
                 if body not in near:
@@ -120,6 +127,26 @@ class Resting:
         for body in thawing:
             self._thaw(body)
         return bool(thawing)
+
+    def _pressed(self, robots: set[int]) -> set[int]:
+        """The held bodies that a robot, or a free body not at rest, pressed on in the last
+        step with more than PRESSED times their weight: pushed by what moves too slowly to
+        stir them (a block squeezed by a finger into its held neighbours), a held body
+        stands firm as a wall would, the solver sinks what presses into it, and it springs
+        out when it moves again (a finger sweeping one row of a heap moved rows four
+        blocks away; Bullet's own world, nothing held, moved none of them). What rests on a
+        held body moves nothing: a block thawed in a heap, pressed by what lies on it,
+        would thaw those under it, and they those beside them."""
+        held, awake, found = self.held, self._calm, set()
+        if not held or not self._gravity:
+            return found
+        for point in self.p.getContactPoints(physicsClientId=self.client):
+            a, b, force = point[1], point[2], point[9]
+            for mine, other in ((a, b), (b, a)):
+                if mine in held and (awake.get(other) == 0.0 or other in robots) and \
+                        force > PRESSED * held[mine].mass * self._gravity:
+                    found.add(mine)
+        return found
 
     def _boxes(self, bodies: list[int]) -> dict[int, Box]:
         """The boxes of these bodies: a held one's as kept, an awake one's now."""

@@ -69,6 +69,11 @@ def _follow(motor: Motor, leader: str, ratio: float, offset: float) -> None:
     motor.follow(motor.scene.get(leader), ratio, offset)  # type: ignore[arg-type]
 
 
+def _mount(robot: Robot, position: tuple[float, ...], quaternion: tuple[float, ...]) -> None:
+    """Where a dynamic robot's mount holds it (its node: where the physics had it)."""
+    robot._assign("mount", (tuple(position), tuple(quaternion)))
+
+
 def _slot_count(part: Part, count: int) -> None:
     """Slots ``addSlot`` made so far: new ones continue the numbering, never reuse it."""
     part._slot_count = max(part._slot_count, count)
@@ -94,7 +99,9 @@ STATE: dict[type[Node], tuple[Saved, ...]] = {
             Saved("following", (Param("leader", "string"), Param("ratio", "number"),
                                 Param("offset", "number")), _follow, key="follows", spread=True)),
     Robot: (Saved("gui", (Param("title", "string"),), Robot.add_gui),
-            Saved("shared", (Param("on", "bool"),), Robot.share)),
+            Saved("shared", (Param("on", "bool"),), Robot.share),
+            Saved("mount", (Param("position", "point"), Param("quaternion", "quaternion")),
+                  _mount, spread=True)),
     GLTFPart: (Saved("recolors", (Param("fromColor", "rgb"), Param("toColor", "rgb"),
                                   Param("eps", "number")), GLTFPart.recolor, repeated=True),),
     SceneMesh: (Saved("color", (Param("color", "color"),), SceneMesh.set_color),),
@@ -219,7 +226,7 @@ def _asset_entry(library: AssetLibrary, name: str, embed: bool) -> dict[str, Any
 
 # --- import -------------------------------------------------------------------------------
 
-_LATER = ("target",)  # restored once the scene's physics is
+_LATER = ("target", "mount")  # restored once the scene's physics is
 
 def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     """Replace everything in ``scene`` with what ``document`` holds; what was restored.
@@ -253,6 +260,7 @@ def import_scene(scene: Scene, document: Any) -> dict[str, Any]:
     scene.set_physics(mode, physics)
     for entry in entries:
         _restore_state(scene, entry, later=True)
+    scene.bodies.hold_mounts()
     scene.bodies.check_trees()  # a tree the engine cannot hold: the document is refused
     scene.ids.absorb(document["ids"])
     camera = document["camera"]

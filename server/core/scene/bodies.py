@@ -72,7 +72,6 @@ class SceneBodies:
         self._parts = Carriers()  # the parts with bodies; what they carry
         self._unposed: set[str] = set()  # roots moved since their parts' poses were read
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
-        self._mounts: dict[str, Pose] = {}  # dynamic mode: where robots' mounts are put
         self._targets_due = False  # dynamic mode: motors' targets to be driven toward
         self._forces_sent: dict[str, float] = {}  # by the last frame (forces_changed)
         self._stirred = True  # dynamic mode: anything built, put or moved since contacts were read
@@ -172,12 +171,15 @@ class SceneBodies:
         # trees not built yet are built once, in the new world, not in this one and moved
         # (an import makes every tree anew: a restore built each three times, now once)
         self.sync(new_trees=LATER)
-        self._mounts.clear()
+        for node in self._nodes.values():  # (held again where they are, at rest)
+            if node.lists_motors:
+                node.mount = None  # type: ignore[attr-defined]
         self.physics.rebuild(physics)
         self.tracker.crowding = not physics.dynamic
         self.tracker.made_again()
         self._unposed.update(self.physics.roots())
         self.sync(new_trees=STAGED if staged else ALL)  # as the old world would have built them
+        self.hold_mounts()  # (those moved from the old world, too: held from their first step)
         self._targets_due = physics.dynamic
         self._stirred = self._changed = True
 
@@ -349,7 +351,7 @@ class SceneBodies:
             if not tree.parts():
                 return []
             angles = {joint.motor: self._nodes[joint.motor].angle for _, joint in tree.joints()}
-            self.physics.add_tree(tree, base_pose(node), angles)
+            self.physics.add_tree(tree, base_pose(node), angles, self._mount_of(node))
         except Exception:  # a bug: this tree is left out, the scene goes on
             self.failures += 1
             log.exception("the parts of %s in scene %s could not be placed", root_id, self._name)
@@ -363,8 +365,6 @@ class SceneBodies:
             self._followers.pop(root_id, None)
         if self.physics.dynamics is not None:
             self._targets_due = True
-            if root_id in self._mounts:  # the mount stays where it was put
-                self.physics.move_base(root_id, self._mounts[root_id])
         keys, poses = self.physics.part_poses(root_id)
         geometries = {tree.base_part: tree.base_geometry,
                       **{link.part: link.geometry for link in tree.links}}
@@ -436,11 +436,34 @@ class SceneBodies:
         if self.physics.dynamics is None or not node.lists_motors:
             self.physics.move_base(root_id, pose)
             return
-        mount = self._mounts.get(root_id, pose)
+        mount = self._mount_of(node) or pose
         pose = (pose[0] if "position" in fields else mount[0],
                 pose[1] if "quaternion" in fields else mount[1])
         self.physics.move_base(root_id, pose)
-        self._mounts[root_id] = pose
+        node.mount = pose  # type: ignore[attr-defined]
+
+    def _mount_of(self, node: Node) -> Pose | None:
+        """Dynamic mode: where a robot's mount holds it; the first time it is built in a
+        dynamic world, where its node is (so a script that puts it where it is, tick after
+        tick, holds it as one that does not: its node turned with the physics, and the
+        first put turned the mount to that). None: not a robot, or kinematic mode."""
+        if self.physics.dynamics is None or not node.lists_motors:
+            return None
+        if node.mount is None:  # type: ignore[attr-defined]
+            node.mount = base_pose(node)  # type: ignore[attr-defined]
+        return node.mount  # type: ignore[attr-defined,no-any-return]
+
+    def hold_mounts(self) -> None:
+        """Dynamic mode: every built robot's mount put at once where its node's mount is:
+        where a document restored it (after its tree was built where its node is), or
+        where the robot is, for one moved into a new world (a mount first set at the next
+        setPosition took the turn the physics had given the node by then, and a script's
+        hand went one way or another as that came a tick sooner or later)."""
+        for root_id in self.physics.roots():
+            node = self._nodes.get(root_id)
+            mount = None if node is None else self._mount_of(node)
+            if mount is not None:
+                self.physics.place_mount(root_id, mount)
 
     # --- contacts and sensors --------------------------------------------------------------
 

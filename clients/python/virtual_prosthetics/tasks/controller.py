@@ -87,7 +87,7 @@ def approach(phases: Phases = PHASES) -> Arm:
         x, y, z = trial.home
         down = smooth(t, phases.hover, phases.descend)
         up = smooth(t, phases.lifting, phases.lift)
-        trial.hand.set_position(x, y + trial.lift * (1 - down) + trial.lift * up, z)
+        trial.set_wrist(x, y + trial.lift * (1 - down) + trial.lift * up, z)
 
     return arm
 

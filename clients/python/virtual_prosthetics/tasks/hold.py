@@ -32,8 +32,8 @@ def carry(scale: Scale, arm: Arm) -> Arm:
             return
         angle = 2 * math.pi * min(ROUNDS, (t - PHASES.holding) / PERIOD)
         x, y, z = trial.home
-        trial.hand.set_position(x + radius * math.sin(angle),
-                                y + trial.lift + radius * (1 - math.cos(angle)), z)
+        trial.set_wrist(x + radius * math.sin(angle),
+                        y + trial.lift + radius * (1 - math.cos(angle)), z)
 
     return step
 

@@ -82,8 +82,10 @@ class Trial:
     poses: list[tuple[list[float], list[float]]] = field(default_factory=list)  # the object's, observed
     start: tuple[float, ...] = (0.0, 0.0, 0.0)  # where the object was laid (scene units)
     start_quaternion: tuple[float, ...] = (0.0, 0.0, 0.0, 1.0)  # and how it was turned
-    # the motor targets last sent (not copied by dataclasses.replace: a new episode's own)
+    # the motor targets and the wrist's place last sent (not copied by dataclasses.replace:
+    # a new episode's own)
     targets: tuple[float | None, ...] = field(default=(), init=False, compare=False)
+    wrist: tuple[float, ...] = field(default=(), init=False, compare=False)
 
     @property
     def layout(self) -> Layout:
@@ -96,6 +98,15 @@ class Trial:
         if angles != self.targets:
             self.targets = angles
             self.hand.set_angles(*angles)
+
+    def set_wrist(self, x: float, y: float, z: float) -> None:
+        """The hand's place (``set_position``), sent only when it changed: its mount holds it
+        where it was put (the server holds a hand put where it is exactly as one left
+        there), yet each place sent costs the server a request and a glide (the baseline
+        holds the wrist still for three quarters of a grasp)."""
+        if (x, y, z) != self.wrist:
+            self.wrist = (x, y, z)
+            self.hand.set_position(x, y, z)
 
     def _node(self, node_id: str, key: str) -> list[float]:
         return framed(self.session, lambda mirror: list(mirror.nodes[node_id][key]))

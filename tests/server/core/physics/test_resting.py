@@ -109,8 +109,11 @@ def test_a_robots_finger_swept_through_a_held_heap_pushes_the_blocks_it_meets(sc
     for k in range(90):  # through the first blocks of the row
         robot.set_position((-2 + 3 * (k + 1) / 90, 0.3, z))
         scene.tick(1 / 60)
-    pushed = [block for block in row if block.position[0] > before[block.id][0] + 0.2]
-    assert pushed, "the finger went through the blocks"
+    # the finger went a unit into the row, held by its mount (a base weighed without its
+    # load turned: the first block went 0.28), and pushed what it met, not the rows four
+    # blocks away (held blocks squeezed stood firm, and sprang out when they moved again);
+    # Bullet's own world, nothing held, jiggles every block by a hair
+    assert row[0].position[0] > before[row[0].id][0] + 0.8
     far = [block for block in heap[0] if abs(block.position[2] - z) > 2]
     assert all(block.position == before[block.id] for block in far)
 

@@ -312,3 +312,29 @@ def test_documents_changed_at_random_are_taken_or_refused_and_nothing_else(busy,
             import_scene(target, json.loads(empty))
     assert 0 < taken < 300  # both kinds were met
     target.close()
+
+
+def test_a_dynamic_robot_comes_back_held_where_its_script_put_it(library):
+    # its node is where the physics has it (a loaded hand turns a hair at its mount); a
+    # document keeps the mount too, and an import holds the robot there from its first step
+    scene = Scene("lab", assets=library)
+    ops = Operations(scene, "c1")
+    ops.call("scene", "setPhysics", ["dynamic"])
+    ops.create("c1.h", "EdgedHand", [True])
+    ops.call("c1.h", "setPosition", [0, 3, 0])
+    ops.call("c1.h", "setRotation", [0.3, 0, 0])
+    for _ in range(30):
+        scene.tick(1 / 60)
+    hand = scene.nodes["c1.h"]
+    put = hand.mount
+    assert put is not None and (hand.position, hand.quaternion) != put  # it sagged a hair
+    document = json.loads(encode_document(export_scene(scene)))
+    [entry] = [e for e in document["nodes"] if e["id"] == "c1.h"]
+    assert entry["state"]["mount"] == [list(put[0]), list(put[1])]
+    copy_of = Scene("copy", assets=library)
+    with copy_of.journal.transaction():
+        import_scene(copy_of, document)
+    copy_of.tick(1 / 60)
+    dynamics = copy_of.bodies.physics.dynamics
+    built = copy_of.bodies.physics._trees["c1.h"]
+    assert copy_of.nodes["c1.h"].mount == put and dynamics._mounts[built.mount] == put
