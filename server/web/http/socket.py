@@ -92,13 +92,12 @@ async def _write(websocket: WebSocket, connection: Connection) -> None:
     socket = connection.socket
     try:
         while True:
-            item = await connection.outbox.get()
-            connection.sending = True  # until written: nothing may be written before it
+            item = await connection.take()  # until written: nothing may be written before it
             if socket is None:
                 await websocket.send_text(item.text)
             else:
                 await socket.write(item.frame)
-            connection.sending = False
+            connection.written()
     except (WebSocketDisconnect, RuntimeError, OSError):  # (OSError: uvicorn's disconnect)
         return
 

@@ -38,7 +38,7 @@ SILENT_SECONDS = 3.0  # a scene that sent nothing this long (60 frames a second)
 _numbers = itertools.count(1)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class Connection:
     """A client as the loop sees it: its id and role, outbox, and text not yet applied."""
 
@@ -57,28 +57,43 @@ class Connection:
     close_code: int = 1000
     close_reason: str = ""
     socket: FramedSocket | None = None  # where frames made once are written, if offered
-    sending: bool = False  # its writer holds a message taken from the outbox
+    # its socket while nothing of its own waits or is being written and it is open: where
+    # a message goes straight (the same bytes for every viewer; messages never overtake)
+    direct: FramedSocket | None = None
 
     def __post_init__(self) -> None:
         self.drained.set()
+        self.direct = self.socket
 
     def send(self, items: list[Outgoing]) -> None:
         """Write messages, or queue them behind those waiting; a connection that stopped
         reading is marked closed."""
         try:
             for item in items:
-                if not self._written_now(item):
+                if self.direct is None or not self.direct.write_now(item.frame):
+                    self.direct = None
                     self.outbox.put(item)
         except SlowConsumer as reason:
             if not self.closed.is_set():
                 log.warning("closing %s: %s", self.client_id, reason)
-            self.closed.set()
+            self.shut()
 
-    def _written_now(self, item: Outgoing) -> bool:
-        # straight to the socket (the same bytes for every viewer), only when nothing of
-        # this connection's is waiting or being written: messages never overtake
-        return (self.socket is not None and not self.sending and not self.outbox
-                and not self.closed.is_set() and self.socket.write_now(item.frame))
+    async def take(self) -> Outgoing:
+        """The next message waiting (its writer's): until :meth:`written`, nothing else
+        goes straight to the socket."""
+        item = await self.outbox.get()
+        self.direct = None
+        return item
+
+    def written(self) -> None:
+        """The message taken was written: messages go straight again once none waits."""
+        if not self.outbox and not self.closed.is_set():
+            self.direct = self.socket
+
+    def shut(self) -> None:
+        """Mark the connection closed: it takes no more messages."""
+        self.direct = None
+        self.closed.set()
 
     def applied(self, size: int) -> None:
         """``size`` bytes of this connection's text were applied by its scene."""
@@ -211,8 +226,15 @@ class SceneHub:
         it takes: the cost of a viewer, in ``/api/metrics``."""
         started = time.thread_time()
         connections = list(self.connections)
-        for connection in connections:
-            connection.send(items)
+        if len(items) == 1:  # a tick's one frame: straight to every socket that keeps up
+            frame = items[0].frame
+            for connection in connections:
+                direct = connection.direct
+                if direct is None or not direct.write_now(frame):
+                    connection.send(items)
+        else:
+            for connection in connections:
+                connection.send(items)
         self.viewer_frames += len(connections) * len(items)
         self.fanout_cpu += time.thread_time() - started
 
@@ -223,7 +245,7 @@ class SceneHub:
             if other.client_id == connection.client_id:
                 other.close_code, other.close_reason = REPLACED, \
                     f"replaced: client {other.client_id} connected again (resumed) elsewhere"
-                other.closed.set()
+                other.shut()
         self.members[connection.number] = connection
         self.idle_since = None
         self.runner.post(Join(connection.number, connection.client_id, connection.role,
@@ -272,6 +294,6 @@ class SceneHub:
                 connection.farewell = Outgoing.of((refusal or UnknownScene(
                     f"scene {self.name} failed and was closed; reconnect to start it "
                     f"again", scene=self.name)).to_wire())
-            connection.closed.set()
+            connection.shut()
             connection.admitted.set()
         self.connections.clear()
