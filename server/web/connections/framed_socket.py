@@ -76,6 +76,10 @@ class FramedSocketProtocol(WebSocketsSansIOProtocol):
         if not (self.close_sent or self.config.ws_per_message_deflate):  # the app will run
             self.scope["extensions"][EXTENSION] = {"socket": self}
 
+    async def send(self, message: Any) -> None:
+        await super().send(message)
+        self._refresh()  # (accepted: uvicorn completes the handshake before the state opens)
+
     def data_received(self, data: bytes) -> None:
         super().data_received(data)
         self._refresh()  # (a close frame received: the state is no longer open)
@@ -106,15 +110,9 @@ class FramedSocketProtocol(WebSocketsSansIOProtocol):
     async def write(self, frame: bytes) -> None:
         """Write ``frame`` once the buffer is below the high-water mark; raises
         ``ClientDisconnected`` (an ``OSError``) if the connection is closing."""
-        await self.writable.wait()
-        if not self._open():
+        await self.writable.wait()  # (set again when the connection is lost)
+        if not self.write_now(frame):
             raise ClientDisconnected()
-        self.transport.write(frame)
-
-    def _open(self) -> bool:
-        return (self.handshake_complete and not self.close_sent and not self.disconnected
-                and self.initial_response is None and self.conn.state is State.OPEN
-                and not self.transport.is_closing())
 
 
 def framed_socket(scope: dict[str, Any]) -> FramedSocket | None:

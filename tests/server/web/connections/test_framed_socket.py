@@ -81,6 +81,7 @@ def test_a_reader_that_lags_is_written_later_in_order_and_a_closed_one_not_at_al
             ks = [json.loads(client.recv(timeout=WAIT_SECONDS))["k"] for _ in range(200)]
         assert ks == list(range(200))  # every frame, whole and in order
         assert writer.waited, "the writer never had to wait for the reader"
+        assert writer.waited[0] > 0  # those before the buffers filled went at once
         eventually(lambda: len(writer.after_close) == 2)
         assert writer.after_close[0] is False and isinstance(writer.after_close[1], OSError)
 
