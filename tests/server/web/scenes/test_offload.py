@@ -43,7 +43,8 @@ def test_past_its_limit_a_call_is_refused_naming_the_limit_and_the_others_finish
 
 def own_pid_then_wait(started: str) -> None:
     """Runs in a call's own process: says its pid, then works until it is ended."""
-    Path(started).write_text(str(os.getpid()))
+    Path(started + ".part").write_text(str(os.getpid()))
+    os.replace(started + ".part", started)  # whole when seen (a reader found it empty)
     time.sleep(WAIT_SECONDS)
 
 
