@@ -18,7 +18,10 @@ pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 
 
 def open_client(server, scene, role="controller"):
-    ws = connect(f"{server.ws}/ws?scene={scene}&role={role}", max_size=None).__enter__()
+    # (an unbounded queue: a client that stops reading a while must not spend its close
+    # handshake's 10 s waiting behind the frames it left unread)
+    ws = connect(f"{server.ws}/ws?scene={scene}&role={role}", max_size=None,
+                 max_queue=None).__enter__()
     hello = json.loads(ws.recv(timeout=WAIT_SECONDS))
     snapshot = json.loads(ws.recv(timeout=WAIT_SECONDS))
     check_server_message(hello)

@@ -60,8 +60,8 @@ def test_metrics_count_the_frames_handed_out_and_their_cost(server, scene_name):
         found = httpx.get(f"{server.http}/api/metrics", timeout=WAIT_SECONDS).json()
         return found["scenes"][scene_name]
 
-    with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as one, \
-            connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as two:
+    with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer", max_queue=None) as one, \
+            connect(f"{server.ws}/ws?scene={scene_name}&role=viewer", max_queue=None) as two:
         next_message(one, "frame")
         next_message(two, "frame")
         before = figures()
