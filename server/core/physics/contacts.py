@@ -61,6 +61,22 @@ class Overlaps:
         """What ``node_id`` touches, sorted."""
         return self.partners.get(node_id, [])
 
+    def partners_of(self, node_ids: Iterable[str | None]) -> list[tuple[str, ...]]:
+        """What each of ``node_ids`` touches, sorted (None touches nothing). A tick's
+        sensors ask for a few parts: the pairs are gone through once for those alone (the
+        whole index of ten hands' hundred pairs took a tenth of sensing's time)."""
+        ids = list(node_ids)
+        if self._partners is not None:
+            return [tuple(self._partners.get(i, ())) if i is not None else () for i in ids]
+        wanted: dict[str | None, list[str]] = {i: [] for i in ids}
+        for a, b in self.pairs:
+            if a in wanted:
+                wanted[a].append(b)
+            if b in wanted:
+                wanted[b].append(a)
+        found = {i: tuple(sorted(others)) for i, others in wanted.items()}
+        return [found[i] for i in ids]
+
     @property
     def partners(self) -> dict[str, list[str]]:
         """What each id that touches anything touches, sorted."""

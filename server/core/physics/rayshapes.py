@@ -78,8 +78,15 @@ def convex_entries(normals: np.ndarray, offsets: np.ndarray, origins: np.ndarray
     """:meth:`Shape.entries` of many rays, each against convex planes of its own: ray k
     against n·p ≤ c for the rows of ``normals[k]`` (planes, 3) and ``offsets[k]``. Rows of
     zeros with a positive offset are no planes (they pad hulls with fewer faces)."""
+    return convex_entries_of(normals, offsets, np.stack((directions, origins), axis=2), limits)
+
+
+def convex_entries_of(normals: np.ndarray, offsets: np.ndarray, rays: np.ndarray,
+                      limits: Sequence[float]) -> np.ndarray:
+    """:func:`convex_entries` of rays given as one (rays, 3, 2) array: each ray's direction
+    and origin side by side (as a batch of rays turned into their shapes' frames comes)."""
     # both products in one batched matmul (a third of two einsums' time at these sizes)
-    products = normals @ np.stack((directions, origins), axis=2)  # (rays, planes, 2)
+    products = normals @ rays  # (rays, planes, 2)
     towards = products[..., 0]
     gaps = offsets - products[..., 1]   # ≥ 0: inside that plane
     with np.errstate(divide="ignore", invalid="ignore"):

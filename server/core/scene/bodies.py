@@ -500,8 +500,7 @@ class SceneBodies:
         if exact:
             contacts = [self.touching(host) for host in hosts]
         else:
-            partners = self.tracker.overlaps().partners
-            contacts = [partners.get(host, ()) for host in ids]  # type: ignore[arg-type]
+            contacts = self.tracker.overlaps().partners_of(ids)
         pressing = self.physics.contacts({host for host in ids if host is not None})
         return read_sensors(self._rays, sensors, contacts,
                             [pressing.get(host, ()) for host in ids] if pressing else None,

@@ -24,6 +24,16 @@ def test_overlaps_index_both_sides_sorted():
     assert overlaps.of("m") == ["a", "ground", "z"] and overlaps.of("a") == ["m"]
 
 
+def test_partners_of_a_few_ids_are_the_index_s_whether_it_was_made_or_not():
+    pairs = [pair(f"p{random.Random(k).randrange(30)}", f"p{random.Random(-k).randrange(30)}")
+             for k in range(200)]
+    asked = ["p3", None, "p17", "nobody", "p3", "ground"]
+    fresh, indexed = Overlaps(pairs), Overlaps(pairs)
+    expected = [tuple(indexed.of(i)) if i is not None else () for i in asked]
+    assert fresh.partners_of(asked) == expected == indexed.partners_of(asked)
+    assert any(expected) and expected[0] == expected[4] and expected[3] == ()
+
+
 IDENTITY = (0.0, 0.0, 0.0, 1.0)
 CUBE = {"kind": "box", "size": [1, 1, 1]}
 
