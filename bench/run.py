@@ -173,6 +173,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "tick_ratio_hands10": found["hands10"]["ratio"],
         "tick_ratio_hands50": found["hands50"]["ratio"],
         "sensors100_ms": found["sensors"][0]["sensing_ms"].median,
+        "sensors100_ratio": found["sensors"][0]["ratio"],
         "requests_per_s": found["requests"]["per_second"],
         "latency_p99_ms": found["latency"]["p99_ms"],
         "viewers1000_fps_min": min(row["fps_min"] for row in most),
