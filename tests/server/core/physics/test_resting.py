@@ -181,3 +181,26 @@ def test_a_robot_is_found_near_from_either_side_alike(scene):
     by_links = rest._near(rest._robot_boxes(sorted(robots)), rest._robot_margin, boxes)
     by_bodies = rest._near_robots(robots, boxes)
     assert by_links == by_bodies and 0 < len(by_links) < len(heap[0]) / 4
+
+
+def test_a_few_pressers_contacts_are_the_worlds_that_touch_them(scene):
+    # the pressed rule asks Bullet for the contacts of each of a few robots and moving
+    # bodies, else reads every contact point of the world: both see the same presses
+    heap = _heap(scene, layers=1)
+    robot = Robot(scene, "r")
+    finger = EdgedFinger(scene, "f")
+    robot.attach_chain(finger)
+    z = heap[0][SIDE // 2 * SIDE].position[2]
+    robot.set_position((-2, 0.3, z))
+    for k in range(40):  # into the row: the finger presses held blocks
+        robot.set_position((-2 + 2 * (k + 1) / 40, 0.3, z))
+        scene.tick(1 / 60)
+    rest = scene.bodies.physics.dynamics.resting
+    hand = scene.bodies.physics._trees["r"].body
+    few = {hand}
+    everyone = few | set(rest.free) | set(rest.held)
+    assert len(few) <= resting.ASKED_ONE_BY_ONE < len(everyone)
+    one_by_one = {(min(a, b), max(a, b), force) for a, b, force in rest._contacts_of(few)}
+    at_once = {(min(a, b), max(a, b), force) for a, b, force in rest._contacts_of(everyone)
+               if hand in (a, b)}
+    assert one_by_one == at_once and any(force > 0 for _, _, force in one_by_one)
