@@ -27,6 +27,7 @@ reachable by its processes only (NATS accounts or TLS when it leaves one machine
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import pickle
 import time
@@ -243,18 +244,24 @@ class Bus:
             raise Unanswered(f"{subject}: no answer within {timeout} s", gone=False) from None
         return pickle.loads(message.data)
 
-    async def gather(self, subject: str, value: Any, wait: float) -> list[Any]:
-        """Ask everyone listening on ``subject``; the answers that came within ``wait``."""
+    async def gather(self, subject: str, value: Any, wait: float,
+                     enough: Callable[[list[Any]], bool] | None = None) -> list[Any]:
+        """Ask everyone listening on ``subject``; the answers that came within ``wait``
+        seconds, or as soon as ``enough(answers)`` says they are all there."""
         answers: list[Any] = []
+        complete = asyncio.Event()
 
         async def collect(message: Msg) -> None:
             if message.data:  # (not the bus's own "no responders")
                 answers.append(pickle.loads(message.data))
+                if enough is not None and enough(answers):
+                    complete.set()
         inbox = self.client.new_inbox()
         subscription = await self.client.subscribe(inbox, cb=collect)
         try:
             await self.client.publish(subject, self.pack(value), reply=inbox)
-            await asyncio.sleep(wait)
+            with contextlib.suppress(asyncio.TimeoutError):
+                await asyncio.wait_for(complete.wait(), wait)
         finally:
             await subscription.unsubscribe()
         return answers

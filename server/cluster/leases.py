@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import logging
 
-from nats.js.errors import KeyDeletedError, KeyNotFoundError, KeyWrongLastSequenceError
+from nats.js.errors import KeyDeletedError, KeyNotFoundError, KeyWrongLastSequenceError, NoKeysError
 from nats.js.kv import KeyValue
 
 log = logging.getLogger(__name__)
@@ -34,6 +34,14 @@ async def _value(bucket: KeyValue, key: str) -> tuple[str | None, int]:
 async def worker_lives(workers: KeyValue, worker: str) -> bool:
     """Whether ``worker``'s key is there (written within a lease)."""
     return (await _value(workers, worker))[0] is not None
+
+
+async def living_workers(workers: KeyValue) -> set[str]:
+    """The workers whose keys are there (each written within a lease)."""
+    try:
+        return set(await workers.keys())
+    except NoKeysError:
+        return set()
 
 
 async def lease_holder(workers: KeyValue, scenes: KeyValue, scene: str) -> str | None:

@@ -23,10 +23,16 @@ from collections import Counter
 from ..core.kit.errors import LimitExceeded
 from .bus import PLACE, Bus, ReturnAddress, Unanswered, attach_subject
 from .bus_messages import Attach, Attached, Elsewhere, Full, Load
-from .leases import break_worker, lease_holder
+from .leases import break_worker, lease_holder, living_workers
 
 log = logging.getLogger(__name__)
-GATHER_SECONDS = 0.2  # how long workers have to say how busy they are
+# How long workers have to say how busy they are: a survey ends once every living worker
+# (its key in the bus's bucket) has answered, at most SURVEY_WAIT_SECONDS after it asked. A
+# fixed 0.2 s missed a worker slow to answer on a loaded machine, and a vector's two scenes
+# placed at once both went to the one that had answered. GATHER_SECONDS bounds a survey
+# when no worker's key is known (the bucket unread, or the workers just starting).
+SURVEY_WAIT_SECONDS = 2.0
+GATHER_SECONDS = 0.2
 SURVEY_SECONDS = 1.0  # how often they are asked
 # a worker not heard of this long is left out (a busy one may miss a survey or two; a
 # gone one is left out at once when a placement finds nobody listening)
@@ -118,10 +124,16 @@ class Placement:
                             value=first.value, flag=first.flag, scene=scene)
 
     async def survey(self) -> None:
-        """Ask every worker how busy it is (an answer older than what a worker said since,
-        to a placement made while the survey gathered, does not count: it hid a scene just
-        placed, and a vector's two scenes went to one worker)."""
-        for load in await self.bus.gather(PLACE, None, GATHER_SECONDS):
+        """Ask every worker how busy it is, hearing every living worker's answer (an
+        answer older than what a worker said since, to a placement made while the survey
+        gathered, does not count: it hid a scene just placed, and a vector's two scenes
+        went to one worker)."""
+        living = await living_workers(self.bus.workers)
+
+        def everyone(answers: list[Load]) -> bool:
+            return living <= {load.worker for load in answers}
+        wait = SURVEY_WAIT_SECONDS if living else GATHER_SECONDS
+        for load in await self.bus.gather(PLACE, None, wait, everyone if living else None):
             self._heard(load)
         self._surveyed = time.monotonic()
 

@@ -4,6 +4,8 @@ same moment by two gateways spread over the workers instead of piling on one."""
 from __future__ import annotations
 
 import asyncio
+import os
+import signal
 import time
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
@@ -53,5 +55,31 @@ def test_a_scene_its_client_left_no_longer_sends_the_next_scenes_elsewhere(tmp_p
                 for client in clients:
                     client.close()
                 time.sleep(0.3)
+        finally:
+            cluster.close()
+
+
+def test_a_survey_hears_a_living_worker_that_is_slow_to_answer(tmp_path, scene_name):
+    """A worker stopped for half a second (a loaded machine) when a fresh gateway places two
+    scenes at once: the survey waits for every worker the bus knows to be alive, so they
+    spread (a survey of a fixed 0.2 s put both on the worker that had answered)."""
+    with running_bus(tmp_path) as url:
+        cluster = Cluster(url, tmp_path, gateways=0)
+        slow = cluster.workers["wb"].pid
+
+        async def place_two() -> list[str]:
+            bus = await Bus.connect(url, "g1", 3.0)
+            placement = Placement(bus)
+            os.kill(slow, signal.SIGSTOP)
+            asyncio.get_running_loop().call_later(0.5, os.kill, slow, signal.SIGCONT)
+            try:
+                placed = await asyncio.gather(*(placement.place(f"test-{k}", f"{scene_name}s{k}")
+                                                for k in range(2)))
+            finally:
+                os.kill(slow, signal.SIGCONT)
+                await bus.close()
+            return sorted(worker for worker, _ in placed)
+        try:
+            assert asyncio.run(place_two()) == ["wa", "wb"]
         finally:
             cluster.close()
