@@ -4,6 +4,8 @@ was at that time, playing moves the timeline on, and a tick at a time steps it."
 from __future__ import annotations
 
 import math
+import os
+import signal
 import time
 
 import pytest
@@ -75,6 +77,37 @@ def test_playing_and_stepping_move_the_timeline(browser, pages, server, scene, s
     assert page.evaluate("() => VP.replay.time") > times[0]
     page.click("#timeline button[title='a tick back']")
     wait_until(page, "(seq) => VP.seq <= seq", before)
+
+
+def test_a_tick_forwards_and_back_cross_a_gap_where_the_scene_stalled(browser, pages, server, scene, scene_name):
+    """A scene's process stopped for a second (a loaded machine) left a gap between two
+    ticks longer than the player reads ahead: stepping still goes to the next tick."""
+    _, motor, _ = red_box_on_a_motor()
+    scene.sync()
+    rec = vp.start_recording()
+    motor.set_angle(-1.0)
+    scene.sync()
+    time.sleep(0.3)
+    pid = server.get("/api/metrics")["scenes"][scene_name]["pid"]
+    os.kill(pid, signal.SIGSTOP)
+    time.sleep(1.2)
+    os.kill(pid, signal.SIGCONT)
+    motor.set_angle(1.0)
+    scene.sync()
+    time.sleep(0.3)
+    rec.stop()
+    times = [t for t, _ in server.get(f"/api/recordings/{rec.id}/ticks?after=0&until={rec.summary['seconds']}")["ticks"]]
+    gap = max(range(1, len(times)), key=lambda k: times[k] - times[k - 1])
+    assert times[gap] - times[gap - 1] > 1.0  # the stop, as the recording has it
+    page = open_viewer(browser, pages, server, f"recording={rec.id}")
+    wait_until(page, "(id) => VP.objects.has(id)", motor.id)
+    page.evaluate("(t) => VP.replay.seek(t)", times[gap - 1])
+    wait_until(page, "(t) => VP.replay.time === t", times[gap - 1])
+    before = page.evaluate("() => VP.seq")
+    page.click("#timeline button[title='a tick forwards']")
+    wait_until(page, "([seq, t]) => VP.seq === seq + 1 && VP.replay.time === t", [before, times[gap]])
+    page.click("#timeline button[title='a tick back']")
+    wait_until(page, "([seq, t]) => VP.seq === seq && VP.replay.time === t", [before, times[gap - 1]])
 
 
 def test_a_controllers_viewer_records_the_scene_and_offers_the_replay(browser, pages, server, scene, scene_name):

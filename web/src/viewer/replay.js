@@ -72,16 +72,41 @@ export class Replay {
 		this.changed();
 	}
 
-	// One tick forwards (the next recorded one) or back (the scene a tick earlier).
+	// One tick forwards or back: the next recorded tick, or the one before the tick shown,
+	// however far (a scene whose process stalled, on a loaded machine, has gaps of seconds
+	// between its ticks).
 	async step(direction) {
 		this.play(false);
-		if (direction < 0) return this.seek(Math.max(0, this.time - TICK));
+		const generation = this.generation;
+		if (direction < 0) {
+			const earlier = await this.earlier();
+			return generation === this.generation ? this.seek(earlier) : undefined;
+		}
 		await this.fill(this.time + TICK * 30);
-		const next = this.buffer.shift();
+		while (!this.buffer.length && this.fetched < this.duration && generation === this.generation) {
+			await this.fill(this.fetched + 10);
+		}
+		const next = generation === this.generation && this.buffer.shift();
 		if (!next) return;
 		for (const message of next[1]) this.receive(message);
 		this.time = next[0];
 		this.changed();
+	}
+
+	// The time of the last tick before the one shown at the cursor (0: the start), read
+	// backwards half a second and then 10 s at a time. Ticks of no time (a paused scene's
+	// stands) share their time: the one before is the last of an earlier time.
+	async earlier() {
+		let shown = null;
+		let span = TICK * 30;
+		for (let until = this.time; until > 0; until -= span, span = 10) {
+			const { ticks } = await this.get(`ticks?after=${Math.max(0, until - span)}&until=${until}`);
+			for (const [time] of ticks.reverse()) {
+				if (shown === null) shown = time;
+				else if (time < shown) return time;
+			}
+		}
+		return 0;
 	}
 
 	loop(now) {
