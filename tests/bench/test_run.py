@@ -20,8 +20,9 @@ pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 # a 2-core machine; its own hang guard leaves room for a machine several times slower.
 @pytest.mark.timeout(900)
 def test_bench_quick_writes_every_figure(tmp_path):
-    subprocess.run(["make", "-s", "bench-quick", f"BENCH_OUT={tmp_path}"], cwd=ROOT, check=True,
-                   capture_output=True, timeout=850)
+    run = subprocess.run(["make", "-s", "bench-quick", f"BENCH_OUT={tmp_path}"], cwd=ROOT,
+                         capture_output=True, text=True, timeout=850)
+    assert run.returncode == 0, run.stderr[-6000:]  # what failed, in the test's report
     results = json.loads((tmp_path / "results.json").read_text())
     for name in TARGETS:
         assert isinstance(results[name], (int, float)) and math.isfinite(results[name]), name
