@@ -19,7 +19,7 @@ const FRAME_MARGIN = 1.15;   // frame(): room around what is framed
 
 export class Stage {
 	constructor(container = document.body, fps = null) {
-		const software = softwareWebGL();
+		const software = this.software = softwareWebGL();
 		const most = fps ?? (software ? SOFTWARE_FPS : 0);
 		this.gapMs = most > 0 ? 1000 / most : 0;  // between the starts of two pictures
 		// antialiasing is fixed when the context is made: software draws every sample

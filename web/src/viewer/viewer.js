@@ -7,7 +7,7 @@ import { callMessage } from '/client/messages.js';
 import { dispatch, makeHandlers } from './handlers.js';
 import { installInspection } from './inspection.js';
 import { Lasers } from './lasers.js';
-import { Logo } from './logo.js';
+import { Logo, SOFTWARE_TURNS } from './logo.js';
 import { Motion } from './motion.js';
 import { Overlays } from './overlays.js';
 import { MotorPanels } from './panel.js';
@@ -82,7 +82,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		if (!typing && !event.ctrlKey && !event.metaKey && !event.altKey && event.key.toLowerCase() === 'f') frameAll();
 	});
 	Object.assign(view.hook, { frameAll });
-	const logo = new Logo(stage.scene);
+	const logo = new Logo(stage.scene, stage.software && options.fps === null ? 1000 / SOFTWARE_TURNS : 0);
 	const handlers = makeHandlers(view);
 	const panels = new MotorPanels(tree, {
 		// a controller steers its own robots and shared ones (the server refuses the rest)
