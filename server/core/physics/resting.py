@@ -162,7 +162,7 @@ class Resting:
         else:
             points = [point for body in bodies
                       for point in p.getContactPoints(bodyA=body, physicsClientId=client)]
-        return [(point[1], point[2], point[9]) for point in points]
+        return ((point[1], point[2], point[9]) for point in points)
 
     def _boxes(self, bodies: list[int]) -> dict[int, Box]:
         """The boxes of these bodies: a held one's as kept, an awake one's now."""
