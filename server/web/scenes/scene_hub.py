@@ -231,6 +231,7 @@ class SceneHub:
             for connection in connections:
                 direct = connection.direct
                 if direct is None or not direct.write_now(frame):
+                    connection.direct = None  # refused: queued (not asked again by send)
                     connection.send(items)
         else:
             for connection in connections:
