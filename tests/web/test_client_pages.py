@@ -22,6 +22,10 @@ pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "web" / "examples"
 ASSETS = EXAMPLES.parents[1] / "assets" / "gltf"
+# Pages and viewers draw two pictures a second (the viewer's ?fps=): these tests check what
+# the pages make and move, not their pictures (tests/web/test_stage.py has the cap), and an
+# animated page drawn at the software cap took 1.5 cores against 0.8
+CALM = "fps=2"
 
 
 def _angles(server, scene: str) -> list[float]:
@@ -59,7 +63,7 @@ def _wait_for_robots(server, scene: str, count: int) -> None:
 def _seen_by_a_viewer(browser, pages, server, scene: str) -> None:
     """A second browser watching the scene holds every node the server has, meshes drawn."""
     ids = [n["id"] for n in server.nodes(scene)]
-    viewer = open_viewer(browser, pages, server, f"scene={scene}")
+    viewer = open_viewer(browser, pages, server, f"scene={scene}&{CALM}")
     wait_until(viewer, "(ids) => ids.every((id) => VP.objects.has(id))", ids)
     meshes = [i for i, n in _meshes(server, scene).items() if n["visible"]]
     wait_until(viewer, "(ids) => ids.every((id) => VP.objects.get(id).userData.shape)", meshes)
@@ -72,7 +76,7 @@ def _seen_by_a_viewer(browser, pages, server, scene: str) -> None:
 def test_an_example_page_builds_its_robot_on_the_server(browser, pages, server, scene_name,
                                                         example, robots, moving):
     page, _, query = example.partition("?")
-    open_page(browser, pages, f"{server.http}/examples/{page}.html?scene={scene_name}&{query}")
+    open_page(browser, pages, f"{server.http}/examples/{page}.html?scene={scene_name}&{query}&{CALM}")
     _wait_for_robots(server, scene_name, robots)
     assert _moves(server, scene_name, moving) == moving
     if page == "two-hands":
@@ -170,17 +174,17 @@ def test_a_pages_own_mesh_file_is_uploaded_and_drawn(browser, pages, server, sce
     wait_until(page, "() => window.loaded !== undefined")         # its callback ran
     assert _moves(server, scene_name, True)
     # drawn from the server's copy in the page itself (not the page's site) and in a viewer
-    for drawing in (page, open_viewer(browser, pages, server, f"scene={scene_name}")):
+    for drawing in (page, open_viewer(browser, pages, server, f"scene={scene_name}&{CALM}")):
         wait_until(drawing, MESH_DRAWN, finger["id"])
 
 
 def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scene_name):
-    page = open_page(browser, pages, f"{server.http}/examples/digger.html?scene={scene_name}")
+    page = open_page(browser, pages, f"{server.http}/examples/digger.html?scene={scene_name}&{CALM}")
     _wait_for_robots(server, scene_name, 3)
     nodes = {n["id"]: n for n in server.nodes(scene_name)}
     positions = sorted(n["position"][2] for n in server.robots(scene_name))
     assert positions == [-1, 0, 1]          # robotA at z=1, robotC at z=-1, as the manual says
-    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}&{CALM}")
     wait_until(viewer, "(ids) => ids.every((id) => window.VP.objects.has(id))", list(nodes))
     # the page draws the same scene: the viewer inside it holds the same nodes
     wait_until(page, "(ids) => window.VP && ids.every((id) => window.VP.objects.has(id))", list(nodes))
@@ -188,7 +192,7 @@ def test_the_digger_page_is_seen_by_another_browser(browser, pages, server, scen
 
 
 def test_a_page_without_a_scene_gets_its_own_with_a_watch_link(browser, pages, server):
-    page = open_page(browser, pages, f"{server.http}/examples/simple-robot-2.html")
+    page = open_page(browser, pages, f"{server.http}/examples/simple-robot-2.html?{CALM}")
     wait_until(page, "() => document.querySelector('#status a')")
     link = page.get_attribute("#status a", "href")
     scene = link.split("scene=")[1]
@@ -202,7 +206,7 @@ def _meshes(server, scene: str) -> dict[str, dict]:
 
 def test_the_custom_meshes_page_shares_its_meshes_and_senses_them(browser, pages, server,
                                                                    scene_name):
-    page = open_page(browser, pages, f"{server.http}/examples/custom-meshes.html?scene={scene_name}")
+    page = open_page(browser, pages, f"{server.http}/examples/custom-meshes.html?scene={scene_name}&{CALM}")
     _wait_for_robots(server, scene_name, 1)
     deadline = time.monotonic() + WAIT_SECONDS
     while len(_meshes(server, scene_name)) < 123 and time.monotonic() < deadline:
@@ -222,7 +226,7 @@ def test_the_custom_meshes_page_shares_its_meshes_and_senses_them(browser, pages
     # the sweeping sensor measures the wall at some point of its sweep (1.64 m straight on)
     wait_until(page, "() => /distance: 1\\.[6-9]/.test(document.getElementById('reading').textContent)")
     # a second browser draws the page's meshes; the page does not draw them twice
-    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}&{CALM}")
     wait_until(viewer, "(ids) => ids.every((id) => VP.objects.get(id)?.userData.shape)", markers)
     assert page.evaluate("(ids) => ids.every((id) => !VP.objects.get(id)?.userData.shape)", markers)
 
@@ -232,7 +236,7 @@ def _reading(page) -> str:
 
 
 def _sensor_page(browser, pages, server, scene: str, example: str):
-    page = open_page(browser, pages, f"{server.http}/examples/{example}.html?scene={scene}")
+    page = open_page(browser, pages, f"{server.http}/examples/{example}.html?scene={scene}&{CALM}")
     _wait_for_robots(server, scene, 1)
     return page
 
@@ -321,5 +325,5 @@ def test_the_motor_panel_page_moves_its_arm_and_a_viewer_follows(browser, pages,
             break
         time.sleep(0.1)
     assert {n["id"]: n for n in server.nodes(scene_name)}[shoulder["id"]]["angle"] == 1.2
-    viewer = open_viewer(browser, pages, server, f"scene={scene_name}")
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}&{CALM}")
     wait_until(viewer, "(id) => VP.angle(id) === 1.2", shoulder["id"])
