@@ -6,7 +6,7 @@ import time
 import pytest
 
 from ..conftest import WAIT_SECONDS, start_server, stop_server
-from .conftest import open_page, open_viewer, wait_until
+from .conftest import CALM, open_page, open_viewer, wait_until
 
 pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 
@@ -22,13 +22,13 @@ def locked():
 
 
 def test_pages_with_the_token_build_and_watch(browser, pages, locked):
-    open_page(browser, pages, f"{locked.http}/examples/two-hands.html?scene=locked&token={CONTROL}")
+    open_page(browser, pages, f"{locked.http}/examples/two-hands.html?scene=locked&token={CONTROL}&{CALM}")
     deadline = time.monotonic() + WAIT_SECONDS
     while len(locked.robots("locked")) < 2:
         assert time.monotonic() < deadline, "the page's hands never reached the server"
         time.sleep(0.2)
     ids = [n["id"] for n in locked.nodes("locked")]
-    viewer = open_viewer(browser, pages, locked, f"scene=locked&token={VIEW}")
+    viewer = open_viewer(browser, pages, locked, f"scene=locked&token={VIEW}&{CALM}")
     wait_until(viewer, "(ids) => ids.every((id) => VP.objects.has(id))", ids)
 
 

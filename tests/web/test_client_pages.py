@@ -16,16 +16,12 @@ import pytest
 
 from tests.conftest import WAIT_SECONDS, free_port
 
-from .conftest import open_page, open_viewer, wait_until
+from .conftest import CALM, open_page, open_viewer, wait_until
 
 pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "web" / "examples"
 ASSETS = EXAMPLES.parents[1] / "assets" / "gltf"
-# Pages and viewers draw two pictures a second (the viewer's ?fps=): these tests check what
-# the pages make and move, not their pictures (tests/web/test_stage.py has the cap), and an
-# animated page drawn at the software cap took 1.5 cores against 0.8
-CALM = "fps=2"
 
 
 def _angles(server, scene: str) -> list[float]:

@@ -7,7 +7,7 @@ import time
 
 from tests.conftest import WAIT_SECONDS
 
-from .conftest import open_page, open_viewer, wait_until
+from .conftest import CALM, open_page, open_viewer, wait_until
 from .picture import Picture
 
 TABLE_TOP = 1.4
@@ -19,7 +19,7 @@ def _node(server, scene: str, kind: str) -> dict | None:
 
 def test_the_grasp_page_closes_the_hand_on_the_ball_and_a_viewer_shows_it(
         browser, pages, server, scene_name):
-    open_page(browser, pages, f"{server.http}/examples/grasp.html?scene={scene_name}")
+    open_page(browser, pages, f"{server.http}/examples/grasp.html?scene={scene_name}&{CALM}")
     deadline = time.monotonic() + WAIT_SECONDS
     pressed = 0.0
     while time.monotonic() < deadline and pressed == 0.0:
