@@ -86,8 +86,7 @@ def _wait_for_steps(running: RunningServer, scene: str, driver: subprocess.Popen
     """Until the driver's hands are made and its loop sends steps (a second of them)."""
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline and driver.poll() is None:
-        found = running.get("/api/metrics")["scenes"].get(scene)
-        if found is not None and found["requestsPerSecond"] > 0:
+        if scene_metrics(running, scene)["requestsPerSecond"] > 0:
             time.sleep(1.0)
             return
         time.sleep(0.1)

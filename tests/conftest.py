@@ -61,6 +61,15 @@ class RunningServer:
         with urllib.request.urlopen(request, timeout=WAIT_SECONDS) as response:
             return response.status, json.loads(response.read())
 
+    def figures(self, scene: str) -> dict[str, Any]:
+        """The scene's entry in /api/metrics once its process has answered (one that has not
+        within the server's second, on a loaded machine, has only the server's own figures)."""
+        deadline = time.monotonic() + WAIT_SECONDS
+        while "ticks" not in (found := self.get("/api/metrics")["scenes"].get(scene) or {}):
+            assert time.monotonic() < deadline, f"scene {scene} gave no figures: {found}"
+            time.sleep(0.05)
+        return found
+
     def nodes(self, scene: str) -> list[dict[str, Any]]:
         """The scene's nodes as its snapshot lists them; none while the scene is not there."""
         try:

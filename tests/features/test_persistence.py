@@ -158,7 +158,7 @@ def test_without_a_state_dir_a_scene_with_kept_objects_stays(scene_name):
             robot = vp.Robot().keep()
         time.sleep(4)
         assert [r["id"] for r in server.robots(scene_name)] == [robot.id]
-        assert server.get("/api/metrics")["scenes"][scene_name]["saved"] is None
+        assert server.figures(scene_name)["saved"] is None
     finally:
         stop_server(server)
 

@@ -15,7 +15,7 @@ def test_targets_kept_cost_the_server_no_request_and_the_hand_holds_them(server,
     ball = grasp.PATTERNS[0]
 
     def requests() -> int:
-        return server.get("/api/metrics")["scenes"][scene_name]["requests"]
+        return server.figures(scene_name)["requests"]
     with scene.paused():  # stepped: the same motion however loaded the machine is
         [trial] = lay_out(scene, TaskHand(hand_source("edged", scene)), ball.item, [(1.0, 1.0)],
                           ball.item.light, ball.grip)
@@ -44,7 +44,7 @@ def test_a_wrist_kept_costs_the_server_no_request_and_the_hand_stays_held(server
     ball = grasp.PATTERNS[0]
 
     def requests() -> int:
-        return server.get("/api/metrics")["scenes"][scene_name]["requests"]
+        return server.figures(scene_name)["requests"]
     with scene.paused():
         [trial] = lay_out(scene, TaskHand(hand_source("edged", scene)), ball.item, [(1.0, 1.0)],
                           ball.item.light, ball.grip)

@@ -123,9 +123,9 @@ def test_openapi_documents_the_routes(server):
 def test_metrics_report_ticks_of_a_watched_scene_and_do_not_wake_a_sleeping_one(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as ws:
         ws.recv(timeout=WAIT_SECONDS)
-        first = server.get("/api/metrics")["scenes"][scene_name]["ticks"]
+        first = server.figures(scene_name)["ticks"]
         time.sleep(0.2)
-        assert server.get("/api/metrics")["scenes"][scene_name]["ticks"] > first
+        assert server.figures(scene_name)["ticks"] > first
     eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["asleep"])
     asleep = server.get("/api/metrics")["scenes"][scene_name]
     time.sleep(0.2)
@@ -150,7 +150,7 @@ def test_metrics_give_recent_tick_percentiles_and_request_rates(server, scene_na
 def test_metrics_in_prometheus_text(server, scene_name):
     with connect(f"{server.ws}/ws?scene={scene_name}&role=viewer") as ws:
         ws.recv(timeout=WAIT_SECONDS)
-        eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["ticks"] > 0)
+        eventually(lambda: server.figures(scene_name)["ticks"] > 0)
         with urllib.request.urlopen(f"{server.http}/api/metrics?format=prometheus", timeout=WAIT_SECONDS) as response:
             assert response.headers["Content-Type"].startswith("text/plain; version=0.0.4")
             lines = response.read().decode().splitlines()

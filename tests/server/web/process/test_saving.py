@@ -185,12 +185,12 @@ def test_a_folder_that_turns_read_only_loses_nothing_its_open_journal_holds(tmp_
         with vp.connect(server.ws, scene=scene_name, keep=True) as client:
             ball = vp.Ball()
             client.sync()
-            eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["saved"])
+            eventually(lambda: server.figures(scene_name)["saved"])
             with unwritable(state / "scenes"):
                 box = vp.Box()
                 client.sync()
-                eventually(lambda: server.get("/api/metrics")["scenes"][scene_name]["saveError"])
-                assert server.get("/api/metrics")["scenes"][scene_name]["durable"] is True
+                eventually(lambda: server.figures(scene_name)["saveError"])
+                assert server.figures(scene_name)["durable"] is True
                 assert any("kept in its journal" in p for p in server.get("/api/health")["problems"])
                 stop_server(server)
         assert server.process.returncode == 0
