@@ -18,7 +18,7 @@ import sys
 import time
 from typing import Any
 
-from .live import NICE, ROOT, RunningServer, cpu_seconds, scene_metrics
+from .live import NICE, ROOT, RunningServer, cpu_seconds
 from .scenes import GRID, hand_angles
 
 JS_DRIVER = """
@@ -69,11 +69,11 @@ def measure(running: RunningServer, client: str, count: int, seconds: float) -> 
                                str(GRID)], cwd=ROOT)
     try:
         _wait_for_steps(running, scene, driver)
-        pids = [running.process.pid, scene_metrics(running, scene)["pid"]]
+        pids = [running.process.pid, running.figures(scene)["pid"]]
         before, start = cpu_seconds(pids), time.monotonic()
         time.sleep(seconds * 0.8)
         cores = (cpu_seconds(pids) - before) / (time.monotonic() - start)
-        figures = scene_metrics(running, scene)
+        figures = running.figures(scene)
     finally:
         driver.terminate()  # (measured: what is left of its run is not)
         driver.wait(60)
@@ -86,7 +86,7 @@ def _wait_for_steps(running: RunningServer, scene: str, driver: subprocess.Popen
     """Until the driver's hands are made and its loop sends steps (a second of them)."""
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline and driver.poll() is None:
-        if scene_metrics(running, scene)["requestsPerSecond"] > 0:
+        if running.figures(scene)["requestsPerSecond"] > 0:
             time.sleep(1.0)
             return
         time.sleep(0.1)

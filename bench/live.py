@@ -72,20 +72,6 @@ def ask(ws: Any, request: dict[str, Any], timeout: float = 60) -> dict[str, Any]
             return answer
 
 
-def scene_metrics(running: RunningServer, scene: str) -> dict[str, Any]:
-    """The scene's figures from /api/metrics (its last 10 seconds), once its process has
-    given some: a scene that has not answered in time yet (a loaded machine: bench-quick in
-    the suite) has only the server's own figures there, and the bench failed on a KeyError."""
-    deadline = time.monotonic() + STUCK_SECONDS
-    while True:
-        found = running.get("/api/metrics")["scenes"].get(scene)
-        if found is not None and "ticksPerSecond" in found:
-            return found  # type: ignore[no-any-return]
-        if time.monotonic() > deadline:
-            raise TimeoutError(f"scene {scene} gave no figures within {STUCK_SECONDS} s: {found}")
-        time.sleep(0.1)
-
-
 def tick_outside(running: RunningServer, count: int, seconds: float) -> dict[str, Any]:
     """hands-``count`` driven at 60 Hz: the server's own tick figures, its tick rate, and
     the CPU of the whole server (web process and scene process; no other scene ticks)."""
@@ -95,7 +81,7 @@ def tick_outside(running: RunningServer, count: int, seconds: float) -> dict[str
         cpu_before, started = server_cpu_seconds(running, scene), time.monotonic()
         time.sleep(seconds * 0.6)
         cores = (server_cpu_seconds(running, scene) - cpu_before) / (time.monotonic() - started)
-        metrics = scene_metrics(running, scene)
+        metrics = running.figures(scene)
     return {"hands": count, "tick_ms_p50": metrics["tickMsP50"], "tick_ms_p95": metrics["tickMsP95"],
             "ticks_per_second": metrics["ticksPerSecond"], "cpu_percent": metrics["cpuPercent"],
             "server_cores": cores}
@@ -152,10 +138,10 @@ def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,
     def window(start: float, end: float) -> tuple[float, dict[str, Any], dict[str, Any]]:
         """The server's cores over the window, and the scene's metrics at each end."""
         sleep_until(start)
-        cpu, first = server_cpu_seconds(running, scene), scene_metrics(running, scene)
+        cpu, first = server_cpu_seconds(running, scene), running.figures(scene)
         sleep_until(end)
         cores = (server_cpu_seconds(running, scene) - cpu) / (time.monotonic() - start)
-        return cores, first, scene_metrics(running, scene)
+        return cores, first, running.figures(scene)
 
     [out], (cores, before, after) = run_viewers([command], seconds, window)
     found = out["viewers"]
@@ -183,7 +169,7 @@ def viewer_frame_us_outside(rows: list[dict[str, Any]]) -> float:
 
 def server_cpu_seconds(running: RunningServer, scene: str) -> float:
     """CPU seconds (user + system) of the server's own process and of the scene's process."""
-    return cpu_seconds([running.process.pid, scene_metrics(running, scene)["pid"]])
+    return cpu_seconds([running.process.pid, running.figures(scene)["pid"]])
 
 
 def cpu_seconds(pids: list[int]) -> float:
@@ -215,7 +201,7 @@ def two_scenes(running: RunningServer, count: int, seconds: float) -> dict[str, 
     with driving(running, "busy1", "hands", count, seconds), \
             driving(running, "busy2", "hands", count, seconds):
         time.sleep(seconds * 0.9)
-        found = [scene_metrics(running, name) for name in ("busy1", "busy2")]
+        found = [running.figures(name) for name in ("busy1", "busy2")]
     return {"hands": count, "ticks_per_second": [m["ticksPerSecond"] for m in found],
             "tick_ms_p50": [m["tickMsP50"] for m in found],
             "tick_ms_p95": [m["tickMsP95"] for m in found]}

@@ -14,7 +14,7 @@ from typing import Any
 
 from websockets.sync.client import connect
 
-from .live import ask, scene_metrics, server
+from .live import ask, server
 
 SAMPLE_SECONDS = 0.5
 STILL_SECONDS = 5.0  # with no frame moving anything: settled
@@ -81,7 +81,7 @@ def pile(running: Any, kind: str, count: int, seconds: float) -> dict[str, Any]:
 
 
 def _sample(running: Any, scene: str, burst: float) -> dict[str, Any]:
-    figures = scene_metrics(running, scene)
+    figures = running.figures(scene)
     return {"t": time.monotonic() - burst, "ticks": figures["ticks"],
             "tick_ms_max": figures["tickMsMax"], "rss_mb": _rss_mb(figures["pid"])}
 
