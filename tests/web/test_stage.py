@@ -14,7 +14,7 @@ import pytest
 from tests.conftest import ROOT
 from tests.web.conftest import open_viewer, red_box_on_a_motor, wait_until
 
-PICTURES = 8
+PICTURES = 10
 # how long (the page's own clock, ms) the next `count` pictures took: a slow or loaded
 # machine takes longer, which the cap allows; a page drawing past its cap takes less
 TIME = """async (count) => {
