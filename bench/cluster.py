@@ -213,13 +213,17 @@ def busy_scenes(cluster: LoadCluster, count: int, seconds: float) -> dict[str, A
     cores = cluster.cores_since(cpu_before, measured)
     metrics = {name: m for gateway in cluster.gateways
                for name, m in gateway.get("/api/metrics")["scenes"].items()}
-    rates = [m.get("ticksPerSecond", 0.0) for name, m in metrics.items() if name.startswith("busy")]
+    busy = [m for name, m in metrics.items() if name.startswith("busy")]
+    # A scene whose process did not answer within the gateway's second has no figures of its
+    # own in its entry: it is counted as unanswered, not as a scene that ticks 0 times a second.
+    rates = [m["ticksPerSecond"] for m in busy if "ticksPerSecond" in m]
     spread = ask_bus(cluster.url, lambda bus: _holders(bus, count))
     driver.communicate(timeout=seconds + 120)
     return {"scenes": count, "placed": placed["placed"], "refused": placed["failed"],
             "placing_s": placing,
             "per_worker": spread, "cores": cores,
-            "ticks_per_second": asdict(figure(rates)) if rates else None}
+            "ticks_per_second": asdict(figure(rates)) if rates else None,
+            "unanswered": len(busy) - len(rates)}
 
 
 async def _holders(bus: Any, count: int) -> dict[str, int]:
