@@ -68,7 +68,7 @@ class Overlaps:
         ids = list(node_ids)
         if self._partners is not None:
             return [tuple(self._partners.get(i, ())) if i is not None else () for i in ids]
-        wanted: dict[str | None, list[str]] = {i: [] for i in ids}
+        wanted: dict[str | None, list[str]] = {i: [] for i in dict.fromkeys(ids)}  # (parts asked twice)
         for a, b in self.pairs:
             if a in wanted:
                 wanted[a].append(b)

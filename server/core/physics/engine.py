@@ -18,7 +18,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import chain
 from typing import Any, Collection, Iterator, Mapping, Sequence
+
+import numpy as np
 
 from ..kit.math3d import Pose, Vec3, rotate
 from .articulation import NO_POSE, Articulation, check_links, multibody_arguments
@@ -258,15 +261,33 @@ class PhysicsWorld:
         if built.tree.base_part is not None:
             poses.append(built.base_pose)
         if built.part_links:
-            states = pybullet.getLinkStates(built.body, built.part_links,
-                                            computeForwardKinematics=1,
-                                            physicsClientId=self._client)
+            states = self._link_states(built)
             if built.part_centres is None:
                 poses += [(state[0], state[1]) for state in states]
             else:  # Bullet gave where their centres of mass are
                 poses += [_shifted((state[0], state[1]), centre, -1)
                           for state, centre in zip(states, built.part_centres)]
         return keys, poses
+
+    def part_pose_rows(self, root: str) -> tuple[tuple[str, ...], np.ndarray]:
+        """:meth:`part_poses` as one row of seven numbers (position, quaternion) a part:
+        the same numbers, taken from Bullet's states straight into the array (a tick's
+        sensing reads every moved tree: the tuples and the dict of poses between were a
+        tenth of it)."""
+        built = self._trees[root]
+        keys = built.tree.parts()
+        if built.part_centres is not None:  # dynamic mode: shifted from the centres, one by one
+            poses = self.part_poses(root)[1]
+            return keys, np.array([p + q for p, q in poses], float).reshape(len(keys), 7)
+        states = self._link_states(built) if built.part_links else ()
+        numbers = chain.from_iterable(state[0] + state[1] for state in states)
+        if built.tree.base_part is not None:
+            numbers = chain(built.base_pose[0] + built.base_pose[1], numbers)
+        return keys, np.fromiter(numbers, float, 7 * len(keys)).reshape(len(keys), 7)
+
+    def _link_states(self, built: _Built) -> list[tuple]:
+        return pybullet.getLinkStates(built.body, built.part_links, computeForwardKinematics=1,
+                                      physicsClientId=self._client)
 
     def _shape(self, geometry: dict[str, Any], frame: Pose = NO_POSE) -> int:
         arguments = shape_arguments(geometry)

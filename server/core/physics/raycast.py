@@ -25,6 +25,7 @@ GROUND = "ground"
 _NOTHING, _GROUND = -2, -1  # key indices besides the rows of parts
 _BROAD_CHUNK = 250_000  # ray × part pairs tested at once (bounded memory)
 _SLACK = 1e-9  # relative and absolute: bounding spheres are met a hair generously
+_TREES_KEPT = 4096  # trees whose rows are kept (place_trees)
 
 Hits = tuple[list[list[str]], np.ndarray]  # keys (rays × limits), distances (rays, limits)
 
@@ -45,6 +46,7 @@ class RayTargets:
         self._local_centres = np.empty((0, 3))  # the same in each part's own frame
         self._radii = np.empty(0)
         self._moved: dict[str, Pose] = {}  # poses not yet taken into the arrays
+        self._rows_of_trees: dict[tuple[str, ...], np.ndarray] = {}  # (place_trees)
         self._planes = ConvexPlanes()  # the convex shapes' planes, met in one go
 
     def __len__(self) -> int:
@@ -75,9 +77,24 @@ class RayTargets:
         """Place ``key``'s shape at a world pose (taken in when rays are next cast)."""
         self._moved[key] = pose
 
-    def move_many(self, keys: list[str], poses: list[Pose]) -> None:
-        """Place the shapes of ``keys`` at their world poses (as :meth:`move`)."""
-        self._moved.update(zip(keys, poses))
+    def place_trees(self, trees: Sequence[tuple[tuple[str, ...], np.ndarray]]) -> None:
+        """Place at once the shapes of whole trees: each a tuple of keys and their world
+        poses as rows of seven numbers (position, quaternion), as
+        :meth:`~server.core.physics.engine.PhysicsWorld.part_pose_rows` gives them."""
+        self._place_moved()  # poses moved one by one before these: these are newer
+        if trees:
+            self._place(np.concatenate([self._tree_rows(keys) for keys, _ in trees]),
+                        np.concatenate([poses for _, poses in trees]))
+
+    def _tree_rows(self, keys: tuple[str, ...]) -> np.ndarray:
+        """The rows of a tree's keys, kept until a row moves (:meth:`remove`)."""
+        rows = self._rows_of_trees.get(keys)
+        if rows is None:
+            if len(self._rows_of_trees) >= _TREES_KEPT:  # (trees built again make new tuples)
+                self._rows_of_trees.clear()
+            rows = self._rows_of_trees[keys] = np.fromiter(
+                map(self._rows.__getitem__, keys), np.int64, len(keys))
+        return rows
 
     def frames(self, keys: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
         """World positions (n×3) and rotation matrices (n×3×3) of these keys' shapes, as
@@ -96,17 +113,22 @@ class RayTargets:
         # as numpy reads nested sequences, took twice as long)
         poses = np.fromiter(chain.from_iterable(p + q for p, q in self._moved.values()),
                             float, 7 * count).reshape(count, 7)
+        self._moved.clear()
+        self._place(rows, poses)
+
+    def _place(self, rows: np.ndarray, poses: np.ndarray) -> None:
+        """Rotations, positions and sphere centres of ``rows`` from their poses (n×7)."""
         positions, rotations = poses[:, :3], _matrices(poses[:, 3:])
         self._rotations[rows] = rotations
         self._positions[rows] = positions
         self._centres[rows] = np.einsum("kij,kj->ki", rotations, self._local_centres[rows]) + positions
-        self._moved.clear()
 
     def remove(self, key: str) -> None:
         """Forget ``key``'s shape (the last row takes its place)."""
         self._moved.pop(key, None)
         self._place_moved()
         row, last = self._rows.pop(key), len(self._keys) - 1
+        self._rows_of_trees.clear()
         arrays = (self._shape_of, self._rotations, self._positions, self._centres, self._radii,
                   self._local_centres)
         if row != last:

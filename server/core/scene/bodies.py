@@ -271,9 +271,9 @@ class SceneBodies:
         forward kinematics, a call per tree): only rays and sensors need them, so a tick
         that senses nothing reads none."""
         self.sync()
-        for root_id in self._unposed:
-            if self.physics.tree(root_id) is not None:  # (not since taken out)
-                self._rays.move_many(*self.physics.part_poses(root_id))
+        tree, poses = self.physics.tree, self.physics.part_pose_rows
+        self._rays.place_trees([poses(root_id) for root_id in self._unposed
+                                if tree(root_id) is not None])  # (not since taken out)
         self._unposed.clear()
 
     def _rebuild(self, new_trees: str) -> set[str]:
@@ -495,10 +495,9 @@ class SceneBodies:
         if not sensors:
             return {}
         self._read_poses()
-        hosts = [sensor.host() for sensor in sensors]  # type: ignore[attr-defined]
-        ids = [None if host is None else host.id for host in hosts]
+        ids = self._parts.host_ids(sensors)
         if exact:
-            contacts = [self.touching(host) for host in hosts]
+            contacts = [self.touching(None if host is None else self._nodes.get(host)) for host in ids]
         else:
             contacts = self.tracker.overlaps().partners_of(ids)
         pressing = self.physics.contacts({host for host in ids if host is not None})

@@ -43,6 +43,7 @@ class Carriers:
         # node id -> the part carrying it and its offset from it (None: none); until a build
         self._offsets: dict[str, tuple[str, Pose] | None] = {}
         self._carried: dict[tuple[str, ...], _Carried] = {}  # node ids -> as world_frames needs
+        self._hosts: dict[tuple[str, ...], list[str | None]] = {}  # sensor ids -> host_ids
 
     def built(self, keys: Sequence[str], scales: Sequence[Vec3]) -> None:
         """Parts with bodies now, at these world scales (a tree built again)."""
@@ -59,6 +60,20 @@ class Carriers:
         """Trees were built again: offsets are worked out anew."""
         self._offsets.clear()
         self._carried.clear()
+        self._hosts.clear()
+
+    def host_ids(self, sensors: list[Node]) -> list[str | None]:
+        """The id of the part whose contacts each sensor reports (``Sensor.host``; None:
+        none), kept as the offsets are: a tick's watched sensors are one set, and walking
+        up from each was a twentieth of sensing them."""
+        key = tuple(sensor.id for sensor in sensors)
+        found = self._hosts.get(key)
+        if found is None:
+            if len(self._hosts) >= CARRIED_SETS:
+                self._hosts.clear()
+            hosts = [sensor.host() for sensor in sensors]  # type: ignore[attr-defined]
+            found = self._hosts[key] = [None if host is None else host.id for host in hosts]
+        return found
 
     def world_frames(self, nodes: list[Node], part_frames: FrameArrays) -> tuple[np.ndarray, np.ndarray]:
         """World positions (n×3) and rotation matrices (n×3×3) of nodes: the frame in

@@ -10,6 +10,7 @@ from server.core.physics.articulation import Articulation, Joint, Link
 from server.core.physics.engine import PhysicsWorld
 
 BOX = {"kind": "box", "size": [0.2, 0.4, 0.6]}
+IDENTITY_POSE = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
 
 
 @pytest.fixture
@@ -43,6 +44,20 @@ def test_origins_are_in_the_parent_links_frame_and_parts_at_their_shape_frame(wo
     low, high = world.aabb("b")  # the shape sits at the part's frame too
     centre = [(lo + hi) / 2 for lo, hi in zip(low, high)]
     assert centre == pytest.approx(list(expected[1][0]), abs=1e-9)
+
+
+def test_a_trees_pose_rows_are_its_part_poses_number_for_number(world):
+    tree = Articulation("r", base_part="p", base_geometry=BOX, links=(
+        Link(-1, ((0.5, 0.0, 0.2), math3d.euler_to_quat(0.3, 0, 0.1)),
+             Joint("m1", (0.0, 0.0, 1.0), -3, 3), "a", ((0, 0.4, 0.1), math3d.euler_to_quat(0, 0.5, 0)), BOX),
+        Link(0, ((0.1, 0.7, 0.0), IDENTITY_POSE[1]), Joint("m2", (1.0, 0.0, 0.0), -3, 3), "b",
+             IDENTITY_POSE, BOX)))
+    world.add_tree(tree, ((1.0, 2.0, 3.0), math3d.euler_to_quat(0.1, 0.2, 0.3)), {"m1": 0.7, "m2": -0.4})
+    world.turn("r", [0.2, 1.1])
+    keys, rows = world.part_pose_rows("r")
+    want_keys, poses = world.part_poses("r")
+    assert keys == tuple(want_keys) == ("p", "a", "b")
+    assert rows.tolist() == [[*position, *orientation] for position, orientation in poses]
 
 
 def test_turning_sets_the_joints_and_a_rebuild_keeps_angles_and_bases(world):

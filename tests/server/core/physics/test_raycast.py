@@ -140,3 +140,20 @@ def test_moving_a_shape_moves_what_rays_meet(targets):
     targets.move("b", ((5, 2, 0), IDENTITY))
     assert first(targets, (0, 4, 0)) == ("ground", 4)
     assert first(targets, (5, 4, 0)) == ("b", 1.5)
+
+
+def test_trees_placed_at_once_and_shapes_moved_one_by_one_the_later_wins(targets):
+    box = {"kind": "box", "size": [1, 1, 1]}
+    targets.add("a", box, ((0, 2, 0), IDENTITY))
+    targets.add("b", box, ((3, 2, 0), IDENTITY))
+    targets.move("a", ((9, 2, 0), IDENTITY))
+    targets.place_trees([(("a", "b"), np.array([[0, 3, 0, *IDENTITY], [3, 4, 0, *IDENTITY]], float))])
+    assert first(targets, (0, 9, 0)) == ("a", 5.5)  # placed with its tree after it was moved
+    assert first(targets, (3, 9, 0)) == ("b", 4.5)
+    targets.move("b", ((6, 2, 0), IDENTITY))
+    assert first(targets, (3, 9, 0)) == ("ground", 9)  # moved after its tree was placed
+    targets.place_trees([(("b",), np.array([[6, 2, 0, *IDENTITY]], float))])
+    targets.remove("a")  # b takes a's row: the tree's rows are looked up again
+    targets.place_trees([(("b",), np.array([[0, 2, 0, *IDENTITY]], float))])
+    assert first(targets, (0, 9, 0)) == ("b", 6.5)
+    assert first(targets, (6, 9, 0)) == ("ground", 9)

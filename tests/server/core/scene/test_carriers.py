@@ -77,3 +77,18 @@ def test_a_part_forgotten_carries_nothing_and_its_nodes_are_posed_by_the_tree(sc
     positions, turns = carriers.world_frames([sensor], counting)
     assert asked == [["b"]]
     _assert_at(positions[0], turns[0], sensor)
+
+
+def test_a_watched_sensor_moved_to_another_part_reports_that_parts_contacts(scene):
+    low, high = Box(scene, "low", 1, 1, 1), Box(scene, "high", 1, 1, 1)
+    low.set_position((0, 0.5, 0))  # on the ground
+    high.set_position((3, 5, 0))
+    sensor = Sensor(scene, "s")
+    sensor.attach_to_slot(low)
+    sensor.watch(client="c1")
+    scene.tick(1 / 60)
+    assert scene.watched_readings()["s"].objects == ("ground",)
+    sensor.attach_to_slot(high)  # the hosts kept for the watched set are asked again
+    scene.tick(1 / 60)
+    assert scene.watched_readings()["s"].objects == ()
+    assert scene.bodies.read([sensor])["s"].objects == ()
