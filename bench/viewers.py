@@ -14,9 +14,12 @@ frames per second, late frames (more than two tick periods after the previous on
 frames skipped (sequence numbers never received), and the CPU seconds it used.
 
 The readers must stay light, or they, not the server, set what is measured on a shared
-machine: each is websockets' own sans-I/O protocol fed straight from an
-:class:`asyncio.Protocol`, with no task or coroutine per message (the library's asyncio
-client took 2.3 times the CPU for 400 viewers).
+machine: each is an :class:`asyncio.Protocol` with no task or coroutine per message (the
+library's asyncio client took 2.3 times the CPU for 400 viewers), and after websockets
+makes its handshake request each splits the server's frames itself
+(:class:`ServerFrames`): websockets' sans-I/O parser took about 10 µs a frame, so 1 000
+viewers' reader needed most of a core and, on two cores shared with the server, made
+frames late that the server had sent in time.
 """
 
 from __future__ import annotations
@@ -30,11 +33,9 @@ import sys
 import time
 from pathlib import Path
 from typing import Any, Callable, TypeVar
-from urllib.parse import urlparse
 
 from websockets.client import ClientProtocol
-from websockets.frames import Opcode
-from websockets.http11 import Response
+from websockets.frames import Frame, Opcode
 from websockets.uri import parse_uri
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,12 +45,46 @@ FIRST_FRAME_SECONDS = 120.0  # for every viewer to have its first frame
 _SEQ = re.compile(rb'"op":"frame","seq":(\d+)')
 
 
+class ServerFrames:
+    """The frames of a server's byte stream after its handshake: opcode and payload of
+    each whole frame, in order.
+
+    Written here, not taken from websockets, for speed alone (see the module's note): a
+    server's frames are never masked (RFC 6455 §5.1) and this server sends no extensions,
+    so a frame is a header of 2, 4 or 10 bytes and its payload; nothing is checked that a
+    viewer's count does not need (tests/bench/test_viewers.py reads websockets' own frames)."""
+
+    def __init__(self) -> None:
+        self._buffer = bytearray()
+
+    def feed(self, data: bytes) -> list[tuple[int, bytes]]:
+        """The frames completed by ``data``: (opcode, payload) each."""
+        buffer = self._buffer
+        buffer += data
+        frames, at, size = [], 0, len(buffer)
+        while size - at >= 2:
+            length, start = buffer[at + 1] & 0x7F, at + 2
+            if length >= 126:
+                start += 2 if length == 126 else 8
+                if size < start:
+                    break
+                length = int.from_bytes(buffer[at + 2:start], "big")
+            if size < start + length:
+                break
+            frames.append((buffer[at] & 0x0F, bytes(buffer[start:start + length])))
+            at = start + length
+        del buffer[:at]
+        return frames
+
+
 class Viewer(asyncio.Protocol):
     """One viewer connection: its frames' arrivals within ``window`` (start and end,
     monotonic, set once every viewer has had a frame)."""
 
     def __init__(self, url: str, window: list[float]) -> None:
-        self.protocol = ClientProtocol(parse_uri(url), max_size=None)
+        self.handshake = ClientProtocol(parse_uri(url), max_size=None)
+        self.frames: ServerFrames | None = None  # once the server has switched protocols
+        self._head = b""  # of its answer to the handshake, until it is whole
         self.window = window
         self.first_frame = asyncio.get_running_loop().create_future()
         self.arrivals: list[float] = []
@@ -59,30 +94,39 @@ class Viewer(asyncio.Protocol):
     def connection_made(self, transport: asyncio.BaseTransport) -> None:
         assert isinstance(transport, asyncio.Transport)
         self.transport = transport
-        self.protocol.send_request(self.protocol.connect())
-        self._send()
+        transport.write(self.handshake.connect().serialize())
 
     def data_received(self, data: bytes) -> None:
-        self.protocol.receive_data(data)
-        for event in self.protocol.events_received():
-            if isinstance(event, Response) or event.opcode is not Opcode.TEXT:
-                continue  # (pings are answered by the protocol: _send writes the pong)
-            match = _SEQ.search(event.data, 0, 60)
-            if match is None:
-                continue
-            if not self.first_frame.done():
-                self.first_frame.set_result(True)
-            now, window = time.monotonic(), self.window
-            if window and window[0] <= now <= window[1]:
-                self.arrivals.append(now)
-                self.seqs.append(int(match.group(1)))
-        self._send()
+        if self.frames is None:
+            data = self._switched(data)
+        for opcode, payload in self.frames.feed(data) if self.frames is not None else ():
+            if opcode == Opcode.PING.value:  # answered, or the server's keepalive ends us
+                assert self.transport is not None
+                self.transport.write(Frame(Opcode.PONG, payload).serialize(mask=True))
+            elif opcode == Opcode.TEXT.value:
+                self._arrived(payload)
 
-    def _send(self) -> None:
-        assert self.transport is not None
-        for data in self.protocol.data_to_send():
-            if data:
-                self.transport.write(data)
+    def _switched(self, data: bytes) -> bytes:
+        """The bytes after the server's answer to the handshake, once it is whole."""
+        head, end, rest = (self._head + data).partition(b"\r\n\r\n")
+        if not end:
+            self._head = head
+            return b""
+        if not head.startswith(b"HTTP/1.1 101"):
+            raise ConnectionError(f"the handshake was refused: {head[:200]!r}")
+        self.frames = ServerFrames()
+        return rest
+
+    def _arrived(self, payload: bytes) -> None:
+        match = _SEQ.search(payload, 0, 60)
+        if match is None:
+            return
+        if not self.first_frame.done():
+            self.first_frame.set_result(True)
+        now, window = time.monotonic(), self.window
+        if window and window[0] <= now <= window[1]:
+            self.arrivals.append(now)
+            self.seqs.append(int(match.group(1)))
 
     def connection_lost(self, exc: Exception | None) -> None:
         if not self.first_frame.done():  # none will come: it counts with no frames
@@ -103,13 +147,10 @@ def summary(arrivals: list[float], seqs: list[int]) -> dict[str, Any]:
 
 def stalled(url: str) -> socket.socket:
     """A connection that completes the WebSocket handshake and then never reads."""
-    parts = urlparse(url)
-    sock = socket.create_connection((parts.hostname, parts.port))
+    uri = parse_uri(url)
+    sock = socket.create_connection((uri.host, uri.port))
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)
-    sock.sendall((f"GET {parts.path}?{parts.query} HTTP/1.1\r\nHost: {parts.netloc}\r\n"
-                  "Upgrade: websocket\r\nConnection: Upgrade\r\n"
-                  "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
-                  "Sec-WebSocket-Version: 13\r\n\r\n").encode())
+    sock.sendall(ClientProtocol(uri).connect().serialize())
     return sock
 
 
