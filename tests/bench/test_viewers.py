@@ -1,10 +1,13 @@
 """What a light viewer reports: frames per second, late frames and frames it never got."""
 
+import asyncio
 import random
+import time
 
 from websockets.frames import Frame, Opcode
 
-from bench.viewers import ServerFrames, summary
+from bench.viewers import ServerFrames, Viewer, summary
+from tests.conftest import start_server, stop_server
 
 
 def test_a_pause_counts_as_late_and_missing_sequence_numbers_as_skipped():
@@ -35,3 +38,24 @@ def test_the_light_viewers_split_websockets_own_server_frames_however_they_are_c
         for start, end in zip([0, *cuts], [*cuts, len(stream)]):
             found += reader.feed(stream[start:end])
         assert found == want
+
+
+def test_a_light_viewer_answers_the_servers_pings_and_keeps_getting_frames():
+    running = start_server("--no-demo", "--ping-seconds", "0.2")  # a ping's answer due in 0.2 s
+    try:
+        viewer, lost = asyncio.run(_view(f"{running.ws}/ws?scene=pinged&role=viewer", 2.0))
+    finally:
+        stop_server(running)
+    assert not lost  # the server would have closed it after a ping with no answer
+    assert viewer.first_frame.result() and len(viewer.arrivals) > 20
+    assert viewer.seqs == sorted(viewer.seqs) and viewer.summary()["skipped"] == 0
+
+
+async def _view(url: str, seconds: float) -> tuple[Viewer, bool]:
+    window = [time.monotonic(), time.monotonic() + seconds]
+    loop, host, port = asyncio.get_running_loop(), *url.split("//")[1].split("/")[0].split(":")
+    transport, viewer = await loop.create_connection(lambda: Viewer(url, window), host, int(port))
+    await asyncio.sleep(seconds)
+    lost = transport.is_closing()
+    transport.close()
+    return viewer, lost
