@@ -98,6 +98,17 @@ class FramedSocketProtocol(WebSocketsSansIOProtocol):
         super().shutdown()
         self._refresh()
 
+    def keepalive_timeout(self) -> None:
+        """A ping unanswered for the timeout closes the connection (1011), unless the
+        server itself is not reading it: the app holds a client's reading back while its
+        scene has not applied what it sent (``server.web.http.socket``), and the pong then
+        waits unread in the socket. Its answer is then awaited for another timeout; once
+        reading resumes, a dead peer is found as before."""
+        if self.read_paused and not self.transport.is_closing():
+            self.pong_timer = self.loop.call_later(self.ping_timeout, self.keepalive_timeout)
+            return
+        super().keepalive_timeout()
+
     def write_now(self, frame: bytes) -> bool:
         """Write ``frame`` at once if the socket is open and its buffer below the
         transport's high-water mark; False (nothing written) otherwise."""

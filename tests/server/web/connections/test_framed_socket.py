@@ -58,11 +58,12 @@ class Writer:
 
 
 @contextlib.contextmanager
-def serving(app, deflate=False):
+def serving(app, deflate=False, ping_seconds=20.0):
     """uvicorn serving ``app`` with the framed protocol, as vp-server does; its ws URL."""
     server = uvicorn.Server(uvicorn.Config(app, port=free_port(), ws=FramedSocketProtocol,
                                            ws_per_message_deflate=deflate, lifespan="off",
-                                           log_level="warning"))
+                                           ws_ping_interval=ping_seconds,
+                                           ws_ping_timeout=ping_seconds, log_level="warning"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
     try:
@@ -99,3 +100,29 @@ def test_where_compression_may_be_negotiated_no_framed_socket_is_offered():
     with serving(app, deflate=True) as url, connect(url) as client:
         assert client.recv(timeout=WAIT_SECONDS) == "compressed, per connection"
     assert offered == [None]
+
+
+def test_a_client_whose_reading_the_server_holds_back_is_not_closed_for_a_pong_it_cannot_read():
+    """The server stops reading a client whose text its scene has not applied yet (back
+    pressure): its pongs wait unread meanwhile, and a keepalive that took that for a dead
+    peer closed a driver with 1011 while a thousand viewers joined its scene."""
+    got = []
+
+    async def app(scope, receive, send):
+        await receive()
+        await send({"type": "websocket.accept"})
+        got.append((await receive())["text"])
+        await asyncio.sleep(1.5)  # held back: five pings' time, the client's pongs unread
+        while (message := await receive())["type"] != "websocket.disconnect":
+            got.append(message["text"])
+            await send({"type": "websocket.send", "text": f"read {len(got)}"})
+
+    with serving(app, ping_seconds=0.3) as url, connect(url, ping_interval=None) as client:
+        for k in range(3):
+            client.send(f"text {k}")
+        assert client.recv(timeout=WAIT_SECONDS) == "read 2"  # not closed: 1011
+        assert client.recv(timeout=WAIT_SECONDS) == "read 3"
+        time.sleep(1.0)  # reading again: its pings are answered, nothing closes it
+        client.send("text 3")
+        assert client.recv(timeout=WAIT_SECONDS) == "read 4"
+    assert got == [f"text {k}" for k in range(4)]

@@ -1,6 +1,8 @@
 """The /ws endpoint with real connections: many clients, roles, frames, bad input."""
 
 import json
+import os
+import signal
 import threading
 import time
 
@@ -303,3 +305,28 @@ def test_a_client_sending_faster_than_its_scene_applies_is_slowed_not_refused(se
             reader.join(60)
     assert answered == ["ok"] * (steps * per_step)
     assert backlog_then > 0  # the bystander was answered before the flood was done
+
+
+def test_a_client_held_back_while_its_scene_is_busy_is_not_closed_by_the_keepalive(scene_name):
+    """What a driver met while a thousand viewers joined its scene: the scene (here stopped)
+    applies nothing, so the server stops reading the client, whose pongs then wait unread;
+    the keepalive closed it (1011) though it had answered every ping."""
+    server = start_server("--no-demo", "--ping-seconds", "0.3")
+    try:
+        client, hello, _ = open_client(server, scene_name)
+        with client:
+            me = hello["client"]
+            request_all(client, [{"op": "create", "object": f"{me}.m", "type": "MotorZ"}])
+            pid = server.figures(scene_name)["pid"]
+            os.kill(pid, signal.SIGSTOP)
+            try:
+                step = json.dumps([{"op": "call", "object": f"{me}.m", "method": "setAngle",
+                                    "args": [k / 1000]} for k in range(200)])
+                for _ in range(20):  # past what may wait unapplied: the server stops reading
+                    client.send(step)
+                time.sleep(1.5)  # five pings' time
+            finally:
+                os.kill(pid, signal.SIGCONT)
+            assert request_all(client, [{"op": "ping"}])[0]["op"] == "ok"  # not closed: 1011
+    finally:
+        stop_server(server)
