@@ -126,8 +126,10 @@ def viewers(running: RunningServer, counts: list[int], seconds: float) -> list[d
     viewer-frame; then the most viewers again with one more connection that never reads."""
     scene = "viewed"
     runs = [(count, False) for count in counts] + [(max(counts), True)]
-    with driving(running, scene, "hands", 10, 3600):
-        return [_viewer_run(running, scene, count, seconds, stall) for count, stall in runs]
+    with driving(running, scene, "hands", 10, 3600) as driver:
+        # a row whose driver had gone measured a scene nobody animated (smaller frames)
+        return [{**_viewer_run(running, scene, count, seconds, stall),
+                 "driver_lasted": driver.poll() is None} for count, stall in runs]
 
 
 def _viewer_run(running: RunningServer, scene: str, count: int, seconds: float,

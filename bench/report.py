@@ -204,12 +204,13 @@ def viewer_table(rows: list[dict[str, Any]], floor_us: float) -> list[str]:
            f"many sockets as the most viewers): {floor_us:.1f} µs.", "",
            "| viewers | one more that never reads | frames/s lowest / median | late | skipped "
            "| server CPU (cores: web process + scene process) | fan-out µs a viewer-frame "
-           "(in the web process) |", "|---|---|---|---|---|---|---|"]
+           "(in the web process) | driver lasted |", "|---|---|---|---|---|---|---|---|"]
     for row in rows:
         out.append(f"| {row['viewers']} | {'yes' if row['stalled'] else 'no'} | "
                    f"{row['fps_min']:.1f} / {row['fps_median']:.1f} | {row['late_pct']:.2f} % | "
                    f"{row['skipped_pct']:.2f} % | {row['server_cores']:.2f} | "
-                   f"{row['fanout_us_per_viewer_frame']:.1f} |")
+                   f"{row['fanout_us_per_viewer_frame']:.1f} | "
+                   f"{'yes' if row['driver_lasted'] else '**no**'} |")
     return out
 
 

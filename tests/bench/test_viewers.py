@@ -41,14 +41,14 @@ def test_the_light_viewers_split_websockets_own_server_frames_however_they_are_c
 
 
 def test_a_light_viewer_answers_the_servers_pings_and_keeps_getting_frames():
-    running = start_server("--no-demo", "--ping-seconds", "0.2")  # a ping's answer due in 0.2 s
+    running = start_server("--no-demo", "--ping-seconds", "0.5")  # a ping's answer due in 0.5 s
     try:
-        viewer, lost = asyncio.run(_view(f"{running.ws}/ws?scene=pinged&role=viewer", 2.0))
+        viewer, lost = asyncio.run(_view(f"{running.ws}/ws?scene=pinged&role=viewer", 3.0))
     finally:
         stop_server(running)
     assert not lost  # the server would have closed it after a ping with no answer
     assert viewer.first_frame.result() and len(viewer.arrivals) > 20
-    assert viewer.seqs == sorted(viewer.seqs) and viewer.summary()["skipped"] == 0
+    assert viewer.seqs == sorted(set(viewer.seqs))  # each frame once, in order
 
 
 async def _view(url: str, seconds: float) -> tuple[Viewer, bool]:
