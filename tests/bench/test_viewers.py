@@ -7,7 +7,7 @@ import time
 from websockets.frames import Frame, Opcode
 
 from bench.viewers import ServerFrames, Viewer, summary
-from tests.conftest import start_server, stop_server
+from tests.conftest import WAIT_SECONDS, start_server, stop_server
 
 
 def test_a_pause_counts_as_late_and_missing_sequence_numbers_as_skipped():
@@ -52,9 +52,13 @@ def test_a_light_viewer_answers_the_servers_pings_and_keeps_getting_frames():
 
 
 async def _view(url: str, seconds: float) -> tuple[Viewer, bool]:
-    window = [time.monotonic(), time.monotonic() + seconds]
+    """A viewer's frames over ``seconds`` from its first (the scene's process may take a
+    loaded machine seconds to start); whether the connection was lost by then."""
+    window: list[float] = []
     loop, host, port = asyncio.get_running_loop(), *url.split("//")[1].split("/")[0].split(":")
     transport, viewer = await loop.create_connection(lambda: Viewer(url, window), host, int(port))
+    await asyncio.wait_for(asyncio.shield(viewer.first_frame), WAIT_SECONDS)
+    window.extend([time.monotonic(), time.monotonic() + seconds])
     await asyncio.sleep(seconds)
     lost = transport.is_closing()
     transport.close()

@@ -112,17 +112,17 @@ def test_a_client_whose_reading_the_server_holds_back_is_not_closed_for_a_pong_i
         await receive()
         await send({"type": "websocket.accept"})
         got.append((await receive())["text"])
-        await asyncio.sleep(1.5)  # held back: five pings' time, the client's pongs unread
+        await asyncio.sleep(3.0)  # held back past a ping's deadline: the client's pong unread
         while (message := await receive())["type"] != "websocket.disconnect":
             got.append(message["text"])
             await send({"type": "websocket.send", "text": f"read {len(got)}"})
 
-    with serving(app, ping_seconds=0.3) as url, connect(url, ping_interval=None) as client:
+    with serving(app, ping_seconds=1.0) as url, connect(url, ping_interval=None) as client:
         for k in range(3):
             client.send(f"text {k}")
         assert client.recv(timeout=WAIT_SECONDS) == "read 2"  # not closed: 1011
         assert client.recv(timeout=WAIT_SECONDS) == "read 3"
-        time.sleep(1.0)  # reading again: its pings are answered, nothing closes it
+        time.sleep(1.5)  # reading again: its pings are answered, nothing closes it
         client.send("text 3")
         assert client.recv(timeout=WAIT_SECONDS) == "read 4"
     assert got == [f"text {k}" for k in range(4)]
