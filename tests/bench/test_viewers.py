@@ -5,6 +5,7 @@ import random
 import time
 
 from websockets.frames import Frame, Opcode
+from websockets.uri import parse_uri
 
 from bench.viewers import ServerFrames, Viewer, summary
 from tests.conftest import WAIT_SECONDS, start_server, stop_server
@@ -55,8 +56,9 @@ async def _view(url: str, seconds: float) -> tuple[Viewer, bool]:
     """A viewer's frames over ``seconds`` from its first (the scene's process may take a
     loaded machine seconds to start); whether the connection was lost by then."""
     window: list[float] = []
-    loop, host, port = asyncio.get_running_loop(), *url.split("//")[1].split("/")[0].split(":")
-    transport, viewer = await loop.create_connection(lambda: Viewer(url, window), host, int(port))
+    uri = parse_uri(url)
+    transport, viewer = await asyncio.get_running_loop().create_connection(
+        lambda: Viewer(url, window), uri.host, uri.port)
     await asyncio.wait_for(asyncio.shield(viewer.first_frame), WAIT_SECONDS)
     window.extend([time.monotonic(), time.monotonic() + seconds])
     await asyncio.sleep(seconds)
