@@ -17,13 +17,14 @@ import threading
 import time
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 from websockets.sync.client import connect
 
 from tests.conftest import RunningServer, start_server, stop_server
 
 from .drive import build, drain
+from .processes import descendants
 from .stats import figure
 from .viewers import run_viewers, sleep_until
 
@@ -184,6 +185,33 @@ def cpu_seconds(pids: list[int]) -> float:
             continue
         ticks += int(fields[11]) + int(fields[12])
     return ticks / 100  # clock ticks (USER_HZ, 100 on Linux)
+
+
+QUIET_CORES = 0.05  # a server at rest: what is left of the last measure is done
+QUIET_WINDOW_S = 0.5
+
+
+def until_quiet(pids: Callable[[], list[int]], within: float = STUCK_SECONDS) -> float:
+    """Wait until the processes ``pids()`` names use less than QUIET_CORES between them
+    over QUIET_WINDOW_S; the seconds waited. A driver stopped while its scene could not
+    keep up leaves steps in the sockets' buffers that the scene still applies (hands-100's
+    took 10 s of a core after its driver ended), and they were counted in the next measure
+    (the clients' server CPU read 27 % after hands-100, 22 % on a fresh server)."""
+    started = time.monotonic()
+    while time.monotonic() < started + within:
+        watched = pids()
+        before = cpu_by_process(watched)
+        time.sleep(QUIET_WINDOW_S)
+        if cpu_since(before, cpu_by_process(watched)) < QUIET_CORES * QUIET_WINDOW_S:
+            return time.monotonic() - started
+    print(f"bench: the server did not come to rest within {within} s; measuring on",
+          file=sys.stderr)  # (a lost hour's run would say less than a noted one)
+    return time.monotonic() - started
+
+
+def server_processes(running: RunningServer) -> list[int]:
+    """The server's own process and every scene's."""
+    return [running.process.pid, *descendants(running.process.pid)]
 
 
 def cpu_by_process(pids: list[int]) -> dict[int, float]:

@@ -109,8 +109,10 @@ class ContactTracker:
         self._stale_groups: dict[tuple[str, ...], None] = {}  # the same, a tree's parts at once
         self.unrecorded = 0  # touching pairs left out at the last update (max_pairs)
         self.tests = 0       # pair tests of the last update
+        self.updates = 0     # updates run (a world where nothing moved needs none)
         self._snapshot: Overlaps | None = Overlaps(())
         self.crowding = True  # dynamic mode: off (Bullet pairs everything: nothing may fall through)
+        self._recrowded = False  # the last update changed the crowd
 
     # --- bodies --------------------------------------------------------------------------
 
@@ -192,6 +194,8 @@ class ContactTracker:
         """Measure what Bullet pairs, then the pairs of moved crowded bodies, in the order
         they moved, within the budget."""
         self.tests = self.unrecorded = 0
+        self.updates += 1
+        self._recrowded = False
         self._from_bullet()
         if not self._dirty:
             return
@@ -233,9 +237,20 @@ class ContactTracker:
             return
         for key, count in neighbours.items():
             if count - (pair(key, GROUND) in found) > CROWD and key not in crowded and key in rows:
-                crowded.add(key)
-                self._bodies.crowd(key, True)
+                self._crowd(key, True)
                 self._dirty[key] = None
+
+    def _crowd(self, key: str, crowded: bool) -> None:
+        (self._crowded.add if crowded else self._crowded.discard)(key)
+        self._bodies.crowd(key, crowded)
+        self._recrowded = True
+
+    @property
+    def unsettled(self) -> bool:
+        """Another update may find what this one did not, though nothing moved: moved
+        bodies were left for it (the budget), or the crowd changed (Bullet then pairs
+        other bodies)."""
+        return bool(self._dirty) or self._recrowded
 
     def settle(self, key: str) -> None:
         """Measure every pair of one body now (an exact read of its contacts)."""
@@ -247,8 +262,7 @@ class ContactTracker:
 
     def _measure(self, key: str, candidates: list[str], skip: set[str]) -> None:
         if key in self._crowded and len(candidates) * 2 < CROWD:  # few neighbours: to Bullet
-            self._crowded.discard(key)
-            self._bodies.crowd(key, False)
+            self._crowd(key, False)
         near = set(candidates)
         for other in list(self._partners.get(key, ())):
             if other not in near and other not in skip:

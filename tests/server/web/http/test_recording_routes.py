@@ -63,6 +63,9 @@ def test_a_recording_holds_every_frame_request_and_reading_with_its_time(server,
             texts.append(json.dumps({"op": "call", "object": right, "method": "setPosition",
                                      "args": [6 - 3 * min(k, 40 - k) / 20, 0, 0], "id": 10 + k}))
             _send_and_collect(ws, texts[-1], seen)
+            # a tick at every place (a loaded machine's few ticks all fell where the hand
+            # was not under the beam: every reading the same)
+            wait_ticks(ws, 1)
             texts.append(json.dumps({"op": "call", "object": left, "method": "flexFingers",
                                      "args": [k / 40], "id": 100 + k}))
             _send_and_collect(ws, texts[-1], seen)
