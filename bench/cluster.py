@@ -122,7 +122,8 @@ def headline(found: dict[str, Any]) -> dict[str, Any]:
                                              if r["gateways"] == 2 and r["viewers"] == most),
         "cluster_gateway_scaling": found["viewers"]["scaling"],
         "cluster_busy_scenes_placed": busy["placed"],
-        "cluster_busy_scenes_fps_median": (busy["ticks_per_second"] or {}).get("median", 0.0),
+        # (None when no busy scene answered: not a scene that ticked 0 times a second)
+        "cluster_busy_scenes_fps_median": (busy["ticks_per_second"] or {}).get("median"),
         "cluster_failover_s": found["failover"]["seconds"] or float("inf"),
         "cluster_failover_lost": found["failover"]["lost"],
     }
