@@ -193,10 +193,10 @@ QUIET_WINDOW_S = 0.5
 
 def until_quiet(pids: Callable[[], list[int]], within: float = STUCK_SECONDS) -> float:
     """Wait until the processes ``pids()`` names use less than QUIET_CORES between them
-    over QUIET_WINDOW_S; the seconds waited. A driver stopped while its scene could not
-    keep up leaves steps in the sockets' buffers that the scene still applies (hands-100's
-    took 10 s of a core after its driver ended), and they were counted in the next measure
-    (the clients' server CPU read 27 % after hands-100, 22 % on a fresh server)."""
+    over QUIET_WINDOW_S; the seconds waited. What one measure leaves running must not be
+    counted in the next: hands-100's scene, its driver gone, kept most of a core busy for
+    10 s (measuring its still contacts every tick, until it slept without clients; mended
+    since), and the clients' server CPU read 27 % after it, 22 % on a fresh server."""
     started = time.monotonic()
     while time.monotonic() < started + within:
         watched = pids()
