@@ -118,6 +118,26 @@ test('setAnimation in a scene the script paused steps a period after each call: 
 	}
 });
 
+test('setAnimation(func, 60) in Node steps 60 times a second, never more', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	await Prosthetic.connect({ url: URL_, scene: `js-rate-${process.pid}` });
+	try {
+		let calls = 0;
+		const started = performance.now();
+		Prosthetic.setAnimation(() => { calls++; }, 60);
+		await new Promise((resolve) => setTimeout(resolve, 2000));
+		const steps = calls, elapsed = performance.now() - started;
+		Prosthetic.setAnimation(null);
+		// a timer's delay is whole milliseconds in Node: setInterval(1000 / 60) gave 62.5 a
+		// second; a loaded machine may give fewer, never more
+		assert.ok(steps <= elapsed / (1000 / 60) + 1, `${steps} steps in ${elapsed.toFixed(0)} ms`);
+		assert.ok(steps > 0);
+		await new Promise((resolve) => setTimeout(resolve, 100));
+		assert.equal(calls, steps, 'setAnimation(null) stopped it');
+	} finally {
+		Prosthetic.close();
+	}
+});
+
 test('an animation whose pause another client ended runs on with the wall clock', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	const name = `js-unheld-${process.pid}`;
 	const session = await Prosthetic.connect({ url: URL_, scene: name });
