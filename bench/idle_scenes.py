@@ -19,8 +19,7 @@ from websockets.sync.client import connect
 
 from tests.conftest import RunningServer, eventually, start_server, stop_server
 
-from .live import cpu_seconds
-from .processes import descendants
+from .live import cpu_seconds, server_processes
 from .stats import figure
 
 def pss_mb(pid: int) -> float:
@@ -49,12 +48,12 @@ def measure(count: int, seconds: float) -> dict[str, Any]:
     try:
         opened = [hello_ms(running, f"idle{k}") for k in range(count)]
         eventually(lambda: _asleep(running) >= count, timeout=120)
-        processes = descendants(running.process.pid)
+        processes = server_processes(running)
         scene_pids = [m["pid"] for m in running.get("/api/metrics")["scenes"].values()]
         memory = [pss_mb(pid) for pid in scene_pids]
-        before = cpu_seconds([running.process.pid, *processes])
+        before = cpu_seconds(processes)
         time.sleep(seconds)
-        cpu = cpu_seconds([running.process.pid, *processes]) - before
+        cpu = cpu_seconds(processes) - before
         hellos = min(10, count)  # a few of each kind (the idle ones that were opened)
         fresh = [hello_ms(running, f"fresh{k}") for k in range(hellos)]
         started = running.get("/api/metrics")["scenes"]

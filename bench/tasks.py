@@ -18,8 +18,7 @@ from virtual_prosthetics.tasks.trial import TaskHand
 
 from tests.conftest import RunningServer, start_server, stop_server
 
-from .live import cpu_by_process, cpu_since
-from .processes import descendants
+from .live import cpu_by_process, cpu_since, server_processes
 
 TICK = 1 / 60
 
@@ -31,7 +30,7 @@ def _costed(running: RunningServer, run: Callable[[], Any]) -> tuple[float, floa
     lost the whole CPU of a scene that ended meanwhile (the ten-trial grasp's, stopped
     once idle, took 50 CPU-s off Box and Blocks' figure, which read 0.38, not 0.56)."""
     def cpu() -> dict[int, float]:
-        return cpu_by_process([running.process.pid, *descendants(running.process.pid)])
+        return cpu_by_process(server_processes(running))
     before, mine, started = cpu(), time.process_time(), time.perf_counter()
     run()
     return cpu_since(before, cpu()) + time.process_time() - mine, time.perf_counter() - started
