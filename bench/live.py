@@ -38,9 +38,10 @@ STUCK_SECONDS = 60
 
 
 @contextmanager
-def server() -> Iterator[RunningServer]:
-    """A server without the demo scene, rate limits lifted (the bench sends fast on purpose)."""
-    running = start_server("--no-demo", *LIMITS)
+def server(*flags: str) -> Iterator[RunningServer]:
+    """A server without the demo scene, rate limits lifted (the bench sends fast on purpose),
+    and ``flags``."""
+    running = start_server("--no-demo", *LIMITS, *flags)
     try:
         yield running
     finally:
