@@ -9,20 +9,23 @@ imported the scene code, so a new scene is ready in milliseconds.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import itertools
 import logging
 import multiprocessing
+import os
 import queue
 import sys
 import threading
 import time
 from pathlib import Path
+from multiprocessing import spawn
 from typing import Any, Callable, Protocol
 
 from ...core.kit.limits import Limits
 from ...core.physics.assets import AssetLibrary
 from ...core.kit.errors import UnknownScene, VPError
-from ..process import worker
+from ..process import forkserver_main, worker
 from ..process.messages import Ask, Command, Ended, Event, Question, Reply, Stop
 from ..storage.scene_store import SceneStore
 
@@ -34,14 +37,24 @@ PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecesso
 CONTEXT = multiprocessing.get_context("forkserver")
 # scipy's hulls too: a dynamic scene's first hand measures its parts' volumes with them.
 # Not trimesh (meshes, imports, exports): a third of a CPU-second of every server's start,
-# paid instead by the first scene that reads a mesh. And the server's command line: every
-# new process runs the script that started the server again (multiprocessing's fix-up of
-# __main__; its own preload of __main__ never happens, as the fork server is not told the
-# script's path), and vp-server's one import is server.cli. Found loaded, it costs
-# nothing; imported anew (FastAPI, uvicorn) it cost each scene 0.33 CPU-seconds of its start.
-CONTEXT.set_forkserver_preload([worker.__name__, "scipy.spatial", "scipy.optimize",
-                                "server.cli",
+# paid instead by the first scene that reads a mesh. Nor the server's script
+# (forkserver_main.py: its processes are told they already run it).
+CONTEXT.set_forkserver_preload([forkserver_main.__name__, worker.__name__, "scipy.spatial",
+                                "scipy.optimize",
                                 "server.web.process.forkserver_heap"])  # last: freezes what they loaded
+
+
+def _tell_the_fork_server_the_script() -> None:
+    """Where the fork server's processes find their script (forkserver_main.py), before it
+    starts. Each process says its own (a server started by a test or the bench inherits
+    theirs); one still starting, importing this to unpickle what it runs, may not ask
+    multiprocessing, and keeps its parent's."""
+    with contextlib.suppress(RuntimeError):  # (multiprocessing: "bootstrapping phase")
+        os.environ[forkserver_main.MAIN_PATH] = spawn.get_preparation_data("scene").get(
+            "init_main_from_path", "")  # (a module run with -m: imported by name, not run)
+
+
+_tell_the_fork_server_the_script()
 sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 
