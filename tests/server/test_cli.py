@@ -9,10 +9,10 @@ from tests.conftest import ROOT
 
 
 def test_the_web_process_starts_without_the_mesh_libraries():
-    # trimesh and scipy are half a second of every start; only a scene's process (whose
-    # fork server preloads them) and a file export use them
+    # trimesh and scipy are half a second of every start, Pillow a sixth; only a scene's
+    # process (whose fork server preloads scipy) and a file export use them
     loaded = subprocess.run(
         [sys.executable, "-c", "import sys, server.cli\n"
-         "print(sorted(m for m in ('trimesh', 'scipy') if m in sys.modules))"],
+         "print(sorted(m for m in ('trimesh', 'scipy', 'PIL') if m in sys.modules))"],
         cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
     assert loaded == "[]"

@@ -12,7 +12,6 @@ from typing import Any, Literal
 import numpy as np
 import pybullet
 from fastapi import APIRouter, Request, Response
-from PIL import Image
 
 from ...core.scene.scene import Scene
 from ..process.messages import Read
@@ -39,7 +38,10 @@ _WORLDS: weakref.WeakKeyDictionary[Scene, Any] = weakref.WeakKeyDictionary()  # 
 
 def _drawn(scene: Scene, width: int, height: int, format: str) -> bytes:
     """The picture's bytes (in the scene's process: travels there by name)."""
-    # here, not at the top: the web process never draws, and scipy is half a second of its start
+    # here, not at the top: the web process never draws, and scipy is half a second of its
+    # start (Pillow a sixth of one)
+    from PIL import Image
+
     from ...core.physics.picture_world import PictureWorld
     scene.bodies.sync()  # what changed since the last tick, as every reader sees it
     if scene not in _WORLDS:
