@@ -179,13 +179,17 @@ def server_cpu_seconds(running: RunningServer, scene: str) -> float:
 def cpu_seconds(pids: list[int]) -> float:
     """User and system CPU seconds of these processes (those gone meanwhile count 0)."""
     ticks = 0
-    for pid in pids:
-        try:
-            fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
+    for fields in filter(None, map(_stat, pids)):
         ticks += int(fields[11]) + int(fields[12])
     return ticks / 100  # clock ticks (USER_HZ, 100 on Linux)
+
+
+def _stat(pid: int) -> list[str] | None:
+    """The fields of /proc/<pid>/stat after the command's name (None once it is gone)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except OSError:
+        return None
 
 
 QUIET_CORES = 0.05  # a server at rest: what is left of the last measure is done
@@ -215,10 +219,8 @@ def until_quiet(pids: Callable[[], list[int]], within: float = STUCK_SECONDS) ->
 
 def runnable(pid: int) -> bool:
     """Whether the process's main thread is running or waiting for a core (state R)."""
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] == "R"
-    except OSError:
-        return False
+    fields = _stat(pid)
+    return fields is not None and fields[0] == "R"
 
 
 def server_processes(running: RunningServer) -> list[int]:

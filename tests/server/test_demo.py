@@ -20,10 +20,11 @@ def demo_server():
 def test_default_demo_shows_a_left_and_a_right_hand_of_each_kind_moving(demo_server):
     robots = demo_server.get("/api/scenes/default/robots")
     assert sorted(r["type"] for r in robots) == sorted(["EdgedHand", "RoundHand", "AnthroHand"] * 2)
-    path = f"/api/scenes/default/robots/{robots[2]['id']}"
-    first = [m["angle"] for m in demo_server.get(path)["motors"]]
+    def angles() -> list[float]:
+        return [m["angle"] for m in demo_server.get(f"/api/scenes/default/robots/{robots[2]['id']}")["motors"]]
+    first = angles()
     # (0.3 s apart, two reads once fell in a held fist and were equal: it moves, not always)
-    eventually(lambda: [m["angle"] for m in demo_server.get(path)["motors"]] != first)
+    eventually(lambda: angles() != first)
 
 
 @pytest.fixture

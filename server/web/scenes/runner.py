@@ -18,8 +18,8 @@ import queue
 import sys
 import threading
 import time
-from pathlib import Path
 from multiprocessing import spawn
+from pathlib import Path
 from typing import Any, Callable, Protocol
 
 from ...core.kit.limits import Limits
