@@ -163,8 +163,10 @@ def test_without_a_state_dir_a_scene_with_kept_objects_stays(scene_name):
         stop_server(server)
 
 
-def test_a_document_restores_a_scene_under_any_name_and_a_bad_one_changes_nothing(
-        server, scene_name):
+def test_a_document_restores_a_scene_under_any_name_and_a_bad_one_changes_nothing(scene_name):
+    # its own server, with a long grace: the copy's owner is not connected to it, and in a
+    # loaded clean-clone run the copy's unkept hand went after the default 10 s, mid-test
+    server = start_server("--no-demo", "--limit", "leaveGraceSeconds=600")
     client = build_lab(server.ws, scene_name)
     try:
         original = json.loads(export(server, scene_name))
@@ -185,6 +187,7 @@ def test_a_document_restores_a_scene_under_any_name_and_a_bad_one_changes_nothin
         assert f"{scene_name}-other" not in [s["name"] for s in server.get("/api/scenes")]
     finally:
         client.close()
+        stop_server(server)
 
 
 def test_importing_needs_the_control_token():
