@@ -33,37 +33,69 @@ def browser() -> Iterator[Browser]:
         chromium.close()
 
 
+class Tabs(list):
+    """The pages one test opened, taken from its file's idle tabs: a page navigated from
+    one test's address to the next costs the browser about 1.1 CPU-s to a viewer's first
+    snapshot, against 2.6 for a new page in a new context (its renderer process, code
+    cache and WebGL start again), and the suite opens about 150."""
+
+    def __init__(self, idle: list[Page]) -> None:
+        super().__init__()
+        self.idle = idle
+
+    def take(self, browser: Browser) -> Page:
+        """An idle tab of this file, else a new one that records uncaught errors in
+        ``window.__errors`` (at every navigation)."""
+        if self.idle:
+            page = self.idle.pop()
+        else:
+            page = browser.new_context(viewport=VIEWPORT).new_page()
+            page.set_default_timeout(WAIT_SECONDS * 1000)  # a guard: software WebGL, loaded core
+            page.add_init_script("window.__errors = []; window.addEventListener('error', "
+                                 "(e) => window.__errors.push(String(e.message)));")
+        self.append(page)
+        return page
+
+    def release(self, page: Page) -> None:
+        """Done with ``page``: it must have had no uncaught error."""
+        errors = self.leave(page)
+        assert errors == [], errors
+
+    def leave(self, page: Page) -> list[str]:
+        """The uncaught errors of ``page``, which leaves its address (its sockets close as
+        a closed page's do) and waits idle for the next test."""
+        self.remove(page)
+        if page.is_closed():
+            return []
+        errors = page.evaluate("() => window.__errors || []")
+        page.goto("about:blank")
+        self.idle.append(page)
+        return errors
+
+
+@pytest.fixture(scope="module")
+def idle_tabs(browser: Browser) -> list[Page]:
+    """Pages of this file's browser that no test is using (closed with it)."""
+    return []
+
+
 @pytest.fixture
-def pages(browser: Browser) -> Iterator[list[Page]]:
-    """A list to open pages into; each is closed after the test, with its errors checked."""
-    opened: list[Page] = []
+def pages(idle_tabs: list[Page]) -> Iterator[Tabs]:
+    """A list to open pages into; each is released after the test, its errors checked."""
+    opened = Tabs(idle_tabs)
     yield opened
-    for page in opened:
-        close_page(page)
-
-
-def close_page(page: Page) -> None:
-    """Close a page (software WebGL is slow: fewer open pages, faster tests); it must have
-    had no uncaught error."""
-    if page.is_closed():
-        return
-    errors = page.evaluate("() => window.__errors || []")
-    page.context.close()
+    errors = [error for page in list(opened) for error in opened.leave(page)]
     assert errors == [], errors
 
 
-def open_page(browser: Browser, pages: list[Page], url: str) -> Page:
-    """A new page at ``url`` that records uncaught errors in ``window.__errors``."""
-    page = browser.new_context(viewport=VIEWPORT).new_page()
-    page.set_default_timeout(WAIT_SECONDS * 1000)  # a guard: software WebGL on a loaded core
-    page.add_init_script("window.__errors = []; window.addEventListener('error', "
-                         "(e) => window.__errors.push(String(e.message)));")
-    pages.append(page)
+def open_page(browser: Browser, pages: Tabs, url: str) -> Page:
+    """A page at ``url``, one of ``pages``, that records uncaught errors in ``window.__errors``."""
+    page = pages.take(browser)
     page.goto(url)
     return page
 
 
-def open_viewer(browser: Browser, pages: list[Page], server, query: str) -> Page:
+def open_viewer(browser: Browser, pages: Tabs, server, query: str) -> Page:
     """A viewer page that has its first snapshot."""
     page = open_page(browser, pages, f"{server.http}/view?{query}")
     wait_until(page, "() => window.VP && window.VP.snapshots > 0")

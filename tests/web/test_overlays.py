@@ -10,7 +10,7 @@ import pytest
 
 import virtual_prosthetics as vp
 
-from .conftest import close_page, open_viewer, wait_until
+from .conftest import open_viewer, wait_until
 from .picture import Picture, background_like
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "clients" / "python" / "examples" / "all_parts.py"
@@ -55,7 +55,7 @@ def test_every_part_type_is_drawn_and_overlays_add_slots_and_envelopes(
         picture = Picture(page.screenshot())
         assert picture.share(lambda c: not background_like(c)) > 0.05  # not a blank canvas
         shares[overlay] = picture.share(crimson)
-        close_page(page)
+        pages.release(page)
     assert shares["show-slots"] > shares[""] + 0.001
     assert shares["debug-physics"] > shares[""] + 0.001
 
