@@ -44,9 +44,16 @@ export class MotorPanels {
 		tree.on('changed', (object, fields) => { if (shaping.some((key) => key in fields)) refresh(); });
 	}
 
-	// Rebuild panels after structural changes (at most once per rendered frame).
+	// Rebuild panels after structural changes (at most once per animation frame).
 	step() {
 		if (this.stale) this.rebuild();
+	}
+
+	// The sliders show the angles of the picture just drawn: refreshed with every picture,
+	// not every animation frame (on a page drawing two pictures a second, two hands'
+	// 40 sliders redrawn 60 times a second kept the page's renderer busy for 40 % of a core
+	// in style, layout and paint, against its 12 % of JavaScript).
+	show() {
 		for (const panel of this.panels.values()) for (const [object, slider] of panel.sliders) {
 			const angle = object.userData.node.angle;
 			if (!slider.dragging && panel.values[object.name] !== angle) {

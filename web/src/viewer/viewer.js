@@ -110,7 +110,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 		view.lasers.step();
 		panels.step();
 	});
-	stage.afterRender.push(() => view.hook.drew(stage.renderMs));
+	stage.afterRender.push(() => { panels.show(); view.hook.drew(stage.renderMs); });
 	return {
 		scene: stage.scene,
 		stage,
