@@ -51,8 +51,8 @@ export class MotorPanels {
 
 	// The sliders show the angles of the picture just drawn: refreshed with every picture,
 	// not every animation frame (on a page drawing two pictures a second, two hands'
-	// 40 sliders redrawn 60 times a second kept the page's renderer busy for 40 % of a core
-	// in style, layout and paint, against its 12 % of JavaScript).
+	// 40 sliders refreshed 60 times a second: its renderer spent 40 % of a core outside
+	// JavaScript, in style, layout and paint among others; 23 % refreshed with pictures).
 	show() {
 		for (const panel of this.panels.values()) for (const [object, slider] of panel.sliders) {
 			const angle = object.userData.node.angle;
