@@ -167,7 +167,7 @@ def _angles_in(server: RunningServer, scene: str, robot: str) -> list[float]:
 def test_the_page_example_runs_as_written(demo, folder):
     """The 1.0 page with its import line changed, saved in the reader's own folder and
     served there (a loopback origin the server lets in), draws its robot in a scene."""
-    from tests.web.conftest import CHROMIUM, TEST_FLAGS  # noqa: PLC0415 (only this test needs it)
+    from tests.web.conftest import CHROMIUM, FLAGS  # noqa: PLC0415 (only this test needs it)
     from playwright.sync_api import sync_playwright  # noqa: PLC0415
     (folder / "page.html").write_text(literal(block(START_PAGE), demo))
     port = free_port()
@@ -176,7 +176,7 @@ def test_the_page_example_runs_as_written(demo, folder):
                               stderr=subprocess.DEVNULL)
     try:
         with sync_playwright() as playwright:
-            chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=TEST_FLAGS)
+            chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
             page = chromium.new_page()
             page.set_default_timeout(WAIT_SECONDS * 1000)
             _goto_when_served(page, f"http://127.0.0.1:{port}/page.html")

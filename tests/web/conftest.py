@@ -15,11 +15,6 @@ CHROMIUM = "/usr/bin/chromium"
 FLAGS = ["--no-sandbox", "--use-angle=swiftshader",
          "--enable-unsafe-swiftshader", "--disable-background-networking",
          "--disable-component-update", "--disable-sync", "--no-first-run"]
-# The tests' browser composites its pages in software (WebGL still draws with SwiftShader):
-# a page whose text changes 60 times a second kept SwiftShader's compositing at 0.6 of a
-# core against 0.04, and a sensor page's ten seconds cost 9.0 CPU-s against 5.1. The bench
-# keeps FLAGS, the browser as it is.
-TEST_FLAGS = [*FLAGS, "--disable-gpu-compositing"]
 VIEWPORT = {"width": 800, "height": 500}
 # A query that has pages and viewers draw two pictures a second (the viewer's ?fps=), for
 # tests that check what pages make and move rather than their pictures (test_stage.py has
@@ -33,7 +28,7 @@ def browser() -> Iterator[Browser]:
     this thread while it is open, which tests of other files run by the same worker
     (asyncio.run) must not find."""
     with sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=TEST_FLAGS)
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=FLAGS)
         yield chromium
         chromium.close()
 
