@@ -16,10 +16,15 @@ FLAGS = ["--no-sandbox", "--use-angle=swiftshader",
          "--enable-unsafe-swiftshader", "--disable-background-networking",
          "--disable-component-update", "--disable-sync", "--no-first-run"]
 VIEWPORT = {"width": 800, "height": 500}
+# The drawing level test viewers hold (the viewer's ?quality=, unless a test's query names
+# one): no shadows, 0.6 of the pixels. An open viewer's pictures (two a second) cost the
+# GPU process 0.10 of a core at this level against 0.25 at the level software WebGL starts
+# at; colours and places in screenshots are the same (test_quality.py has the levels)
+LEVEL = "quality=lower"
 # A query that has pages and viewers draw two pictures a second (the viewer's ?fps=), for
 # tests that check what pages make and move rather than their pictures (test_stage.py has
 # the cap): an animated 1.0 page drawn at the software cap took 1.5 cores against 0.8
-CALM = "fps=2"
+CALM = f"fps=2&{LEVEL}"
 
 
 @pytest.fixture(scope="module")
@@ -96,8 +101,10 @@ def open_page(browser: Browser, pages: Tabs, url: str) -> Page:
 
 
 def open_viewer(browser: Browser, pages: Tabs, server, query: str) -> Page:
-    """A viewer page that has its first snapshot."""
-    page = open_page(browser, pages, f"{server.http}/view?{query}")
+    """A viewer page that has its first snapshot (at :data:`LEVEL` unless ``query`` names
+    a level)."""
+    level = "" if "quality=" in query else f"&{LEVEL}"
+    page = open_page(browser, pages, f"{server.http}/view?{query}{level}")
     wait_until(page, "() => window.VP && window.VP.snapshots > 0")
     return page
 

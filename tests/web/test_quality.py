@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from .conftest import open_viewer
+
 
 # A Quality fed `waits` (ms, one list per group of pictures judged together), starting at
 # level `start`: the level names it went through and where it ended.
@@ -64,3 +66,36 @@ def test_quick_pictures_for_five_seconds_step_back_up(page):
 def test_the_coarsest_level_is_the_last(page):
     result = run(page, 5, [nine(200), nine(150), nine(100)])
     assert result["names"] == ["rough"] and result["level"] == "rough"
+
+
+def test_a_held_level_stays_whatever_pictures_cost(page):
+    held = page.evaluate("""async () => {
+        const { Quality } = await import('/web/viewer/quality.js');
+        const names = [];
+        const quality = new Quality(true, (level) => names.push(level.name), 'lower');
+        let now = 100000;
+        for (let k = 0; k < 90; k++) { now += 50; quality.drawn(now - (k < 45 ? 300 : 1), now); }
+        return { names, level: quality.level.name };
+    }""")
+    assert held == {"names": [], "level": "lower"}
+
+
+def test_an_unknown_level_is_told_and_the_viewer_adapts_from_its_usual_start(page):
+    messages = []
+    page.on("console", lambda message: messages.append(message.text))
+    level = page.evaluate("""async () => {
+        const { Quality } = await import('/web/viewer/quality.js');
+        const quality = new Quality(true, () => {}, 'sharpest');
+        let now = 100000;
+        for (let k = 0; k < 9; k++) { now += 50; quality.drawn(now - 300, now); }
+        return quality.level.name;
+    }""")
+    assert level == "low"  # software starts at medium; slow pictures stepped it down
+    assert any("quality=sharpest: no such level" in m and "rough" in m for m in messages)
+
+
+def test_a_viewer_asked_for_a_level_draws_at_it(browser, pages, server, scene_name):
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}&quality=lower")
+    drawn = viewer.evaluate("""() => ({ level: VP.quality.level.name,
+        ratio: VP.renderer.getPixelRatio(), shadows: VP.renderer.shadowMap.enabled })""")
+    assert drawn == {"level": "lower", "ratio": 0.6, "shadows": False}

@@ -3,6 +3,8 @@
 //   &physics=dynamic|kinematic (a page: the scene's physics once connected)
 //   &fps=N (pictures a second at most; 0: the display's rate; left out: 15 where WebGL
 //   draws in software, the display's rate elsewhere)
+//   &quality=NAME (a drawing level of quality.js held, from full to rough; left out: the
+//   viewer adapts its level to how long pictures take)
 //   /view?recording=ID: a recording played (replay.js) instead of a live scene
 
 export function readOptions(search = window.location.search) {
@@ -19,6 +21,7 @@ export function readOptions(search = window.location.search) {
 		physics: ['dynamic', 'kinematic'].includes(params.get('physics')) ? params.get('physics') : null,
 		recording: params.get('recording') || null,   // play a recording instead of a scene
 		fps: /^\d+(\.\d+)?$/.test(params.get('fps') ?? '') ? Number(params.get('fps')) : null,
+		quality: params.get('quality') || null,   // a level's name (quality.js checks it)
 	};
 }
 

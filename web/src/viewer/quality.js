@@ -34,9 +34,15 @@ export function softwareWebGL() {
 }
 
 export class Quality {
-	constructor(software, apply) {
+	// held: a level's name (?quality=): drawn at that level always, nothing adapts
+	constructor(software, apply, held = null) {
 		this.apply = apply;               // (level) → the renderer and light take it
-		this.index = software ? 2 : 0;
+		const heldIndex = LEVELS.findIndex((level) => level.name === held);
+		this.held = heldIndex >= 0;
+		this.index = this.held ? heldIndex : software ? 2 : 0;
+		if (held !== null && !this.held) {
+			console.warn(`quality=${held}: no such level (${LEVELS.map((l) => l.name).join(', ')}); the viewer adapts`);
+		}
 		this.waits = [];
 		this.quickSince = null;
 		this.floor = LEVELS.length - 1;   // the lowest level that still helped
@@ -49,6 +55,7 @@ export class Quality {
 
 	// A picture wanted since `wanted` (ms) was drawn at `now`.
 	drawn(wanted, now) {
+		if (this.held) return;
 		this.waits.push(now - wanted);
 		if (this.waits.length < SAMPLES) return;
 		const wait = [...this.waits].sort((a, b) => a - b)[SAMPLES >> 1];

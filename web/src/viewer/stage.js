@@ -18,7 +18,8 @@ export const SOFTWARE_FPS = 15;
 const FRAME_MARGIN = 1.15;   // frame(): room around what is framed
 
 export class Stage {
-	constructor(container = document.body, fps = null) {
+	// quality: a level's name to hold (quality.js), or null to adapt
+	constructor(container = document.body, fps = null, quality = null) {
 		const software = this.software = softwareWebGL();
 		const most = fps ?? (software ? SOFTWARE_FPS : 0);
 		this.gapMs = most > 0 ? 1000 / most : 0;  // between the starts of two pictures
@@ -49,7 +50,7 @@ export class Stage {
 		this.wantedAt = performance.now();  // since when a picture is wanted
 		this.nextAt = 0;                    // no picture starts before this (gapMs)
 		this.pictures = 0;                 // drawn so far (the status line counts them)
-		this.quality = new Quality(software, (level) => this.applyLevel(level));
+		this.quality = new Quality(software, (level) => this.applyLevel(level), quality);
 		this.applyLevel(this.quality.level);
 		window.addEventListener('resize', () => this.resize());
 		renderer.setAnimationLoop((time) => this.draw(time));

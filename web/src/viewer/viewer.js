@@ -50,7 +50,7 @@ export function mountViewer({ options, request, guiFor, watchLink = null, drawnE
 	caption.hidden = true;
 	const gestureBox = element('gesture', 'pre', 'gesture');
 	gestureBox.hidden = true;
-	const stage = new Stage(document.body, options.fps);
+	const stage = new Stage(document.body, options.fps, options.quality);
 	const root = new THREE.Group();
 	root.name = 'robots';
 	stage.scene.add(root);
