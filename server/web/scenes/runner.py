@@ -37,10 +37,10 @@ PREDECESSOR_SECONDS = 30.0  # how long a scene waits for its stopping predecesso
 CONTEXT = multiprocessing.get_context("forkserver")
 # scipy's hulls too: a dynamic scene's first hand measures its parts' volumes with them.
 # Not trimesh (meshes, imports, exports): a third of a CPU-second of every server's start,
-# paid instead by the first scene that reads a mesh. Nor the server's script
+# paid instead by the first scene that reads a mesh; nor scipy.optimize (0.1 CPU-s of every
+# start, for the rare cut envelope whose corners miss its cuts). Nor the server's script
 # (forkserver_main.py: its processes are told they already run it).
 CONTEXT.set_forkserver_preload([forkserver_main.__name__, worker.__name__, "scipy.spatial",
-                                "scipy.optimize",
                                 "server.web.process.forkserver_heap"])  # last: freezes what they loaded
 
 
