@@ -19,7 +19,8 @@ VIEWPORT = {"width": 800, "height": 500}
 # The drawing level test viewers hold (the viewer's ?quality=, unless a test's query names
 # one): no shadows, 0.6 of the pixels. An open viewer's pictures (two a second) cost the
 # GPU process 0.10 of a core at this level against 0.25 at the level software WebGL starts
-# at; colours and places in screenshots are the same (test_quality.py has the levels)
+# at; the tests' screenshots find their colours in the same places at either level
+# (test_quality.py has the levels)
 LEVEL = "quality=lower"
 # A query that has pages and viewers draw two pictures a second (the viewer's ?fps=), for
 # tests that check what pages make and move rather than their pictures (test_stage.py has

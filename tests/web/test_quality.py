@@ -95,7 +95,7 @@ def test_an_unknown_level_is_told_and_the_viewer_adapts_from_its_usual_start(pag
 
 
 def test_a_viewer_asked_for_a_level_draws_at_it(browser, pages, server, scene_name):
-    viewer = open_viewer(browser, pages, server, f"scene={scene_name}&quality=lower")
+    viewer = open_viewer(browser, pages, server, f"scene={scene_name}&quality=rough")
     drawn = viewer.evaluate("""() => ({ level: VP.quality.level.name,
         ratio: VP.renderer.getPixelRatio(), shadows: VP.renderer.shadowMap.enabled })""")
-    assert drawn == {"level": "lower", "ratio": 0.6, "shadows": False}
+    assert drawn == {"level": "rough", "ratio": 0.3, "shadows": False}
