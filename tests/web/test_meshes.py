@@ -69,8 +69,9 @@ def test_an_uploaded_glb_is_drawn_and_recoloured_in_every_viewer(browser, pages,
 TRIANGLES = """(id) => { let n = 0; VP.objects.get(id).traverse((c) => {
                  if (c.isMesh && c.geometry.getAttribute('color')) n += c.geometry.index.count / 3; });
                return n; }"""
-# hold the viewer at one drawing level (quality.js LEVELS: 0 full, 4 lower)
-LEVEL = "(index) => { const q = VP.quality; q.drawn = () => {}; q.index = index; q.apply(q.level); }"
+# hold the viewer at one drawing level, as ?quality= holds one (quality.js LEVELS: 0 full,
+# 4 lower); conftest.LEVEL is the query the tests' viewers open with
+HOLD_LEVEL = "(index) => { const q = VP.quality; q.held = true; q.index = index; q.apply(q.level); }"
 FULL, LOWER = 0, 4
 
 
@@ -81,10 +82,10 @@ def test_coarse_levels_draw_mesh_files_simplified_in_the_same_place_and_colours(
     part = green_ball_in_view(scene)
     page = open_viewer(browser, pages, server, f"scene={scene_name}")
     wait_until(page, LOADED, part.id)
-    page.evaluate(LEVEL, FULL)
+    page.evaluate(HOLD_LEVEL, FULL)
     full = page.evaluate(TRIANGLES, part.id)
     assert full == 1280                                    # the icosphere as uploaded
-    page.evaluate(LEVEL, LOWER)
+    page.evaluate(HOLD_LEVEL, LOWER)
     assert page.evaluate(TRIANGLES, part.id) < full / 2
     centre = project((0, 1, 0), *CAMERA, Picture(page.screenshot()).size)
     wait_until(page, "() => VP.drawn()")
@@ -93,7 +94,7 @@ def test_coarse_levels_draw_mesh_files_simplified_in_the_same_place_and_colours(
     scene.sync()
     wait_until(page, "(id) => VP.objects.get(id).userData.node.recolors?.length === 1 && VP.drawn()", part.id)
     assert blueish(Picture(page.screenshot()).at(centre))
-    page.evaluate(LEVEL, FULL)                            # back in full, in the new colour
+    page.evaluate(HOLD_LEVEL, FULL)                            # back in full, in the new colour
     assert page.evaluate(TRIANGLES, part.id) == full
     wait_until(page, "() => VP.drawn()")
     assert blueish(Picture(page.screenshot()).at(centre))
