@@ -20,6 +20,7 @@ from .web.http.access import AccessPolicy
 from .web.http.app import create_app
 from .web.connections.connection_limits import ConnectionCount, guarded_protocol
 from .web.connections.framed_socket import FramedSocketProtocol
+from .web.scenes.runner import start_fork_server
 from .web.scenes.scene_capacity import machine_memory, scenes_held
 
 WS_MAX_BYTES = 16 << 20  # beyond the protocol's 1 MiB: those get an answer, not a hang-up
@@ -42,6 +43,7 @@ def main(argv: list[str] | None = None) -> None:
         parser.error(str(error))
     logging.basicConfig(level=args.log_level.upper())
     _raise_file_limit(limits)
+    start_fork_server()  # before any thread: scenes then start from a fork of this process
     cluster = _cluster(args, limits)
     if cluster is not None and args.role == "worker":
         sys.exit(UNSAVED if asyncio.run(cluster.serve()) else 0)

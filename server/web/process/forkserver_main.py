@@ -7,7 +7,9 @@ its ``__file__``. vp-server's script imports server.cli, so a scene's process im
 FastAPI and uvicorn anew (0.33 CPU-seconds of its start), or the fork server preloaded them
 for every server start (0.9 CPU-seconds, paid before any scene). No scene needs the
 script: the fork server's ``__main__`` is given its path (MAIN_PATH, set by runner.py
-before the fork server starts), and what it forks inherits that.
+before the fork server starts), and what it forks inherits that. (vp-server itself forks
+its fork server, :mod:`.fork_server`, which has the script already; this is for the fork
+server multiprocessing starts where a fork is not safe.)
 """
 
 import os

@@ -25,7 +25,7 @@ from typing import Any, Callable, Protocol
 from ...core.kit.limits import Limits
 from ...core.physics.assets import AssetLibrary
 from ...core.kit.errors import UnknownScene, VPError
-from ..process import forkserver_main, worker
+from ..process import fork_server, forkserver_main, worker
 from ..process.messages import Ask, Command, Ended, Event, Question, Reply, Stop
 from ..storage.scene_store import SceneStore
 
@@ -40,8 +40,16 @@ CONTEXT = multiprocessing.get_context("forkserver")
 # paid instead by the first scene that reads a mesh; nor scipy.optimize (0.1 CPU-s of every
 # start, for the rare cut envelope whose corners miss its cuts). Nor the server's script
 # (forkserver_main.py: its processes are told they already run it).
-CONTEXT.set_forkserver_preload([forkserver_main.__name__, worker.__name__, "scipy.spatial",
-                                "server.web.process.forkserver_heap"])  # last: freezes what they loaded
+PRELOAD = [forkserver_main.__name__, worker.__name__, "scipy.spatial",
+           "server.web.process.forkserver_heap"]  # last: freezes what they loaded
+CONTEXT.set_forkserver_preload(PRELOAD)
+
+
+def start_fork_server() -> bool:
+    """Start the fork server now, as a fork of this process (:mod:`..process.fork_server`:
+    its modules are imported already); False when only multiprocessing's own can start
+    (threads running), which it does when the first scene needs it."""
+    return fork_server.fork_here(PRELOAD)
 
 
 def _tell_the_fork_server_the_script() -> None:
