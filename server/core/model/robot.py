@@ -34,7 +34,7 @@ class Robot(Node):
         # in a dynamic world yet); its node's pose is where the physics has it (a loaded
         # hand turns a little at its mount), and documents keep both
         self.mount: Pose | None = None
-        self._listing: tuple[int, list[Part], list[Motor]] | None = None
+        self._listing: tuple[int, list[Part], list[Motor], frozenset[str]] | None = None
         self._grip_map: tuple[Any, dict[str, Any]] | None = None  # (its tree as of, the map)
 
     # --- chains ------------------------------------------------------------------------
@@ -72,13 +72,19 @@ class Robot(Node):
         """Manual ``getMotors()``: the motors in depth-first order; index = position."""
         return self._listed()[1]
 
-    def _listed(self) -> tuple[list[Part], list[Motor]]:
-        """Parts and motors, listed again only when the scene's tree changed."""
+    def motor_ids(self) -> frozenset[str]:
+        """The ids of :meth:`get_motors` (a frame's angles leave out the motors of a robot
+        it lists whole: a set union, not a test per motor)."""
+        return self._listed()[2]
+
+    def _listed(self) -> tuple[list[Part], list[Motor], frozenset[str]]:
+        """Parts, motors and the motors' ids, listed again only when the scene's tree changed."""
         version = self.scene.tree_version
         if self._listing is None or self._listing[0] != version:
             parts = [n for n in self.walk() if isinstance(n, Part) and n.listed]
-            self._listing = (version, parts, [p for p in parts if isinstance(p, Motor)])
-        return self._listing[1], self._listing[2]
+            motors = [p for p in parts if isinstance(p, Motor)]
+            self._listing = (version, parts, motors, frozenset(m.id for m in motors))
+        return self._listing[1:]
 
     def get_grip_map(self) -> dict[str, Any]:
         """Its digits, the motors that close each and how far, the digit that opposes the

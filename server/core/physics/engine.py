@@ -420,6 +420,13 @@ class PhysicsWorld:
         get, where, client = pybullet.getAABB, self._where, self._client
         return [get(*where[key], physicsClientId=client) for key in keys]
 
+    @property
+    def detects_afresh(self) -> bool:
+        """True when each :meth:`detect` runs Bullet's narrowphase once (kinematic mode), so
+        that a pair it did not report at the detect before has only points measured now;
+        in dynamic mode the steps between two detects ran it several times."""
+        return self.dynamics is None
+
     def detect(self) -> dict[tuple[str, str], float]:
         """Bullet's own collision detection over the parts it pairs (all but those in a
         crowd) and the ground: for each pair with contact points, by how much its nearest

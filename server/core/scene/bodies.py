@@ -13,6 +13,7 @@ itself (kinematic mode, as 1.0).
 from __future__ import annotations
 
 import logging
+from operator import attrgetter
 from typing import TYPE_CHECKING, Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
@@ -40,6 +41,7 @@ log = logging.getLogger(__name__)
 # (dynamic mode), all of them, or none (left for a later sync)
 STAGED, ALL, LATER = "staged", "all", "later"
 HAIR = 1e-9  # dynamic mode: a joint or body that moved less than this (m, rad) has not moved
+_ANGLE = attrgetter("angle")
 
 
 def _apart(a: Pose, b: Pose) -> bool:
@@ -411,9 +413,9 @@ class SceneBodies:
                 if motor_id not in motor_root and motor is not None and motor.parent is None:
                     self.rebased(motor_id, "quaternion")  # a lone motor: its turn is its base's pose
         self._turned.clear()
-        motors = self._joint_motors
-        return {root_id for root_id in roots - rebuilt if self._guarded(root_id, lambda: self.physics.turn(
-            root_id, [motor.angle for motor in motors[root_id]]))}  # type: ignore[attr-defined]
+        motors, turn = self._joint_motors, self.physics.turn
+        return {root_id for root_id in roots - rebuilt if self._guarded(
+            root_id, lambda: turn(root_id, list(map(_ANGLE, motors[root_id]))))}
 
     def _place_bases(self, rebuilt: set[str]) -> set[str]:
         """Place the bases of the moved roots; the roots placed."""

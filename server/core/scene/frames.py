@@ -13,6 +13,7 @@ before it in ``added``, removed ones after it in ``removed``.
 
 from __future__ import annotations
 
+from operator import attrgetter
 from typing import Any, Mapping
 
 from ..kit.numbers import encode_numbers
@@ -22,6 +23,7 @@ from .changes import ChangeSet
 
 _LATEST_WINS = ("angles", "poses", "sensors", "forces")
 SCENE_FIELDS = ("camera", "physics", "caption")  # the scene's own, each sent whole
+_ANGLE = attrgetter("angle")
 
 
 def tick_messages(seq: int, time: float, changes: dict[str, Any]) -> list[Added | Frame | Removed]:
@@ -58,21 +60,21 @@ def _angles(nodes: Mapping[str, Node], changes: ChangeSet) -> dict[str, Any]:
     as turned (Scene.reparented), so the frame that changes the list sends it too."""
     born, out = changes.born, {}
     robots: dict[str, list[Any]] = {}
-    covered: set[str] = set()  # motors of the robots found: their roots are not looked up
+    covered: set[str] = set(born)  # motors of the robots found: their roots are not looked up
     for i in changes.angles:
-        if i in covered or i in born or i not in nodes:
+        if i in covered or (node := nodes.get(i)) is None:
             continue
-        root = nodes[i].root()
+        root = node.root()
         if not root.lists_motors:
-            out[i] = nodes[i].angle
+            out[i] = node.angle
         elif root.id not in robots:
-            robots[root.id] = motors = root.get_motors()  # type: ignore[attr-defined]
-            covered.update([motor.id for motor in motors])
+            robots[root.id] = root.get_motors()  # type: ignore[attr-defined]
+            covered |= root.motor_ids()  # type: ignore[attr-defined]
     for i, fields in changes.updates.items():
         if "motors" in fields and i in nodes and i not in born:
             robots[i] = nodes[i].get_motors()  # type: ignore[attr-defined]
     for i, motors in robots.items():
-        out[i] = [motor.angle for motor in motors]
+        out[i] = list(map(_ANGLE, motors))
     return out
 
 
