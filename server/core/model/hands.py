@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from functools import cache
 from typing import Any
 
 from ..kit.errors import OutOfRange
@@ -79,7 +80,13 @@ class Hand(Robot):
 
     def flex_fingers(self, angle: float | None) -> None:
         """Manual ``flexFingers(angle)``."""
-        self._turn([(i, angle) for finger in range(FINGERS) for i in self.flex_indices(finger)])
+        self._turn([(i, angle) for i in self.every_flex_index()])
+
+    @classmethod
+    @cache
+    def every_flex_index(cls) -> tuple[int, ...]:
+        """The flexing motors' indices of every finger, thumb first."""
+        return tuple(i for finger in range(FINGERS) for i in cls.flex_indices(finger))
 
     def spread_finger(self, index: int, angle: float | None) -> None:
         """Manual ``spreadFinger(index, angle)``: the finger's base motor to -angle."""

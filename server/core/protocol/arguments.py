@@ -60,6 +60,10 @@ def _single(param: Param, raw: Sequence[Any], position: int, resolve: Resolver,
             where: str) -> tuple[Any, int]:
     present = position < len(raw)
     value = raw[position] if present else None
+    kind = type(value)
+    if (kind is float and param.kind in _PLAIN_NUMBERS and math.isfinite(value)) or \
+            (kind is bool and param.kind == "bool"):
+        return value, 1  # as _coerce gives it, without the label an error would need
     if value is None and not (present and param.kind == "angle"):
         if param.default is REQUIRED:
             raise BadArguments(f"{where} needs argument {position} ({param.name})",

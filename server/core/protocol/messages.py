@@ -113,14 +113,16 @@ def _passes_in_parts(message: dict[str, Any], op: str) -> bool:
     """True when the message is valid, checked by parts that are cheaper than the whole;
     False when that could not tell (the caller then checks it whole).
 
-    Each shortcut accepts exactly what its definition does: a call's numbers-only ``args``
-    are each an ``arg`` as they stand (the compiled check builds an error path per item);
-    a batch's operations past the first, each a create, call or delete without an id, are
+    Each shortcut accepts exactly what its definition does: a call's ``args`` of numbers,
+    booleans and nulls are each an ``arg`` as they stand (the compiled check builds an error
+    path per item), and the rest of a call without an id is valid or not by its object and
+    method alone (kept, so an animation's calls on the same motors are checked once); a
+    batch's operations past the first, each a create, call or delete without an id, are
     its ``batchOp`` definition's branch for that op (whose compiled form tries every branch
     by raising an exception: three quarters of a batch's check)."""
     try:
-        if op == "call" and _numbers_only(message.get("args")):
-            validator(op)({**message, "args": []})
+        if op == "call" and _scalars_only(message.get("args")):
+            _check_call_without_args(message)
             return True
         if op != "batch" or type(ops := message.get("ops")) is not list or \
                 not 1 < len(ops) <= _max_batch():
@@ -156,12 +158,34 @@ def _schema_refusal(error: fastjsonschema.JsonSchemaValueException, what: str,
     return BadMessage(f"{what}: {where}: {complaint}", path=where)
 
 
-def _numbers_only(args: Any) -> bool:
-    """True for a list of plain numbers (setAngles' angles) no longer than the schema's
-    ``args`` allows: each is an ``arg`` as it stands, so the compiled check (which builds
-    an error path per item) can leave them out; the schema stays the one source."""
+def _scalars_only(args: Any) -> bool:
+    """True for a list of plain numbers, booleans and nulls (setAngles' angles,
+    spreadFingers' angle and thumb) no longer than the schema's ``args`` allows: each is an
+    ``arg`` as it stands, so the compiled check (which builds an error path per item) can
+    leave them out; the schema stays the one source."""
     return type(args) is list and len(args) <= _max_args() and \
-        all(type(a) is float or type(a) is int for a in args)
+        all(type(a) in _SCALARS or a is None for a in args)
+
+
+_SCALARS = (float, int, bool)
+_CALL_KEYS = frozenset(("op", "object", "method", "args"))
+CHECKED_CALLS = 4096  # (object, method) pairs a process keeps as checked
+_checked_calls: dict[tuple[str, str], None] = {}
+
+
+def _check_call_without_args(message: dict[str, Any]) -> None:
+    """The schema's check of a call with its args left out (raises as it does); a call of
+    exactly op, object, method and args is valid by its object and method alone, and a
+    pair found valid once is not checked again."""
+    key = (message.get("object"), message.get("method"))
+    kept = type(key[0]) is str and type(key[1]) is str and message.keys() == _CALL_KEYS
+    if kept and key in _checked_calls:
+        return
+    validator("call")({**message, "args": []})
+    if kept:
+        if len(_checked_calls) >= CHECKED_CALLS:
+            _checked_calls.clear()
+        _checked_calls[key] = None  # type: ignore[index]
 
 
 @cache

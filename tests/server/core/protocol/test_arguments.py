@@ -50,3 +50,26 @@ def test_a_motor_axis_is_a_name_or_a_vector_made_unit():
         bind(constructor, [[1, 0]], None, "new Motor")
     with pytest.raises(OutOfRange, match="expected an axis 'x', 'y', 'z' or"):
         bind(constructor, ["w"], None, "new Motor")
+
+
+@pytest.mark.parametrize("kind", ["number", "limit", "angle", "bool", "integer", "size"])
+def test_a_lone_argument_binds_as_its_kind_says_whatever_the_shortcut(kind):
+    """Finite floats of the plain kinds and booleans of a bool skip the general coercion
+    (an animation's every call has them): what binds, and what is refused, is the same."""
+    from server.core.protocol import arguments
+    from server.core.protocol.api import REQUIRED, Param
+    param = Param(name="x", kind=kind, default=REQUIRED)
+    for value in (0.25, -3.0, 1e300, 7, True, False, None, "NaN", "Infinity", float("inf"),
+                  float("nan"), 2.0 ** 60, "x"):
+        try:
+            expected = arguments._coerce(param, value, None, "label")
+        except Exception as error:  # noqa: BLE001 (the same kind of refusal is expected)
+            expected = type(error)
+        if value is None and kind != "angle":
+            continue  # (a left-out argument: its default, or needed)
+        try:
+            found = bind([param], [value], None, "call")[0]
+        except Exception as error:  # noqa: BLE001
+            found = type(error)
+        assert found == expected or (found != found and expected != expected), (kind, value)
+        assert type(found) is type(expected)

@@ -76,20 +76,40 @@ def test_decode_reads_integers_beyond_64_bits_as_javascript_does():
     {"op": "call", "object": "c1.h", "method": "x" * 65, "args": [1]},
     {"op": "call", "object": "c1.h", "method": "setAngles", "args": [1], "extra": 1},
     {"op": "call", "object": "c1.h", "method": "setAngles", "args": []},
+    {"op": "call", "object": "c1.h", "method": "spreadFingers", "args": [0.2, False, None]},
+    {"op": "call", "object": "c1.h", "method": "spreadFingers", "args": [0.2, True]},
+    {"op": "call", "object": "c1.h", "method": "spreadFingers", "args": [0.2, True], "id": 2},
+    {"op": "call", "object": "c1.h", "method": "spreadFingers", "args": [0.2, "x" * 201]},
+    {"op": "call", "object": ["c1.h"], "method": "spreadFingers", "args": [0.2]},
+    {"op": "call", "object": "c1 h", "method": "spreadFingers", "args": [0.2]},
+    {"op": "call", "object": "c1.h", "method": {"x": 1}, "args": [0.2]},
+    {"op": "call", "object": "c1.h", "method": 7, "args": [0.2]},
 ])
 def test_calls_with_plain_numbers_are_judged_as_the_schema_judges_them(message):
-    """Such calls skip the per-argument check (each number is a valid argument as it is):
-    what passes and what fails must still be exactly what the schema says."""
+    """Such calls skip the per-argument check (each number, boolean or null is a valid
+    argument as it is), and a call without an id whose object and method passed before
+    is not checked again: what passes and what fails must still be exactly what the
+    schema says, the second time too."""
     try:
         validator("call")(message)
         expected = None
     except fastjsonschema.JsonSchemaValueException:
         expected = BadMessage
-    if expected is None:
-        assert check_client_message(message) is message
-    else:
-        with pytest.raises(expected):
-            check_client_message(message)
+    for _ in range(2):
+        if expected is None:
+            assert check_client_message(message) is message
+        else:
+            with pytest.raises(expected):
+                check_client_message(message)
+
+
+def test_a_call_whose_object_and_method_passed_is_still_refused_for_anything_else():
+    good = {"op": "call", "object": "c1.h", "method": "flexFingers", "args": [0.5]}
+    assert check_client_message(good) is good
+    for wrong in ({**good, "extra": 1}, {**good, "id": -1}, {**good, "op": "ping"},
+                  {**good, "args": [[1, {"bad": "ref"}]]}):
+        with pytest.raises((BadMessage, UnknownOp)):
+            check_client_message(wrong)
 
 
 def _batch_variants():
