@@ -42,6 +42,7 @@ _SELF_COLLISION = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLL
 # Manifold points that drift this far from where they were found are dropped (a part
 # placed elsewhere keeps no stale point beyond it); Bullet's default is 0.02.
 BREAKING_THRESHOLD = 0.0005
+NAMED_POINTS = 20_000  # contact points' names kept (detect): beyond, they are named anew
 # PyBullet keeps about 1 kB for every body ever removed and never frees a shape; a fresh
 # client after this many removals gives the memory back.
 REBUILD_AFTER_REMOVALS = 10_000
@@ -107,6 +108,8 @@ class PhysicsWorld:
         # body -> the part of each link, the base's last (so that link -1 finds it)
         self._keys_of: dict[int, list[str | None]] = {self._ground: [GROUND]}
         self._padding[GROUND] = 0.0
+        # Bullet's (body a, body b, link a, link b) -> the pair of parts, its reach (detect)
+        self._named: dict[tuple[int, int, int, int], tuple[tuple[str, str], float]] = {}
 
     def _filter(self, body: int, link: int, crowded: bool = False) -> None:
         group, mask = (CROWD_GROUP, CROWD_MASK) if crowded else (BODY_GROUP, BODY_MASK)
@@ -215,6 +218,7 @@ class PhysicsWorld:
         for key in built.tree.parts():
             del self._where[key], self._padding[key]
         del self._keys_of[built.body]
+        self._named.clear()  # (Bullet gives a removed body's id to the next one made)
         # Bullet may give its id to the next body: its contacts of the last step go with it
         self._points = [p for p in self._points if built.body not in (p[1], p[2])]
         pybullet.removeBody(built.body, physicsClientId=self._client)
@@ -431,22 +435,38 @@ class PhysicsWorld:
         """Bullet's own collision detection over the parts it pairs (all but those in a
         crowd) and the ground: for each pair with contact points, by how much its nearest
         point misses touching (≤ 0: touching, by the measure of :meth:`touching`)."""
-        client, padding, keys_of = self._client, self._padding, self._keys_of
+        client = self._client
         if self.dynamics is None:  # (dynamic mode: its last step detected them)
             pybullet.performCollisionDetection(physicsClientId=client)
         found: dict[tuple[str, str], float] = {}
-        nearest, inf, tolerance = found.get, math.inf, TOUCH_TOLERANCE
+        nearest, inf, named, name = found.get, math.inf, self._named.get, self._name
         points = pybullet.getContactPoints(physicsClientId=client)
         if self.dynamics is not None:
-            self.forces = forces_by_part(points, keys_of, self.dynamics.units.force)
+            self.forces = forces_by_part(points, self._keys_of, self.dynamics.units.force)
             self._points = points
+        if len(self._named) > NAMED_POINTS:
+            self._named.clear()
         for point in points:
-            a, b = keys_of[point[1]][point[3]], keys_of[point[2]][point[4]]
-            pair = (a, b) if a < b else (b, a)
-            excess = point[8] - tolerance + padding[a] + padding[b]  # type: ignore[index]
-            if excess < nearest(pair, inf):  # type: ignore[arg-type]
-                found[pair] = excess  # type: ignore[index]
+            where = point[1:5]  # (body a, body b, link a, link b)
+            pair, reach = named(where) or name(where)
+            excess = point[8] - reach
+            if excess < nearest(pair, inf):
+                found[pair] = excess
         return found
+
+    def _name(self, where: tuple[int, int, int, int]) -> tuple[tuple[str, str], float]:
+        """The parts of a contact point's bodies and links, as a pair, and its reach: kept
+        for the point's next ticks (a tick's 160 points looked up, not worked out)."""
+        keys_of = self._keys_of
+        a, b = keys_of[where[0]][where[2]], keys_of[where[1]][where[3]]
+        pair = (a, b) if a < b else (b, a)  # type: ignore[operator]
+        self._named[where] = named = pair, self._reach(a, b)  # type: ignore[arg-type,assignment]
+        return named  # type: ignore[return-value]
+
+    def _reach(self, a: str, b: str) -> float:
+        """How far apart the points of two parts may be and still touch: the tolerance,
+        less what pads each shape (the same either way round)."""
+        return TOUCH_TOLERANCE - (self._padding[a] + self._padding[b])
 
     def contacts(self, keys: Collection[str]) -> dict[str, tuple[ContactForce, ...]]:
         """Dynamic mode: what presses on each part of ``keys`` at the last step, body by
@@ -464,13 +484,13 @@ class PhysicsWorld:
 
     def touching_many(self, key: str, others: list[str]) -> list[bool]:
         """For each of ``others``: does it touch ``key`` (as :meth:`touching`)?"""
-        closest, client, padding = pybullet.getClosestPoints, self._client, self._padding
+        closest, client = pybullet.getClosestPoints, self._client
         where, tolerance = self._where, TOUCH_TOLERANCE
         a, link_a = where[key]
         out = []
         for other in others:
             b, link_b = where[other]
-            reach = tolerance - padding[key] - padding[other]
+            reach = self._reach(key, other)
             out.append(any(point[8] <= reach for point in closest(
                 a, b, tolerance, link_a, link_b, physicsClientId=client)))
         return out

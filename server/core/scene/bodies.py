@@ -413,9 +413,14 @@ class SceneBodies:
                 if motor_id not in motor_root and motor is not None and motor.parent is None:
                     self.rebased(motor_id, "quaternion")  # a lone motor: its turn is its base's pose
         self._turned.clear()
-        motors, turn = self._joint_motors, self.physics.turn
-        return {root_id for root_id in roots - rebuilt if self._guarded(
-            root_id, lambda: turn(root_id, list(map(_ANGLE, motors[root_id]))))}
+        motors, turn, pending = self._joint_motors, self.physics.turn, roots - rebuilt
+        try:  # (every tree of a tick, one try: a failing tree is then found one by one)
+            for root_id in pending:
+                turn(root_id, list(map(_ANGLE, motors[root_id])))
+            return pending
+        except Exception:
+            return {root_id for root_id in pending if self._guarded(
+                root_id, lambda: turn(root_id, list(map(_ANGLE, motors[root_id]))))}
 
     def _place_bases(self, rebuilt: set[str]) -> set[str]:
         """Place the bases of the moved roots; the roots placed."""

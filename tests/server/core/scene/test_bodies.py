@@ -60,6 +60,33 @@ def test_a_hand_moved_as_a_whole_keeps_every_body_on_its_part(scene):
         assert key in {p.id for p in parts}, part.id
 
 
+def test_a_tree_whose_joints_cannot_be_set_is_left_out_and_the_rest_turn(scene, monkeypatch):
+    """A tick sets every turned tree's joints in one go; a tree that fails (a bug) is
+    found one by one, left out, and the others still turn."""
+    robots, fingers = [], []
+    for i in range(3):
+        robot, motor, finger = Robot(scene, f"r{i}"), MotorZ(scene, f"m{i}"), EdgedFinger(scene, f"f{i}", 1)
+        robot.attach_chain(motor, finger)
+        robot.set_position((3 * i, 1, 0))
+        robots.append(robot)
+        fingers.append(finger)
+    scene.tick(0.1)
+    turn = scene.bodies.physics.turn
+
+    def failing(root, angles):
+        if root == "r1":
+            raise ValueError("a bug in one tree")
+        turn(root, angles)
+    monkeypatch.setattr(scene.bodies.physics, "turn", failing)
+    for i in range(3):
+        scene.get(f"m{i}").set_angle(math.pi / 2)
+    scene.tick(0.1)
+    assert scene.bodies.failures == 1 and "f1" not in scene.bodies.physics
+    for i in (0, 2):
+        assert scene.bodies.physics.pose(f"f{i}")[1] == pytest.approx(
+            math3d.axis_angle("z", math.pi / 2), abs=1e-6)
+
+
 def test_a_part_that_cannot_be_placed_is_left_out_and_the_rest_move(scene, monkeypatch):
     boxes = [Box(scene, f"b{i}", 0.5, 0.5, 0.5) for i in range(3)]
     for i, box in enumerate(boxes):
