@@ -17,9 +17,11 @@ change a frame's bytes per connection).
 
 from __future__ import annotations
 
+import os
+from asyncio import BaseTransport
 from typing import Any, Protocol
 
-from uvicorn.protocols.utils import ClientDisconnected
+from uvicorn.protocols.utils import ClientDisconnected, is_ssl
 from uvicorn.protocols.websockets.websockets_sansio_impl import WebSocketsSansIOProtocol
 from websockets.http11 import Request
 from websockets.protocol import State
@@ -64,6 +66,7 @@ class FramedSocketProtocol(WebSocketsSansIOProtocol):
     initial_response = _state("initial_response", None)
     ready = False  # a frame may be written now (open, handshake done, no close, below the mark)
     _paused = False  # the transport's buffer passed its high-water mark
+    _fd: int | None = None  # the socket, written directly while the transport holds nothing
 
     def _refresh(self) -> None:
         conn = self.__dict__.get("conn")
@@ -109,12 +112,31 @@ class FramedSocketProtocol(WebSocketsSansIOProtocol):
             return
         super().keepalive_timeout()
 
+    def connection_made(self, transport: BaseTransport) -> None:
+        super().connection_made(transport)
+        socket = transport.get_extra_info("socket")
+        plain = socket is not None and not is_ssl(self.transport)  # (TLS: its transport writes)
+        self._fd = socket.fileno() if plain else None
+
     def write_now(self, frame: bytes) -> bool:
         """Write ``frame`` at once if the socket is open and its buffer below the
-        transport's high-water mark; False (nothing written) otherwise."""
+        transport's high-water mark; False (nothing written) otherwise.
+
+        While the transport holds nothing back, the frame goes to the socket in one write
+        system call, as a bare fan-out loop would: asyncio's ``write`` takes a third more
+        of a viewer-frame's CPU (8.7 us against 6.1 for the bare loop, a thousand viewers).
+        What the socket does not take, or an error, the transport handles as it would have."""
         transport = self.transport
         if not self.ready or transport.is_closing():
             return False
+        if self._fd is not None and not transport.get_write_buffer_size():
+            try:
+                sent = os.write(self._fd, frame)
+            except OSError:  # full (the rest waits in the transport), or the peer is gone
+                sent = 0
+            if sent == len(frame):
+                return True
+            frame = frame[sent:]
         transport.write(frame)
         return True
 
