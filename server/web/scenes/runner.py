@@ -1,9 +1,11 @@
 """The server's handle on one scene's process (:mod:`server.web.process.worker`).
 
-Commands go out through a writer thread and events come back through a reader thread,
-so the event loop never blocks on a pipe: a scene busy with a flood fills its own pipe
-and slows only its own clients. Processes start from a fork server that has already
-imported the scene code, so a new scene is ready in milliseconds.
+The event loop writes commands to the process's pipe and reads its events as they come
+(:mod:`.process_pipe`), so it never blocks on a pipe: a scene busy with a flood fills its
+own pipe and slows only its own clients. A thread starts the process (a fork server's
+reply, a predecessor's end to wait for) and one waits for its end. Processes start from a
+fork server that has already imported the scene code, so a new scene is ready in
+milliseconds.
 """
 
 from __future__ import annotations
@@ -14,8 +16,7 @@ import itertools
 import logging
 import multiprocessing
 import os
-import queue
-import sys
+import socket
 import threading
 import time
 from multiprocessing import spawn
@@ -28,6 +29,7 @@ from ...core.kit.errors import UnknownScene, VPError
 from ..process import fork_server, forkserver_main, worker
 from ..process.messages import Ask, Command, Ended, Event, Question, Reply, Stop
 from ..storage.scene_store import SceneStore
+from .process_pipe import ProcessPipe
 
 log = logging.getLogger(__name__)
 Deliver = Callable[[list[Event]], None]
@@ -63,7 +65,6 @@ def _tell_the_fork_server_the_script() -> None:
 
 
 _tell_the_fork_server_the_script()
-sys.setswitchinterval(0.001)  # the loop, readers and writers take turns often
 
 
 class Replies:
@@ -159,7 +160,10 @@ class SceneRunner:
             args=(child, name, limits, tick_rate, assets, setup, logging.getLogger().level, store,
                   recordings, nice))
         self._child = child
-        self._commands: queue.SimpleQueue[Command] = queue.SimpleQueue()
+        self._commands: list[Command] = []  # posted, to be written at the loop's turn
+        self._link: ProcessPipe | None = None  # the pipe, once the process has started
+        self._written_stop = False  # nothing is written after Stop
+        self._attaching: asyncio.Task[None] | None = None
         self._replies = Replies()
         self.last_posted = 0.0  # when the last command was sent (monotonic)
         self.ended = False
@@ -175,9 +179,10 @@ class SceneRunner:
         return self._process.pid
 
     def start(self, after: Runner | None = None) -> None:
-        """Start the process and the two threads that talk to it; with ``after`` (the
-        scene's process still stopping), once that has ended: its last save is what this
-        one restores. Commands posted meanwhile wait."""
+        """Start the process (in a thread: it waits for the fork server), then read and
+        write its pipe on the loop; with ``after`` (the scene's process still stopping),
+        once that has ended: its last save is what this one restores. Commands posted
+        meanwhile wait."""
         threading.Thread(target=self._launch, args=(after,), name=f"to-{self.name}",
                          daemon=True).start()
 
@@ -188,18 +193,43 @@ class SceneRunner:
             self._process.start()
         except Exception:  # out of processes or memory: the scene ends as a failed one
             log.exception("the process of scene %s did not start", self.name)
+            self._gone.set()
             self._hand_over(self._end, 1)
             return
         finally:
             self._started.set()
             self._child.close()  # the child's end lives in the child now: EOF when it dies
-        threading.Thread(target=self._read, name=f"from-{self.name}", daemon=True).start()
+        self._hand_over(self._attach, None)
+
+    def _attach(self, _: None) -> None:
+        self._attaching = self._loop.create_task(self._attached())
+
+    async def _attached(self) -> None:
+        """Read and write the pipe on the loop from now on (its socket, taken from the
+        multiprocessing connection), and write what was posted meanwhile."""
+        link = ProcessPipe(self._receive, self._lost)
+        try:
+            pipe = socket.socket(fileno=os.dup(self._pipe.fileno()))
+        except OSError:  # (ended meanwhile, or no descriptor left: it ends as a failed one)
+            self._lost()
+            return
+        self._pipe.close()
+        try:
+            await self._loop.connect_accepted_socket(lambda: link, pipe)
+        except OSError:
+            pipe.close()
+            self._lost()
+            return
+        self._link = link
         self._write()
 
     def post(self, command: Command) -> None:
-        """Send a command; the scene applies commands in the order they were posted."""
+        """Send a command; the scene applies commands in the order they were posted (those
+        posted in one turn of the loop go together)."""
         self.last_posted = time.monotonic()
-        self._commands.put(command)
+        if not self._commands:
+            self._loop.call_soon(self._write)
+        self._commands.append(command)
 
     def call(self, question: Question) -> asyncio.Future[Any]:
         """Ask the scene (``Read``, ``Metrics``, …); its reply, awaitable."""
@@ -209,7 +239,7 @@ class SceneRunner:
     def stop(self) -> None:
         """Ask the process to finish the commands sent so far, then end."""
         self.stopping = True
-        self._commands.put(Stop())
+        self.post(Stop())
 
     def kill(self) -> None:
         """End the process at once, unsaved: another process owns the scene now."""
@@ -228,28 +258,26 @@ class SceneRunner:
             self._gone.wait(5)
 
     def _write(self) -> None:
-        while True:
-            commands = [self._commands.get()]
-            while len(commands) < COMMANDS_PER_SEND:
-                try:
-                    commands.append(self._commands.get_nowait())
-                except queue.Empty:
-                    break
-            try:
-                self._pipe.send(commands)
-            except (OSError, ValueError):  # the process is gone; the reader reports it
-                return
-            if isinstance(commands[-1], Stop):
-                return
+        """Write the commands posted so far, unless the pipe is not open yet (they wait)
+        or a Stop went (nothing follows it)."""
+        if self._link is None or not self._commands:
+            return
+        commands, self._commands = self._commands, []
+        if self._written_stop:
+            return
+        if any(isinstance(command, Stop) for command in commands):
+            self._written_stop = True
+            commands = commands[:next(k for k, c in enumerate(commands) if isinstance(c, Stop)) + 1]
+        for first in range(0, len(commands), COMMANDS_PER_SEND):
+            self._link.send(commands[first:first + COMMANDS_PER_SEND])
 
-    def _read(self) -> None:
-        while True:
-            try:
-                events = self._pipe.recv()
-            except (EOFError, OSError):
-                break
-            self._hand_over(self._receive, events)
-        self._process.join(5)  # its pipe is closed: it is ending, or hung on the way
+    def _lost(self) -> None:
+        """The pipe closed: the process is ending (or hung on the way); its end is waited
+        for in a thread, and reported on the loop."""
+        threading.Thread(target=self._reap, name=f"end-{self.name}", daemon=True).start()
+
+    def _reap(self) -> None:
+        self._process.join(5)
         if self._process.exitcode is None:
             self._process.kill()
             self._process.join()
@@ -281,6 +309,8 @@ class SceneRunner:
     def _end(self, exitcode: int | None) -> None:
         self.ended = True
         self._pipe.close()
+        if self._link is not None and self._link.transport is not None:
+            self._link.transport.close()
         failed = bool(exitcode) and not self.stopping
         if failed:
             log.error("the process of scene %s ended with exit code %s", self.name, exitcode)
