@@ -169,7 +169,7 @@ class SceneRunner:
         self.ended = False
         self.stopping = False  # asked to stop: however the process ends, it is no failure
         self._started = threading.Event()
-        # Only the reader waits on the process: two threads waiting at once both read the
+        # Only the reaper waits on the process (_reap): two threads waiting at once both read the
         # fork server's one report of its end, and one of them gets 255 for it.
         self._gone = threading.Event()
         self.exitcode: int | None = None  # once the process has ended
