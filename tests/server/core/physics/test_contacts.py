@@ -4,7 +4,7 @@ import random
 
 import pytest
 
-from server.core.physics.contacts import ContactBook, ContactTracker, Overlaps, pair
+from server.core.physics.contacts import CROWD, ContactBook, ContactTracker, Overlaps, pair
 from server.core.physics.engine import GROUND, PhysicsWorld
 
 
@@ -184,3 +184,44 @@ def test_a_pair_bullet_finds_anew_is_taken_as_found_and_one_it_had_is_measured_a
         assert 0 < trusted < doubted * 0.75
     finally:
         doubting.close()
+
+
+def test_parts_brought_to_a_crowd_one_by_one_touch_it_and_leave_it(world):
+    """Bullet pairs no crowded part: a part brought next to a crowd meets it through its
+    own measures (boxes brought into one spot one update at a time: those after the first
+    seventeen used to touch none of them), and leaves it the same way. A part Bullet pairs
+    with more than CROWD others joins the crowd, however its pairs came: the counts follow
+    Bullet's pairs from update to update (only those it found or lost since change them),
+    and after every update they are those of its pairs then."""
+    tracker = ContactTracker(world, tests_per_update=100_000, max_pairs=100_000)
+    keys = [f"b{k:02}" for k in range(30)]
+    for k, key in enumerate(keys):
+        place(world, tracker, key, (3 * k + 5, 5, 0))
+    tracker.update()
+
+    def counted_anew():
+        near = {}
+        for a, b in tracker._found:
+            if GROUND not in (a, b):
+                for key in (a, b):
+                    near[key] = near.get(key, 0) + 1
+        return near
+    for n, key in enumerate(keys):  # into one spot, one an update
+        place(world, tracker, key, (-10, 5, 0))
+        tracker.update()
+        assert tracker._near == counted_anew()
+        while tracker.deferred:
+            tracker.update()
+        assert len(tracker.overlaps().pairs) == n * (n + 1) // 2  # every pair of the pile
+    assert len(tracker._crowded) == CROWD + 2  # (those Bullet paired with 17 others)
+    # (askew: a box taken straight along its contact's normal out of two it lay wholly in
+    # kept Bullet's points with one of them, 60 units deep, while Bullet paired no new
+    # bodies: its broadphase drops old pairs only in step with new ones; noted, not mended)
+    for k, key in enumerate(keys):  # and away again
+        place(world, tracker, key, (3 * k + 5, 7, 3 * k + 5))
+        tracker.update()
+        assert tracker._near == counted_anew()
+        while tracker.deferred:
+            tracker.update()
+        assert tracker.overlaps().of(key) == []
+    assert tracker.overlaps().pairs == frozenset() and not tracker._crowded
