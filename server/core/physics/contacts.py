@@ -11,7 +11,8 @@ A pair is two ids in sorted order; the ground's id is ``"ground"``. The
   ``contact_tests`` a tick; parts beyond that wait for the next tick (frames say how many
   under ``limited``). A part with more than ``CROWD`` neighbours stays in the crowd, so a
   pile of boxes never grows Bullet's pair cache with its square; one with fewer than half
-  that many goes back to Bullet.
+  that many goes back to Bullet. While there is a crowd, any part that moves has its pairs
+  with crowded parts measured so too (Bullet pairs no crowded part).
 
 A pair that begins touching is confirmed by the exact measure before it counts, unless
 every point Bullet has of it was measured by this update's own pass (a pair it did not have
@@ -231,8 +232,8 @@ class ContactTracker:
     def _from_bullet(self) -> None:
         """Take Bullet's pairs: those no longer found touching end, those found touching
         begin (confirmed by the exact measure unless Bullet's points of them are all new);
-        parts with too many neighbours join
-        the crowd. Set operations, not a loop over every pair: most pairs stay as they were."""
+        parts with too many neighbours join the crowd. Set operations, not a loop over
+        every pair: most pairs stay as they were."""
         found, crowded, rows = self._bodies.detect(), self._crowded, self._rows
         # a pair Bullet did not have before has only points measured by this pass (in
         # hands-10, two thirds of the pairs that begin: a getClosestPoints each saved)
