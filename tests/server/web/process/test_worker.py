@@ -252,3 +252,37 @@ def test_a_scene_process_loads_no_asyncio():
                                "print(sorted(m for m in sys.modules if m.startswith('asyncio')))"],
         cwd=ROOT, capture_output=True, text=True, check=True).stdout
     assert loaded.strip() == "[]"
+
+
+def pipe_messages_until_answer(pipe, number):
+    """The events of every pipe message until the one that answers request ``number``,
+    message by message."""
+    messages = []
+    while not any(isinstance(e, Answers) and e.items and e.items[0].message.get("id") == number
+                  for e in (messages[-1] if messages else [])):
+        assert pipe.poll(WAIT_SECONDS), f"no answer to {number}"
+        messages.append(pipe.recv())
+    return messages
+
+
+def test_a_batch_of_setters_is_answered_with_the_next_frame_and_a_read_at_once(worker):
+    worker.send([Join(1, "c1", "controller"),
+                 Text(1, json.dumps({"op": "create", "object": "c1.b", "type": "Box", "id": 1}))])
+    pipe_messages_until_answer(worker, 1)
+    while not any(m.op == "added" for frame in events_until(worker, Frame) for m in frame.items):
+        pass  # until the box is in a frame: the next ones carry only what changes
+    worker.send([Text(1, json.dumps({"op": "batch", "id": 2, "ops": [
+        {"op": "call", "object": "c1.b", "method": "setPosition", "args": [1, 2, 3]},
+        {"op": "call", "object": "c1.b", "method": "setRotation", "args": [0, 0.5, 0]}]}))])
+    *_, last = pipe_messages_until_answer(worker, 2)
+    at = next(k for k, e in enumerate(last) if isinstance(e, Answers) and e.items)
+    answer = last[at].items[0].message
+    assert (answer["op"], answer["result"]) == ("ok", [None, None])
+    moved = [m.message for e in last[at + 1:] if isinstance(e, Frame) for m in e.items
+             if m.op == "frame"]  # the answer leaves with the frame that shows its change
+    assert moved and moved[0]["poses"]["c1.b"][:3] == pytest.approx([1, 2, 3])
+    worker.send([Text(1, json.dumps({"op": "call", "object": "scene", "method": "getTime",
+                                     "id": 3}))])
+    *_, last = pipe_messages_until_answer(worker, 3)
+    assert isinstance(last[-1], Answers) and not any(isinstance(e, Frame) for e in last)
+    assert last[-1].items[0].message["result"] > 0
