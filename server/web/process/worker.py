@@ -252,8 +252,8 @@ class SceneWorker:
         self.metrics.served(now, len(answers))
         self._take_steps()  # a step's ticks, before its answer
         self._events.append(Answers(cid, answers, len(text)))
-        if all(map(_with_the_frame, answered)):
-            self._later += 1
+        if not self.scene.clock.paused and all(map(_with_the_frame, answered)):
+            self._later += 1  # (a paused scene's next frame waits for a step: never held)
 
     def _take_steps(self) -> None:
         """The ticks steps asked for, taken now (their frames go before the answers); after
@@ -483,7 +483,7 @@ def _with_the_frame(answered: tuple[dict[str, Any], str]) -> bool:
     it cost a message from the scene's process and a wake-up of the server's a step (a
     script animating ten hands: 9 % of the scene's process went to writing its pipe); it
     comes at most a tick later, just before that frame. Anything else (a read's result, an
-    error, a single call) leaves at once."""
+    error, a single call, any answer in a paused scene) leaves at once."""
     answer, _ = answered
     results = answer.get("result")
     return answer["op"] == "ok" and type(results) is list and bool(results) and \

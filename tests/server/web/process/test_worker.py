@@ -286,3 +286,18 @@ def test_a_batch_of_setters_is_answered_with_the_next_frame_and_a_read_at_once(w
     *_, last = pipe_messages_until_answer(worker, 3)
     assert isinstance(last[-1], Answers) and not any(isinstance(e, Frame) for e in last)
     assert last[-1].items[0].message["result"] > 0
+
+
+def test_a_batch_of_setters_in_a_paused_scene_is_answered_at_once(worker):
+    """A paused scene's next frame waits for a step, which its script may send only once
+    this answer came: nothing is held for it."""
+    worker.send([Join(1, "c1", "controller"),
+                 Text(1, json.dumps({"op": "batch", "id": 1, "ops": [
+                     {"op": "create", "object": "c1.b", "type": "Box"},
+                     {"op": "call", "object": "scene", "method": "pause"}]}))])
+    pipe_messages_until_answer(worker, 1)
+    worker.send([Text(1, json.dumps({"op": "batch", "id": 2, "ops": [
+        {"op": "call", "object": "c1.b", "method": "setPosition", "args": [1, 2, 3]}]}))])
+    *_, last = pipe_messages_until_answer(worker, 2)
+    assert isinstance(last[-1], Answers) and not any(isinstance(e, Frame) for e in last)
+    assert last[-1].items[0].message["result"] == [None]
