@@ -311,7 +311,7 @@ class ContactTracker:
         crowded parts (Bullet measures the rest)."""
         crowded = self._crowded
         alone = key not in crowded and not every
-        if not alone and len(candidates) * 2 < CROWD:  # few neighbours: to Bullet
+        if key in crowded and len(candidates) * 2 < CROWD:  # few neighbours: to Bullet
             self._crowd(key, False)
         near = set(candidates)
         for other in list(self._partners.get(key, ())):

@@ -90,6 +90,16 @@ def test_settle_measures_one_body_at_once(world):
     assert tracker.overlaps().of("b3") == ["b0", "b1", "b2", "b4"]
 
 
+def test_settling_a_part_no_crowd_holds_leaves_nothing_for_another_update(world):
+    tracker = ContactTracker(world, tests_per_update=100, max_pairs=100)
+    place(world, tracker, "a", (0, 0.4, 0))
+    place(world, tracker, "b", (0.9, 0.4, 0))
+    while tracker.unsettled:
+        tracker.update()
+    tracker.settle("a")
+    assert tracker.overlaps().of("a") == ["b", GROUND] and not tracker.unsettled
+
+
 def test_pairs_beyond_the_cap_are_counted_not_kept(world):
     tracker = ContactTracker(world, tests_per_update=1000, max_pairs=10)
     for k in range(6):
