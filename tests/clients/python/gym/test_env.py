@@ -152,7 +152,9 @@ def test_a_vector_of_environments_on_a_cluster_spreads_its_scenes_over_the_worke
 
     from tests.server.cluster.conftest import Cluster, holder, running_bus
     with running_bus(tmp_path) as url:
-        cluster = Cluster(url, tmp_path, gateways=1)
+        # cores to spare: on a machine the suite loads, a scene's start measured against
+        # its two cores made a worker full, and both scenes went to the other
+        cluster = Cluster(url, tmp_path, gateways=1, worker_extra=("--worker-cores", "64"))
         try:
             vector = gymnasium.make_vec("VirtualProsthetics/Grasp-v0", num_envs=2,
                                         vectorization_mode="async", url=cluster.gateways[0].ws)
