@@ -194,6 +194,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
         "frame_bytes_two_hands": found["frames"]["frame_bytes"].median,
         "max_hands_60hz": found["max_hands"]["max_hands"],
         "dynamic_hands10_objects50_tick_ms": found["dynamic"]["tick_ms"].median,
+        "dynamic_hands10_objects50_stepping_ms": found["dynamic"]["stepping_ms"].median,
         "recording_hands10_mb_per_minute": found["recording"]["mb_per_minute"],
         "recording_seek_ms_max": found["recording"]["seek_max_ms"],
         "server_cpu_hands10_pct": 100 * found["outside"][0]["server_cores"],

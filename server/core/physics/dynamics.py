@@ -230,6 +230,7 @@ class Dynamics:
         self._speed_bound: set[int] = set()  # bodies with a motor whose speed is bounded
         self.iterations = physics.solverIterations  # what steps use now (STEP_BUDGET)
         self.held_back = 0  # steps the last advance left out (STEP_BUDGET)
+        self.stepping = 0.0  # clock-seconds Bullet's steps took in the last advance (exact: 0, untimed)
         self.clock: Callable[[], float] = time.thread_time  # the CPU-seconds steps cost
         self._free: set[int] = set()  # free bodies (SLEEP_CROWD)
         self.sleeping = False  # resting free bodies sleep (more than SLEEP_CROWD of them)
@@ -459,7 +460,7 @@ class Dynamics:
         limit = MAX_STEPS_PER_TICK * self.physics.substeps
         self._debt = min(self._debt + seconds, limit * step)
         count = int(self._debt / step + 1e-9)
-        self.held_back = 0
+        self.held_back, self.stepping = 0, 0.0
         if not count:
             return 0
         self._debt -= count * step  # steps the budget leaves out are not owed later
@@ -491,6 +492,7 @@ class Dynamics:
             self._put(constraint, end)
         if not exact:
             self._tune(spent / taken)
+        self.stepping = spent
         self.held_back = count - taken
         self.steps += taken
         self.woke = self.resting.review(taken * step, self._moving - self.resting.free)

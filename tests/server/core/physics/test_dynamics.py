@@ -90,6 +90,7 @@ def test_a_tick_takes_no_more_steps_than_its_budget_and_costly_steps_get_fewer_i
     before = scene.time
     scene.tick(1 / 60)
     assert world.held_back == 19 and scene.time - before == pytest.approx(1 / 1200)
+    assert world.stepping == pytest.approx(3 * dynamics.STEP_BUDGET)  # the one step's cost
     assert world.iterations == int(500 / 3 * 0.8)
     cost[0] = dynamics.STEP_BUDGET / 10
     for _ in range(4):
@@ -112,6 +113,7 @@ def test_a_scene_a_script_steps_takes_every_step_with_every_iteration_whatever_t
     scene.step(1)
     scene.tick(1 / 60)  # the tick the script asked for
     assert world.held_back == 0 and world.iterations == 500
+    assert world.stepping == 0.0  # (untimed)
 
 
 def test_a_crowd_comes_to_rest_and_wakes_when_one_is_put_elsewhere_or_one_goes(scene):
