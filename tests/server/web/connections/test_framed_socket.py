@@ -58,12 +58,14 @@ class Writer:
 
 
 @contextlib.contextmanager
-def serving(app, deflate=False, ping_seconds=20.0):
-    """uvicorn serving ``app`` with the framed protocol, as vp-server does; its ws URL."""
+def serving(app, deflate=False, ping_seconds=20.0, pong_seconds=None):
+    """uvicorn serving ``app`` with the framed protocol, as vp-server does (a ping every
+    ``ping_seconds``, its pong awaited ``pong_seconds``, by default as long); its ws URL."""
     server = uvicorn.Server(uvicorn.Config(app, port=free_port(), ws=FramedSocketProtocol,
                                            ws_per_message_deflate=deflate, lifespan="off",
                                            ws_ping_interval=ping_seconds,
-                                           ws_ping_timeout=ping_seconds, log_level="warning"))
+                                           ws_ping_timeout=pong_seconds or ping_seconds,
+                                           log_level="warning"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
     try:
@@ -112,12 +114,15 @@ def test_a_client_whose_reading_the_server_holds_back_is_not_closed_for_a_pong_i
         await receive()
         await send({"type": "websocket.accept"})
         got.append((await receive())["text"])
-        await asyncio.sleep(3.0)  # held back past a ping's deadline: the client's pong unread
+        await asyncio.sleep(5.0)  # held back past a ping's deadline: the client's pong unread
         while (message := await receive())["type"] != "websocket.disconnect":
             got.append(message["text"])
             await send({"type": "websocket.send", "text": f"read {len(got)}"})
 
-    with serving(app, ping_seconds=1.0) as url, connect(url, ping_interval=None) as client:
+    # a ping a second and 3 s for its pong (a pong of a loaded machine's test process, which
+    # serves too, once came later than 1 s): the 5 s held back pass a ping's deadline
+    with serving(app, ping_seconds=1.0, pong_seconds=3.0) as url, \
+            connect(url, ping_interval=None) as client:
         for k in range(3):
             client.send(f"text {k}")
         assert client.recv(timeout=WAIT_SECONDS) == "read 2"  # not closed: 1011
