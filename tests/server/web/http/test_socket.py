@@ -311,7 +311,8 @@ def test_a_client_held_back_while_its_scene_is_busy_is_not_closed_by_the_keepali
     """What a driver met while a thousand viewers joined its scene: the scene (here stopped)
     applies nothing, so the server stops reading the client, whose pongs then wait unread;
     the keepalive closed it (1011) though it had answered every ping."""
-    server = start_server("--no-demo", "--ping-seconds", "1")
+    # pings every 2 s, each answer due within 2 s (the test process answers them, loaded)
+    server = start_server("--no-demo", "--ping-seconds", "2")
     try:
         client, hello, _ = open_client(server, scene_name)
         with client:
@@ -324,7 +325,7 @@ def test_a_client_held_back_while_its_scene_is_busy_is_not_closed_by_the_keepali
                                     "args": [k / 1000]} for k in range(200)])
                 for _ in range(20):  # past what may wait unapplied: the server stops reading
                     client.send(step)
-                time.sleep(3.0)  # past a ping's deadline
+                time.sleep(5.0)  # past a ping's deadline (sent at 2 s, due at 4)
             finally:
                 os.kill(pid, signal.SIGCONT)
             assert request_all(client, [{"op": "ping"}])[0]["op"] == "ok"  # not closed: 1011
