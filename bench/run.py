@@ -102,6 +102,9 @@ def measure(sizes: Sizes) -> dict[str, Any]:
     steps = {
         "hands10": lambda: core.tick_against_floor(
             f"hands-{small}", scenes.hands("c1", small), lambda n: scenes.hand_step("c1", small, n), sizes.ticks),
+        "hands10_idle": lambda: core.tick_against_floor(
+            f"hands-{small}", scenes.hands("c1", small), lambda n: scenes.hand_step("c1", small, n),
+            sizes.ticks, idle=core.PERIOD),
         "hands50": lambda: core.tick_against_floor(
             f"hands-{large}", scenes.hands("c1", large), lambda n: scenes.hand_step("c1", large, n), sizes.ticks),
         "arms11": lambda: core.tick_against_floor(
@@ -180,6 +183,7 @@ def headline(found: dict[str, Any], commit: str) -> dict[str, Any]:
             if row["viewers"] == max(r["viewers"] for r in found["viewers"])]
     return {
         "tick_ratio_hands10": found["hands10"]["ratio"],
+        "tick_ratio_hands10_idle": found["hands10_idle"]["ratio"],
         "tick_ratio_hands50": found["hands50"]["ratio"],
         "sensors100_ms": found["sensors"][0]["sensing_ms"].median,
         "sensors100_ratio": found["sensors"][0]["ratio"],

@@ -30,6 +30,9 @@ def test_bench_quick_writes_every_figure(tmp_path):
     figures = results["figures"]
     assert [(d["hands"], d["export_ms"]["count"]) for d in figures["documents"]] == [(2, 2), (3, 2)]
     assert figures["hands10"]["bodies"] == 32 and figures["frames"]["frame_bytes"]["count"] == 3
+    idle = figures["hands10_idle"]  # the same ticks, each after a period's sleep
+    assert idle["idle_s"] == pytest.approx(1 / 60) and idle["tick_ms"]["count"] == 5
+    assert math.isfinite(results["tick_ratio_hands10_idle"])
     assert [(row["viewers"], row["stalled"]) for row in figures["viewers"]] == [
         (1, False), (3, False), (3, True)]
     assert all(row["fps_median"] > 0 for row in figures["viewers"])  # frames reached them
@@ -64,3 +67,4 @@ def test_bench_quick_writes_every_figure(tmp_path):
     assert markdown.count(BEGIN) == 1 and markdown.count(END) == 1
     for name in TARGETS:
         assert f"`{name}`" in markdown
+    assert "each after 16.7 ms idle" in markdown and "after a period's idle" in markdown
