@@ -210,11 +210,13 @@ def outside_rows(found: dict[str, Any]) -> list[str]:
     rows, idle_floor = [], found["hands10_idle"]["floor_ms"].median
     for row, key in zip(found["outside"], ("hands10", "hands50", None)):
         floor = found[key]["floor_ms"].median if key else None
-        reference = (f"bare PyBullet: {_ms(floor)} | {row['tick_ms_p50'] / floor:.2f}×" if floor
-                     else f"60 ticks/s | {row['ticks_per_second'] / 60:.2f}×")
         if key == "hands10":  # its ticks start after a period's idle, as the idle row's
             reference = (f"bare PyBullet: {_ms(floor)}; after a period's idle {_ms(idle_floor)} "
                          f"| {row['tick_ms_p50'] / floor:.2f}× ({row['tick_ms_p50'] / idle_floor:.2f}×)")
+        elif floor:
+            reference = f"bare PyBullet: {_ms(floor)} | {row['tick_ms_p50'] / floor:.2f}×"
+        else:
+            reference = f"60 ticks/s | {row['ticks_per_second'] / 60:.2f}×"
         rows.append(f"| tick of hands-{row['hands']} from outside, driven at 60 Hz (/api/metrics; "
                     f"{row['ticks_per_second']:.1f} ticks/s, scene process {row['cpu_percent']:.0f} % CPU; "
                     f"whole server {100 * row['server_cores']:.0f} % of a core, "

@@ -99,14 +99,15 @@ def measure(sizes: Sizes) -> dict[str, Any]:
     measures through servers side by side, since they mostly wait)."""
     small, large = (10, sizes.hands_large) if sizes is FULL else (2, sizes.hands_large)
     found: dict[str, Any] = {}
+
+    def hands(count: int, idle: float = 0.0) -> Callable[[], Any]:
+        return lambda: core.tick_against_floor(f"hands-{count}", scenes.hands("c1", count),
+                                               lambda n: scenes.hand_step("c1", count, n),
+                                               sizes.ticks, idle)
     steps = {
-        "hands10": lambda: core.tick_against_floor(
-            f"hands-{small}", scenes.hands("c1", small), lambda n: scenes.hand_step("c1", small, n), sizes.ticks),
-        "hands10_idle": lambda: core.tick_against_floor(
-            f"hands-{small}", scenes.hands("c1", small), lambda n: scenes.hand_step("c1", small, n),
-            sizes.ticks, idle=core.PERIOD),
-        "hands50": lambda: core.tick_against_floor(
-            f"hands-{large}", scenes.hands("c1", large), lambda n: scenes.hand_step("c1", large, n), sizes.ticks),
+        "hands10": hands(small),
+        "hands10_idle": hands(small, idle=core.PERIOD),
+        "hands50": hands(large),
         "arms11": lambda: core.tick_against_floor(
             "arms-11", scenes.arms("c1"), lambda n: scenes.arm_step("c1", n), sizes.ticks),
         "sensors": lambda: [core.sensing(small, count, sizes.sensing_ticks)
