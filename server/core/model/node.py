@@ -11,7 +11,7 @@ from ..kit.journal import Journal
 from ..kit.limits import Limits
 from ..kit.math3d import IDENTITY, ORIGIN, Pose, Quat, Vec3
 from ..physics.assets import AssetLibrary
-from ..physics.dynamics import Physics
+from ..physics.settings import Physics
 from .watches import Watches
 
 UNIT_SCALE: Vec3 = (1.0, 1.0, 1.0)

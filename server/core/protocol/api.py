@@ -18,7 +18,7 @@ Slot reference · ``laser`` a colour, true (crimson), false or null (no laser) �
 (normalised) · ``scale`` [x, y, z], each 0 to 1000 · ``geometry`` a SceneMesh's geometry
 (:mod:`server.core.physics.geometry`) · ``transforms`` {id: [px, py, pz, qx, qy, qz, qw] with
 sx, sy, sz optionally after} · ``mode`` 'kinematic' or 'dynamic' · ``options`` an object of
-physics options (checked by :class:`server.core.physics.dynamics.Physics`) · ``mass`` kg,
+physics options (checked by :class:`server.core.physics.settings.Physics`) · ``mass`` kg,
 above 0, at most 1e9 · ``friction`` 0 to 10 · ``torque`` N·m, 0 to 1e12 · ``speed`` above 0 (rad/s; a slider's scene units/s) or
 Infinity (no limit) · ``ticks`` a whole number of ticks, 1 to 60.
 

@@ -29,7 +29,7 @@ from ..model.page_meshes import SceneMesh
 from ..model.parts import Part
 from ..model.robot import Robot
 from ..physics.assets import UPLOADED_URL, AssetLibrary
-from ..physics.dynamics import KINEMATIC, Physics
+from ..physics.settings import KINEMATIC, Physics
 from ..physics.robot_description import RobotDescription
 from ..scene.scene import Scene
 from . import api

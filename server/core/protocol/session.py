@@ -14,7 +14,7 @@ from typing import Any, Callable
 from ..kit.errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
 from ..kit.rates import TokenBucket
 from ..kit.wire_messages import Hello, Ok
-from ..physics.dynamics import Physics
+from ..physics.settings import Physics
 from ..physics.engine import ENGINE
 from ..scene.scene import Scene
 from . import api

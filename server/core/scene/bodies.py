@@ -26,7 +26,7 @@ from ..model.structure import base_pose, structure_of
 from ..physics.articulation import check_links
 from ..physics.assets import AssetLibrary
 from ..physics.contacts import ContactBook, ContactTracker, Overlaps
-from ..physics.dynamics import Physics
+from ..physics.settings import Physics
 from ..physics.engine import PhysicsWorld
 from ..physics.raycast import RayTargets
 from .build_stages import BuildStages

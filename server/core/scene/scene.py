@@ -22,7 +22,7 @@ from ..model.node import Node
 from ..model.readings import Reading
 from ..model.watches import Watches
 from ..physics.assets import AssetLibrary, Uploads
-from ..physics.dynamics import Physics
+from ..physics.settings import Physics
 from . import frames
 from .bodies import SceneBodies
 from .camera import Camera

@@ -1,4 +1,4 @@
-"""Dynamic mode's options and its Bullet side (in a scene: its own tests use every part)."""
+"""Dynamic mode's Bullet side (in a scene: its own tests use every part)."""
 
 import math
 
@@ -9,36 +9,8 @@ from server.core.model.parts import Ball, Box, EdgedFinger
 from server.core.model.robot import Robot
 from server.core.model.sensor import Sensor
 from server.core.physics import dynamics
-from server.core.physics.dynamics import DEFAULT_MAX_TORQUE, DEFAULT_UNIT, Physics
-from server.core.kit.errors import BadArguments, OutOfRange, WrongType
-
-
-def test_options_left_out_take_their_defaults_and_the_wire_form_round_trips():
-    physics = Physics.of("dynamic", {"gravity": 157, "substeps": 8})
-    assert physics.dynamic and physics.gravity == 157.0 and physics.substeps == 8
-    assert physics.solverIterations == Physics().solverIterations
-    assert physics.step == pytest.approx(1 / 480)
-    wire = physics.wire()
-    assert Physics.of(wire.pop("mode"), wire) == physics
-    assert not Physics.of("kinematic").dynamic
-
-
-@pytest.mark.parametrize("mode, options, error, words", [
-    ("floating", None, OutOfRange, "kinematic or dynamic"),
-    ("dynamic", [9.81], WrongType, "object"),
-    ("dynamic", {"gravitation": 9.81}, BadArguments, "gravitation"),
-    ("dynamic", {"substeps": 2.5}, WrongType, "whole"),
-    ("dynamic", {"substeps": 0}, OutOfRange, "[1, 20]"),
-    ("dynamic", {"friction": True}, WrongType, "friction"),
-    ("dynamic", {"gravity": math.inf}, WrongType, "gravity"),
-    ("dynamic", {"density": 0.5}, OutOfRange, "density"),
-    ("dynamic", {"solverTolerance": 2}, OutOfRange, "solverTolerance must be within [0.0, 1.0]"),
-    ("dynamic", {"warmStart": 1.5}, OutOfRange, "warmStart must be within [0.0, 1.0]"),
-])
-def test_bad_options_are_refused_naming_what_was_wrong(mode, options, error, words):
-    with pytest.raises(error) as refused:
-        Physics.of(mode, options)
-    assert words in refused.value.message
+from server.core.physics.dynamics import DEFAULT_MAX_TORQUE
+from server.core.physics.settings import DEFAULT_UNIT, Physics
 
 
 def test_contacts_are_warm_started_only_when_asked(scene):
