@@ -12,7 +12,7 @@ from .core.model.motor import MotorZ
 from .core.model.parts import EdgedFinger
 from .core.model.robot import Robot
 from .core.scene.scene import Scene
-from .web.process.worker import SERVER_OWNER, SceneSetup
+from .web.process.scene_start import SERVER_OWNER, SceneSetup
 
 # (speed, z position) of robots A, B and C in the manual.
 DIGGERS = ((2.0, 1.0), (3.0, 0.0), (4.0, -1.0))

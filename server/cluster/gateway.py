@@ -21,7 +21,7 @@ from ..core.physics.assets import AssetLibrary
 from ..core.kit.errors import BusUnavailable
 from ..web.scenes.runner import Deliver
 from ..web.storage.scene_store import SceneStore
-from ..web.process.worker import SceneSetup
+from ..web.process.scene_start import SceneSetup
 from .bus import LOADS, Bus, OrderedSender, ReturnAddress, Unanswered, alive_subject, gateway_subject
 from .bus_messages import Attached
 from .leases import break_worker, lease_holder

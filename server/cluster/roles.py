@@ -18,7 +18,7 @@ from ..core.kit.limits import Limits
 from ..core.physics.assets import AssetLibrary
 from ..web.scenes.hub import Hubs
 from ..web.storage.state_dir import StateDir
-from ..web.process.worker import SceneSetup
+from ..web.process.scene_start import SceneSetup
 from .bus import Bus
 from .client_ids import SharedClientIds
 from .gateway import Gateway

@@ -25,7 +25,7 @@ from ..core.physics.assets import AssetLibrary
 from ..web.scenes.hub import clients_objects
 from ..web.scenes.runner import SceneRunner
 from ..web.storage.state_dir import StateDir
-from ..web.process.worker import SceneSetup
+from ..web.process.scene_start import SceneSetup
 from ..web.process.messages import (Admit, Answers, Ask, Command, Detach, Detached, Ended,
                                     Event, Idle, Join, Leave, Read, Ready, Reply, Saving, Text)
 from .bus import (LOADS, PLACE, Bus, OrderedSender, ReturnAddress, Unanswered,

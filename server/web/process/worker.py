@@ -20,19 +20,16 @@ import time
 from collections import deque
 from pathlib import Path
 from multiprocessing.connection import Connection as Pipe
-from typing import Any, Callable
+from typing import Any
 
-from ...core.kit.ids import owner_of
 from ...core.kit.limits import Limits
 from ...core.kit.math3d import Quat, Vec3
 from ...core.kit.numbers import encode_numbers
 from ...core.kit.wire_messages import WarningMessage
 from ...core.physics.assets import AssetLibrary
-from ...core.protocol.command_log import replay
 from ...core.protocol.messages import encode
 from ...core.protocol.robot_files import place_robot
 from ...core.protocol.scene_document import check_import, import_scene, parse_document, scene_owners
-from ...core.protocol.ownership import SERVER_KEEPER
 from ...core.protocol.session import Session
 from .parent_death import end_with_parent
 from ...core.scene.scene import Scene
@@ -44,15 +41,13 @@ from .messages import (Admit, Answers, Ask, Command, ConnectionId, Event, Frame,
                        Join, Leave, Metrics, Place, Question, Read, Ready, Record, Recorded,
                        RecordingStarted, Reply, Saving, Stop, Text, Unrecord)
 from .saving import SceneSaver
+from .scene_start import SERVER_OWNER, Animator, SceneSetup, start_scene
 from .scene_metrics import SceneMetrics
 from ..storage.scene_store import SceneStore
 from ..storage.upload_folder import UploadFolder
 
 log = logging.getLogger(__name__)
-Animator = Callable[[Scene, float], None]
-SceneSetup = Callable[[Scene], Animator | None]
 FLUSH_EVENTS = 256  # events sent in one go at most, so answers flow during long floods
-SERVER_OWNER = "demo"  # what the server's own setups make: never anyone's to leave
 SAVE_FAILED = 75  # exit code of a scene's process that stopped with changes it could not save
 
 
@@ -360,58 +355,12 @@ class SceneWorker:
         self._flush()
 
     def prepare(self, setup: SceneSetup | None) -> None:
-        """Make the scene as its store last saved it, the server's own objects as ``setup``
-        says: the saved ones (in their last state) when the file has them, new ones when it
-        has none (a server without this setup saved it), none without a setup."""
-        if setup is not None:
-            self.scene.keeper = SERVER_KEEPER
-        document = self._store.load() if self._store is not None else None
-        saved_own = _holds_server_objects(document)
-        if setup is not None and saved_own:
-            self._animator = setup(self.scene)  # the document's, of the same ids, replace them
-        restored = document is not None and self.restore(document)
-        if setup is not None and not saved_own:
-            self.scene.ids.forget(SERVER_OWNER)  # the setup's ids are its own to make again
-            try:
-                with self.scene.journal.transaction():
-                    self._animator = setup(self.scene)
-            except VPError as error:  # say, a saved client object in the way: no demo then
-                log.error("scene %s restored without its setup: %s", self.scene.name, error)
-        elif setup is None and saved_own and restored:
-            for node in self.scene.roots():
-                if owner_of(node.id) == SERVER_OWNER:
-                    self.scene.delete(node)  # with what clients attached to it
-            self.scene.ids.forget(SERVER_OWNER)
-            log.info("scene %s: the objects of a setup this server has not are gone",
-                     self.scene.name)
-        self._replay()
-        for owner in sorted({owner_of(node_id) for node_id in self.scene.nodes}):
-            if owner != SERVER_OWNER:  # nobody is connected yet: each may come back in time
-                self._depart(Session(self.scene, owner))
-
-    def _replay(self) -> None:
-        """Make again the changes journaled since the document was written."""
-        lines = self._store.journal() if self._store is not None else []
-        if lines:
-            applied, skipped = replay(self.scene, lines)
-            self.scene.clock.take()  # steps replayed are not taken again: their world is gone
-            log.info("scene %s: %d journaled changes made again (%d not)", self.scene.name,
-                     applied, skipped)
-
-    def restore(self, document: Any) -> bool:
-        """Put the scene back as ``document`` (its store's) says; whether it could."""
-        try:
-            with self.scene.journal.transaction():
-                summary = import_scene(self.scene, document)
-        except Exception as error:  # the scene starts as its setup makes it; the file is kept
-            if not isinstance(error, VPError):  # a bug
-                log.exception("restoring scene %s failed", self.scene.name)
-            self._store.set_aside(  # type: ignore[union-attr]
-                error.message if isinstance(error, VPError) else f"restoring it failed ({error!r})")
-            return False
-        self.saver.restored()  # as on the disk already
-        log.info("scene %s restored: %d objects", self.scene.name, summary["objects"])
-        return True
+        """Make the scene as its store last saved it and as ``setup`` says
+        (:func:`.scene_start.start_scene`); the owners of its objects may each come back in
+        their grace period (nobody is connected yet)."""
+        self._animator, owners = start_scene(self.scene, self._store, self.saver, setup)
+        for owner in owners:
+            self._depart(Session(self.scene, owner))
 
     def _restarted(self, owners: list[str]) -> None:
         """After the whole scene was replaced: a fresh snapshot for everyone, and owners
@@ -488,11 +437,3 @@ def _with_the_frame(answered: tuple[dict[str, Any], str]) -> bool:
     results = answer.get("result")
     return answer["op"] == "ok" and type(results) is list and bool(results) and \
         all(result is None for result in results)
-
-
-def _holds_server_objects(document: Any) -> bool:
-    """Whether a saved document (checked or not yet) holds objects of the server's own."""
-    nodes = document.get("nodes") if isinstance(document, dict) else None
-    return isinstance(nodes, list) and any(
-        isinstance(node, dict) and isinstance(node.get("id"), str)
-        and owner_of(node["id"]) == SERVER_OWNER for node in nodes)

@@ -31,7 +31,7 @@ from ..storage.scene_store import SceneStore
 from ..storage.upload_folder import UploadFolder
 from ..storage.state_dir import SCENE_NAME, StateDir
 from ..process.messages import Read
-from ..process.worker import SERVER_OWNER, SceneSetup
+from ..process.scene_start import SERVER_OWNER, SceneSetup
 
 __all__ = ["DEFAULT_SCENE", "Hubs", "SceneSetup"]
 

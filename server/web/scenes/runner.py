@@ -27,6 +27,7 @@ from ...core.kit.limits import Limits
 from ...core.physics.assets import AssetLibrary
 from ...core.kit.errors import UnknownScene, VPError
 from ..process import fork_server, forkserver_main, worker
+from ..process.scene_start import SceneSetup
 from ..process.messages import Ask, Command, Ended, Event, Question, Reply, Stop
 from ..storage.scene_store import SceneStore
 from .process_pipe import ProcessPipe
@@ -135,7 +136,7 @@ class Runner(Protocol):
 
 
 # name, limits, tick rate, assets, setup, deliver, store, recordings' folder
-RunnerFactory = Callable[[str, Limits, float, AssetLibrary, "worker.SceneSetup | None", Deliver,
+RunnerFactory = Callable[[str, Limits, float, AssetLibrary, "SceneSetup | None", Deliver,
                           "SceneStore | None", "Path | None"], Runner]
 
 
@@ -147,7 +148,7 @@ class SceneRunner:
     expecting = False  # (a cluster's runner tells its worker; here nothing counts it)
 
     def __init__(self, name: str, limits: Limits, tick_rate: float, assets: AssetLibrary,
-                 setup: worker.SceneSetup | None, deliver: Deliver,
+                 setup: SceneSetup | None, deliver: Deliver,
                  store: SceneStore | None = None, recordings: Path | None = None,
                  nice: int = 0) -> None:
         self.name = name

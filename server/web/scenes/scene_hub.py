@@ -27,7 +27,7 @@ from .runner import RunnerFactory, SceneRunner
 from ..storage.scene_store import SceneStore
 from ..process.messages import (Admit, Answers, Ended, Event, Frame, Idle, Join, Leave, Ready,
                                 Recorded, RecordingStarted, Saving, Text)
-from ..process.worker import SceneSetup
+from ..process.scene_start import SceneSetup
 
 log = logging.getLogger(__name__)
 INFLIGHT_BYTES = 64 << 10  # text of a connection its scene has not applied yet, past which
