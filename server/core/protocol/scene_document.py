@@ -29,8 +29,8 @@ from ..model.page_meshes import SceneMesh
 from ..model.parts import Part
 from ..model.robot import Robot
 from ..physics.assets import UPLOADED_URL, AssetLibrary
-from ..physics.settings import KINEMATIC, Physics
 from ..physics.robot_description import RobotDescription
+from ..physics.settings import KINEMATIC, Physics
 from ..scene.scene import Scene
 from . import api
 from .api import Param

@@ -14,8 +14,8 @@ from typing import Any, Callable
 from ..kit.errors import Forbidden, ForeignId, InternalError, LimitExceeded, VPError
 from ..kit.rates import TokenBucket
 from ..kit.wire_messages import Hello, Ok
-from ..physics.settings import Physics
 from ..physics.engine import ENGINE
+from ..physics.settings import Physics
 from ..scene.scene import Scene
 from . import api
 from .messages import (PROTOCOL_VERSION, byte_size, check_client_message, decode, encode,

@@ -26,9 +26,9 @@ from ..model.structure import base_pose, structure_of
 from ..physics.articulation import check_links
 from ..physics.assets import AssetLibrary
 from ..physics.contacts import ContactBook, ContactTracker, Overlaps
-from ..physics.settings import Physics
 from ..physics.engine import PhysicsWorld
 from ..physics.raycast import RayTargets
+from ..physics.settings import Physics
 from .build_stages import BuildStages
 from .carriers import Carriers
 
