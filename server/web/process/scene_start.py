@@ -36,9 +36,10 @@ def start_scene(scene: Scene, store: SceneStore | None, saver: SceneSaver,
     if setup is not None:
         scene.keeper = SERVER_KEEPER
     document = store.load() if store is not None else None
-    saved_own = holds_server_objects(document)
-    animator = setup(scene) if setup is not None and saved_own else None  # the document's replace them
-    restored = document is not None and store is not None and restore(scene, store, saver, document)
+    saved_own = _holds_server_objects(document)
+    # the setup's own objects, replaced by the document's of the same ids
+    animator = setup(scene) if setup is not None and saved_own else None
+    restored = document is not None and _restore(scene, store, saver, document)  # type: ignore[arg-type]
     if setup is not None and not saved_own:
         scene.ids.forget(SERVER_OWNER)  # the setup's ids are its own to make again
         try:
@@ -53,7 +54,7 @@ def start_scene(scene: Scene, store: SceneStore | None, saver: SceneSaver,
     return animator, sorted({owner_of(node_id) for node_id in scene.nodes} - {SERVER_OWNER})
 
 
-def restore(scene: Scene, store: SceneStore, saver: SceneSaver, document: Any) -> bool:
+def _restore(scene: Scene, store: SceneStore, saver: SceneSaver, document: Any) -> bool:
     """Put the scene back as ``document`` (its store's) says; whether it could. A document
     that cannot be restored is set aside, and the scene starts as its setup makes it."""
     try:
@@ -70,7 +71,7 @@ def restore(scene: Scene, store: SceneStore, saver: SceneSaver, document: Any) -
     return True
 
 
-def holds_server_objects(document: Any) -> bool:
+def _holds_server_objects(document: Any) -> bool:
     """Whether a saved document (checked or not yet) holds objects of the server's own."""
     nodes = document.get("nodes") if isinstance(document, dict) else None
     return isinstance(nodes, list) and any(

@@ -41,8 +41,8 @@ from .messages import (Admit, Answers, Ask, Command, ConnectionId, Event, Frame,
                        Join, Leave, Metrics, Place, Question, Read, Ready, Record, Recorded,
                        RecordingStarted, Reply, Saving, Stop, Text, Unrecord)
 from .saving import SceneSaver
-from .scene_start import SERVER_OWNER, Animator, SceneSetup, start_scene
 from .scene_metrics import SceneMetrics
+from .scene_start import SERVER_OWNER, Animator, SceneSetup, start_scene
 from ..storage.scene_store import SceneStore
 from ..storage.upload_folder import UploadFolder
 
