@@ -15,7 +15,7 @@ import virtual_prosthetics as vp
 
 from server.core.scene.scene import Scene
 from server.core.protocol.session import Session
-from server.web.process.saving import SceneSaver
+from server.web.process.saving import SAVE_SECONDS, SAVE_SECONDS_MOST, SceneSaver, save_interval
 from server.web.storage.scene_store import SceneStore
 from tests.conftest import WAIT_SECONDS, crash_server, eventually, start_server, stop_server, unwritable
 
@@ -58,6 +58,14 @@ def test_a_change_is_journaled_when_committed_and_folded_in_the_document_when_sa
     assert saver.save() and saver.saved
     assert SceneStore(tmp_path / "lab.json").load()["nodes"][0]["id"] == "c3.1"
     assert restored(tmp_path) == ["c3.1"] and told == []
+
+
+def test_slow_saves_come_less_often_but_never_more_than_a_bounded_time_apart():
+    assert save_interval(0.001) == SAVE_SECONDS  # a small scene: every second it changes
+    assert save_interval(0.1) == pytest.approx(5.0)  # writing takes 2 % of the scene's time
+    # the finding: one save stretched to 2.2 s by the disk put the next 111 s off, and
+    # metrics said "not saved" for longer than a test's minute after the last change
+    assert save_interval(2.2) == save_interval(60.0) == SAVE_SECONDS_MOST < 30
 
 
 def test_a_change_not_ticked_yet_is_not_called_saved(kept):
