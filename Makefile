@@ -26,7 +26,7 @@ run: install
 test: install $(DEBIAN_PROGRAMS)
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
-# The fuzzers at full length, 10 000 cases each (the suite runs 1 000 of each; CI does
+# The fuzzers at full length, 10 000 cases each (the suite runs 500 of each; CI does
 # not run this): a few minutes, and a hang guard of 20 minutes a fuzzer.
 test-long: install $(DEBIAN_PROGRAMS)
 	VP_FUZZ_CASES=10000 $(BIN)/python -m pytest -m fuzz --timeout 1200 $(PYTEST_ARGS)

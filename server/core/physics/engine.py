@@ -29,9 +29,9 @@ from .bullet import pybullet, shape_arguments
 from .clearance import Clearance
 from .contact_forces import ContactForce, contacts_by_part, forces_by_part
 from .dynamics import Dynamics
-from .settings import Physics
 from .filter_groups import BODY_GROUP, BODY_MASK, CROWD_GROUP, CROWD_MASK, GROUND_GROUP, GROUND_MASK
 from .self_contacts import dynamic_body
+from .settings import Physics
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
 GROUND = "ground"

@@ -39,7 +39,8 @@ def start_scene(scene: Scene, store: SceneStore | None, saver: SceneSaver,
     saved_own = _holds_server_objects(document)
     # the setup's own objects, replaced by the document's of the same ids
     animator = setup(scene) if setup is not None and saved_own else None
-    restored = document is not None and _restore(scene, store, saver, document)  # type: ignore[arg-type]
+    restored = store is not None and document is not None and \
+        _restore(scene, store, saver, document)
     if setup is not None and not saved_own:
         scene.ids.forget(SERVER_OWNER)  # the setup's ids are its own to make again
         try:

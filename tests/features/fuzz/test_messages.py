@@ -1,5 +1,5 @@
 """Fuzzing a live server: valid, almost valid and garbage messages, at least ``CASES`` a
-run (1 000 in the suite, 10 000 in ``make test-long``), drawn from a fixed seed.
+run (500 in the suite, 10 000 in ``make test-long``), drawn from a fixed seed.
 
 Whatever arrives, the server stays up, answers every request that carries an id exactly
 once with a well-formed message (never ``internal``), and its scene stays sound: ids

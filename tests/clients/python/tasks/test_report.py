@@ -19,11 +19,11 @@ pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 @pytest.fixture(scope="module")
 def made(server, tmp_path_factory):
     """A report of two hands at one seed (for the suite's time: seeds multiply runs as hands
-    do), two runs at once; its folder and its stderr (made before Chromium starts:
+    do, and the round hand's trials take three times the others'), two runs at once; its folder and its stderr (made before Chromium starts:
     playwright keeps an event loop in this thread)."""
     out, err = tmp_path_factory.mktemp("report"), io.StringIO()
     with contextlib.redirect_stderr(err):
-        assert main(["report", "--url", server.ws, "--hands", "edged,round", "--tasks", "grasp",
+        assert main(["report", "--url", server.ws, "--hands", "anthro,edged", "--tasks", "grasp",
                      "--grips", "spherical", "--seeds", "2", "--trials", "1", "--parallel", "2",
                      "--scene", f"report{id(out) % 10000}", "--out", str(out)]) == 0
     return out, err.getvalue()
@@ -34,7 +34,7 @@ def test_a_report_runs_every_hand_and_writes_every_trial(made):
     # the finding: minutes with no output; a bar of runs with the time left
     assert "report: 100%" in err and "2/2" in err
     runs = json.loads((out / "runs.json").read_text())
-    assert sorted((r["hand"], r["seed"]) for r in runs) == [("edged", 2), ("round", 2)]
+    assert sorted((r["hand"], r["seed"]) for r in runs) == [("anthro", 2), ("edged", 2)]
     with (out / "trials.csv").open() as file:
         rows = list(csv.DictReader(file))
     assert len(rows) == 4  # 2 hands × light and heavy × 1 trial
@@ -52,7 +52,7 @@ def test_the_report_page_plots_each_measure_per_hand(made, browser, tmp_path):  
             "grasp: held (share of trials)", "grasp: peak force on the object (median, N)",
             "grasp: slip from first contact (median, mm)"]
         legend = page.locator(".u-legend").first.inner_text()
-        assert "edged" in legend and "round" in legend
+        assert "anthro" in legend and "edged" in legend
         page.screenshot(path=str(tmp_path / "report.png"))
     finally:
         page.close()
