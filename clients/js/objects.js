@@ -8,6 +8,7 @@ import * as THREE from 'three';
 import { fromWire } from './codec.js';
 import { filled } from './lenient.js';
 import { deleteMessage } from './messages.js';
+import { remember } from './page_transforms.js';
 import { currentSession } from './session.js';
 
 let adopting = null;   // {session, id, type} while an object is made for an existing node
@@ -62,7 +63,7 @@ export class SceneObject extends THREE.Object3D {
 		const point = filled(given, this.position.toArray(), `${this.vp.id}.setPosition`);
 		if (point.every(Number.isFinite)) {   // else the server refuses it, naming this call
 			this.position.fromArray(point);
-			this.vp.session.remember(this);
+			remember(this);
 		}
 		this.call('setPosition', point);
 	}
@@ -111,7 +112,7 @@ export class Part extends SceneObject {
 		this.call('addSlot', point);
 		const slot = Slot.adopt(session, id, 'Slot');
 		slot.position.fromArray(point);
-		session.remember(slot);
+		remember(slot);
 		this.add(slot);
 		return slot;
 	}

@@ -3,6 +3,7 @@
 
 import { fromWire } from './codec.js';
 import { SceneObject, forward, named } from './objects.js';
+import { remember } from './page_transforms.js';
 import { serverCall } from './rest.js';
 import { currentSession } from './session.js';
 
@@ -28,7 +29,7 @@ export class Robot extends SceneObject {
 	setPosition(position, ...more) {
 		if (position === undefined && !more.length) {
 			this.visible = false;
-			this.vp.session.remember(this);
+			remember(this);
 			this.call('setPosition');
 			return this;
 		}

@@ -13,16 +13,14 @@ import { encode } from './codec.js';
 import { ConnectionLost } from './errors.js';
 import { batchMessage, callMessage, createMessage } from './messages.js';
 import { Mirror } from './mirror.js';
-import { baseRotation, scaleAbove, shownPosition, shownRotation } from './pose.js';
+import { moved, remember, transformEntry } from './page_transforms.js';
+import { scaleAbove, shownPosition, shownRotation } from './pose.js';
 import { Prediction } from './prediction.js';
 import { ProtocolCore } from './protocol.js';
 import { DEFAULT_SECONDS, within } from './waiting.js';
 
 const ONE = [1, 1, 1];
-const base = new THREE.Quaternion();
 const scale = new THREE.Vector3();  // the scales above a slider, while it is posed
-const slid = new THREE.Vector3();   // how far a slider moved what hangs on it
-const ZERO = new THREE.Vector3();
 const POSED = ['position', 'quaternion', 'angle', 'flipped', 'scale', 'visible'];
 const TEXT_BYTES = 512 * 1024;   // well under the server's messageBytes (1 MiB)
 
@@ -138,7 +136,7 @@ export class Session {
 		object.name = id;
 		this.objects.set(id, object);
 		this.root.add(object);
-		this.remember(object);
+		remember(object);
 	}
 
 	// The object for a node id: the one this client made, or one made now for it.
@@ -221,7 +219,7 @@ export class Session {
 			shownPosition(object.position, object.vp.basePosition, object.vp.base, object.vp,
 				scaleAbove(scale, object));
 		}
-		this.remember(object);
+		remember(object);
 	}
 
 	place(object, node) {
@@ -234,24 +232,16 @@ export class Session {
 		if (object.vp.slides) this.turn(object);   // how far it moves: by the scales above it
 	}
 
-	// --- transforms a page wrote directly -------------------------------------------------
-
-	remember(object) {
-		const known = object.vp.known;
-		object.position.toArray(known, 0);
-		object.quaternion.toArray(known, 3);
-		object.scale.toArray(known, 7);
-		object.vp.visible = object.visible;
-	}
+	// --- transforms a page wrote directly (page_transforms.js) ---------------------------
 
 	// Send, as one setTransforms, every object's position, rotation and scale that changed
 	// since the server knew it (the page's meshes too); visibility changes as setVisible.
 	syncTransforms() {
 		const transforms = {};
 		for (const object of this.objects.values()) {
-			if (differs(object.vp.known, object)) transforms[object.vp.id] = this.transform(object);
+			if (moved(object)) transforms[object.vp.id] = transformEntry(object);
 			if (object.visible !== object.vp.visible) this.call(object.vp.id, 'setVisible', [object.visible]);
-			this.remember(object);
+			remember(object);
 		}
 		this.meshes?.sync(transforms);
 		const ids = Object.keys(transforms);
@@ -260,22 +250,6 @@ export class Session {
 			const part = Object.fromEntries(ids.slice(start, start + most).map((id) => [id, transforms[id]]));
 			this.call('scene', 'setTransforms', [part]);
 		}
-	}
-
-	// A page moved or turned an object: its entry. The base rotation is what it shows
-	// less a motor's turn.
-	transform(object) {
-		baseRotation(base, object.quaternion, object.vp);
-		object.vp.base.copy(base);
-		const position = object.position.clone();
-		if (object.vp.slides) {   // less what the slider moved it by
-			position.sub(shownPosition(slid, ZERO, base, object.vp, scaleAbove(scale, object)));
-			object.vp.basePosition.copy(position);
-		}
-		const entry = [...position.toArray(), ...base.toArray()];
-		const s = object.scale, known = object.vp.known;
-		if (s.x !== known[7] || s.y !== known[8] || s.z !== known[9]) entry.push(s.x, s.y, s.z);
-		return entry;
 	}
 
 	// --- requests -------------------------------------------------------------------------
@@ -424,13 +398,6 @@ export class Session {
 			}
 		}
 	}
-}
-
-// True when an object's position, rotation or scale differs from `known`.
-function differs(known, { position: p, quaternion: q, scale: s }) {
-	return p.x !== known[0] || p.y !== known[1] || p.z !== known[2]
-		|| q.x !== known[3] || q.y !== known[4] || q.z !== known[5] || q.w !== known[6]
-		|| s.x !== known[7] || s.y !== known[8] || s.z !== known[9];
 }
 
 function join(texts) {
