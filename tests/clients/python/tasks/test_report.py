@@ -19,8 +19,9 @@ pytestmark = pytest.mark.long  # tests/conftest.py: dealt out first
 @pytest.fixture(scope="module")
 def made(server, tmp_path_factory):
     """A report of two hands at one seed (for the suite's time: seeds multiply runs as hands
-    do, and the round hand's trials take three times the others'), two runs at once; its folder and its stderr (made before Chromium starts:
-    playwright keeps an event loop in this thread)."""
+    do, and the round hand's trials take three times the others'), two runs at once; its
+    folder and its stderr (made before Chromium starts: playwright keeps an event loop in
+    this thread)."""
     out, err = tmp_path_factory.mktemp("report"), io.StringIO()
     with contextlib.redirect_stderr(err):
         assert main(["report", "--url", server.ws, "--hands", "anthro,edged", "--tasks", "grasp",
