@@ -38,7 +38,10 @@ def test_run_lasts_its_seconds_of_scene_time_across_a_server_restart(tmp_path, s
     times = [t for t, _ in steps]
     assert min(times[10:]) < 1 < max(times), "the restarted clock was seen"
     assert all(dt >= 0 for _, dt in steps)
-    assert 7.9 < sum(dt for _, dt in steps) < 8.1
+    # it ends at the first step that reaches its 8 s (summed as the loop sums them); how far
+    # past them is that step's length: 0.39 s when pinned to one core, so not bounded here
+    dts = [dt for _, dt in steps]
+    assert sum(dts[:-1]) < 8 <= sum(dts)
 
 
 def test_run_stops_with_an_error_when_the_server_goes_away(scene_name):
