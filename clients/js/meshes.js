@@ -30,20 +30,22 @@ export class PageMeshes {
 	// Walk the page's objects: new meshes are made, moved ones get an entry in
 	// `transforms`, meshes no longer there are deleted.
 	sync(transforms) {
-		const pass = ++this.pass;
-		for (const root of this.roots()) {
-			root.updateMatrixWorld();
-			this.visit(root, true, pass, transforms);
-		}
+		const pass = ++this.pass, roots = this.roots(), found = [];
+		for (const root of roots) this.visit(root, true, found);
+		// world matrices only when there are meshes to place: a page of parts alone (as
+		// most are) skips updating every part's matrix each step
+		if (found.length) for (const root of roots) root.updateMatrixWorld();
+		for (let k = 0; k < found.length; k += 2) this.track(found[k], found[k + 1], pass, transforms);
 		for (const [mesh, record] of this.records) if (record.pass !== pass) this.forget(mesh, record);
 	}
 
-	visit(object, shown, pass, transforms) {
+	// The page's meshes below `object`, each followed by whether it is shown, into `found`.
+	visit(object, shown, found) {
 		for (const child of object.children) {
 			if (child.userData.vpLocal || child.type.endsWith('Helper')) continue;
 			const visible = shown && child.visible;
-			if (child.isMesh && !child.vp) this.track(child, visible, pass, transforms);
-			if (child.children.length) this.visit(child, visible, pass, transforms);
+			if (child.isMesh && !child.vp) found.push(child, visible);
+			if (child.children.length) this.visit(child, visible, found);
 		}
 	}
 

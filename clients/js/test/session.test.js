@@ -290,6 +290,45 @@ test('an animation step leaves as one batch, answered once, read at once; a refu
 	}
 });
 
+test('direct writes reach the server each time they change, there and back, with the meshes below; unchanged objects send nothing', { skip: !URL_ && 'needs VP_URL' }, async () => {
+	const session = await Prosthetic.connect({ url: URL_, scene: `js-writes-${process.pid}` });
+	try {
+		new Prosthetic.EdgedHand(true);                      // parts nobody writes to
+		const ball = new Prosthetic.Ball(0.1);
+		const marker = new Prosthetic.Mesh(new Prosthetic.BoxGeometry(0.02, 0.02, 0.02));
+		marker.position.set(0, 0.5, 0);
+		ball.add(marker);                                  // a page's mesh below a part
+		await Prosthetic.sync();
+		const texts = [], send = session.transmit;
+		session.transmit = (text) => { texts.push(text); send(text); };
+		const markerId = [...session.meshes.records.values()][0].id;
+		const server = (id) => session.mirror.nodes.get(id);
+		for (const x of [1, 0, 1]) {                       // there, back, there again
+			ball.position.x = x;
+			await Prosthetic.sync();
+			assert.equal(server(ball.vp.id).position[0], x);
+			assert.deepEqual(server(markerId).position, [x, 0.5, 0], 'the mesh follows its part');
+		}
+		ball.visible = false;
+		await Prosthetic.sync();
+		assert.equal(server(ball.vp.id).visible, false);
+		texts.length = 0;
+		session.gathering(() => {});                       // a step that writes nothing
+		await Prosthetic.sync();
+		const calls = texts.flatMap((text) => [].concat(JSON.parse(text)))
+			.flatMap((m) => (m.op === 'batch' ? m.ops : [m])).filter((m) => m.op === 'call');
+		assert.deepEqual(calls, [], 'nothing changed, nothing sent');
+		ball.position.x = 2;                               // written while hidden
+		ball.visible = true;
+		await Prosthetic.sync();
+		assert.equal(server(ball.vp.id).position[0], 2);
+		assert.equal(server(ball.vp.id).visible, true);
+	} finally {
+		Prosthetic.getScene().clear();
+		Prosthetic.close();
+	}
+});
+
 test('a step larger than one text leaves as several batches and all of it is made', { skip: !URL_ && 'needs VP_URL' }, async () => {
 	const session = await Prosthetic.connect({ url: URL_, scene: `js-big-step-${process.pid}` });
 	try {
