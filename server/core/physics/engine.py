@@ -291,8 +291,10 @@ class PhysicsWorld:
         return keys, np.fromiter(numbers, float, 7 * len(keys)).reshape(len(keys), 7)
 
     def _link_states(self, built: _Built) -> list[tuple]:
-        return pybullet.getLinkStates(built.body, built.part_links, computeForwardKinematics=1,
-                                      physicsClientId=self._client)
+        # Bullet's own link frames as its last change left them: placing a base, setting
+        # joints and stepping each end in its forward kinematics, so running them again
+        # here (computeForwardKinematics) was 2 % of a tick's sensing, for nothing
+        return pybullet.getLinkStates(built.body, built.part_links, physicsClientId=self._client)
 
     def _shape(self, geometry: dict[str, Any], frame: Pose = NO_POSE) -> int:
         arguments = shape_arguments(geometry)
@@ -410,8 +412,8 @@ class PhysicsWorld:
             position, orientation = pybullet.getBasePositionAndOrientation(
                 body, physicsClientId=self._client)
         else:
-            position, orientation = pybullet.getLinkState(
-                body, link, computeForwardKinematics=1, physicsClientId=self._client)[:2]
+            position, orientation = pybullet.getLinkState(  # (as _link_states)
+                body, link, physicsClientId=self._client)[:2]
         return tuple(position), tuple(orientation)
 
     def aabb(self, key: str) -> tuple[Vec3, Vec3]:

@@ -25,7 +25,7 @@ GROUND = "ground"
 _NOTHING, _GROUND = -2, -1  # key indices besides the rows of parts
 _BROAD_CHUNK = 250_000  # ray × part pairs tested at once (bounded memory)
 _SLACK = 1e-9  # relative and absolute: bounding spheres are met a hair generously
-_TREES_KEPT = 4096  # trees whose rows are kept (place_trees)
+_ROW_SETS_KEPT = 4096  # sets of keys whose rows are kept (_rows_of)
 
 Hits = tuple[list[list[str]], np.ndarray]  # keys (rays × limits), distances (rays, limits)
 
@@ -46,8 +46,9 @@ class RayTargets:
         self._local_centres = np.empty((0, 3))  # the same in each part's own frame
         self._radii = np.empty(0)
         self._moved: dict[str, Pose] = {}  # poses not yet taken into the arrays
-        self._rows_of_trees: dict[tuple[str, ...], np.ndarray] = {}  # (place_trees)
+        self._kept_rows: dict[tuple[str, ...], np.ndarray] = {}  # (_rows_of)
         self._planes = ConvexPlanes()  # the convex shapes' planes, met in one go
+        self._reach_kept: tuple[float, np.ndarray, np.ndarray] | None = None  # (_reach)
 
     def __len__(self) -> int:
         return len(self._keys)
@@ -71,6 +72,7 @@ class RayTargets:
         self._centres = np.concatenate([self._centres, np.zeros((1, 3))])
         self._local_centres = np.concatenate([self._local_centres, self._shapes[index].centre[None]])
         self._radii = np.append(self._radii, self._shapes[index].radius)
+        self._reach_kept = None
         self.move(key, pose)
 
     def move(self, key: str, pose: Pose) -> None:
@@ -83,24 +85,25 @@ class RayTargets:
         :meth:`~server.core.physics.engine.PhysicsWorld.part_pose_rows` gives them."""
         self._place_moved()  # poses moved one by one before these: these are newer
         if trees:
-            self._place(np.concatenate([self._tree_rows(keys) for keys, _ in trees]),
+            self._place(np.concatenate([self._rows_of(keys) for keys, _ in trees]),
                         np.concatenate([poses for _, poses in trees]))
 
-    def _tree_rows(self, keys: tuple[str, ...]) -> np.ndarray:
-        """The rows of a tree's keys, kept until a row moves (:meth:`remove`)."""
-        rows = self._rows_of_trees.get(keys)
+    def _rows_of(self, keys: tuple[str, ...]) -> np.ndarray:
+        """The rows of keys asked for together each tick (a tree's parts, the parts
+        carrying the watched sensors), kept until a row moves (:meth:`remove`)."""
+        rows = self._kept_rows.get(keys)
         if rows is None:
-            if len(self._rows_of_trees) >= _TREES_KEPT:  # (trees built again make new tuples)
-                self._rows_of_trees.clear()
-            rows = self._rows_of_trees[keys] = np.fromiter(
+            if len(self._kept_rows) >= _ROW_SETS_KEPT:  # (trees built again make new sets)
+                self._kept_rows.clear()
+            rows = self._kept_rows[keys] = np.fromiter(
                 map(self._rows.__getitem__, keys), np.int64, len(keys))
         return rows
 
-    def frames(self, keys: Sequence[str]) -> tuple[np.ndarray, np.ndarray]:
+    def frames(self, keys: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray]:
         """World positions (n×3) and rotation matrices (n×3×3) of these keys' shapes, as
         placed (what sensors on the parts start from)."""
         self._place_moved()
-        rows = np.fromiter(map(self._rows.__getitem__, keys), np.int64, len(keys))
+        rows = self._rows_of(keys)
         return self._positions[rows], self._rotations[rows]
 
     def _place_moved(self) -> None:
@@ -128,7 +131,8 @@ class RayTargets:
         self._moved.pop(key, None)
         self._place_moved()
         row, last = self._rows.pop(key), len(self._keys) - 1
-        self._rows_of_trees.clear()
+        self._kept_rows.clear()
+        self._reach_kept = None
         arrays = (self._shape_of, self._rotations, self._positions, self._centres, self._radii,
                   self._local_centres)
         if row != last:
@@ -200,6 +204,16 @@ class RayTargets:
             yield rays[mine], rows[mine], self._shapes[index].entries(local_o[mine],
                                                                       local_d[mine], limits)
 
+    def _reach(self, low: float) -> tuple[np.ndarray, np.ndarray]:
+        """Per row: the square of its bounding sphere's radius, a hair generous (rounding
+        stays safe), and how far along a ray its centre may lie before ``low`` and still
+        be met; kept until a row comes or goes (each tick asks for the same)."""
+        kept = self._reach_kept
+        if kept is None or kept[0] != low:
+            reach = self._radii * (1 + _SLACK) + _SLACK
+            kept = self._reach_kept = (low, reach ** 2, low - reach)
+        return kept[1], kept[2]
+
     def _broad(self, origins: np.ndarray, directions: np.ndarray,
                low: float) -> tuple[np.ndarray, np.ndarray]:
         """Ray and row indices of the pairs whose bounding sphere lies on the ray past ``low``."""
@@ -207,8 +221,7 @@ class RayTargets:
         if not count:
             return np.empty(0, np.int64), np.empty(0, np.int64)
         step = max(1, _BROAD_CHUNK // count)
-        reach = self._radii * (1 + _SLACK) + _SLACK  # a hair of slack: rounding stays safe
-        wide, short = reach ** 2, low - reach
+        wide, short = self._reach(low)
         # with t = c - o: along = t·d, miss² = t·t - along²; both as one product of
         # matrices each, the ray's terms and the centre's side by side ([d, -o·d]·[c, 1] and
         # [-2o, o·o, 1]·[c, 1, c·c]): no rays × parts array but the two results (half the

@@ -8,6 +8,7 @@ starting on a face (within ``ON_SURFACE``) meets it at 0. Directions are unit ve
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Any, Protocol, Sequence
 
 import numpy as np
@@ -37,8 +38,18 @@ class Shape(Protocol):
 def _from_one_entry(enter: np.ndarray, valid: np.ndarray, limits: Sequence[float]) -> np.ndarray:
     """Per limit, for shapes a ray enters at most once (convex ones)."""
     enter = np.where(valid, np.maximum(enter, 0.0), np.inf)[:, None]
+    low, reached = _lows(tuple(limits))
+    return np.where(enter >= reached, np.maximum(enter, low), np.inf)
+
+
+@lru_cache(maxsize=64)
+def _lows(limits: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """Limits as an array, and how far below each an entry still counts as at it: the
+    same few limits every tick (sensing asks for two), made once each."""
     low = np.asarray(limits, dtype=float)
-    return np.where(enter >= low - AT_LIMIT, np.maximum(enter, low), np.inf)
+    reached = low - AT_LIMIT
+    low.flags.writeable = reached.flags.writeable = False  # (shared by every call)
+    return low, reached
 
 
 class Sphere:

@@ -18,7 +18,7 @@ from ..kit import math3d
 from ..kit.math3d import Pose, Vec3
 from ..model.node import UNIT_SCALE, Node
 
-FrameArrays = Callable[[Sequence[str]], "tuple[np.ndarray, np.ndarray]"]  # positions, matrices
+FrameArrays = Callable[[tuple[str, ...]], "tuple[np.ndarray, np.ndarray]"]  # positions, matrices
 CARRIED_SETS = 64  # sets of nodes whose carriers are kept (watched sensors: one set)
 
 
@@ -29,7 +29,7 @@ class _Carried:
 
     own: list[int]
     rows: np.ndarray
-    hosts: list[str]
+    hosts: tuple[str, ...]
     positions: np.ndarray  # n×3, in the part's frame
     turns: np.ndarray  # n×3×3, from the part's frame
 
@@ -86,14 +86,17 @@ class Carriers:
             if len(self._carried) >= CARRIED_SETS:
                 self._carried.clear()
             carried = self._carried[key] = self._carriers(nodes)
+        if carried.hosts:
+            at, turn = part_frames(carried.hosts)
+            hosted = np.einsum("kij,kj->ki", turn, carried.positions) + at, turn @ carried.turns
+            if not carried.own:  # all carried, in order (as watched sensors on parts)
+                return hosted
         positions, turns = np.empty((len(nodes), 3)), np.empty((len(nodes), 3, 3))
         for index in carried.own:
             position, quat = nodes[index].world_pose()
             positions[index], turns[index] = position, math3d.to_matrix(quat)
         if carried.hosts:
-            at, turn = part_frames(carried.hosts)
-            positions[carried.rows] = np.einsum("kij,kj->ki", turn, carried.positions) + at
-            turns[carried.rows] = turn @ carried.turns
+            positions[carried.rows], turns[carried.rows] = hosted
         return positions, turns
 
     def _carriers(self, nodes: list[Node]) -> _Carried:
@@ -103,7 +106,7 @@ class Carriers:
         offsets = [found[index][1] for index in rows]  # type: ignore[index]
         return _Carried(own=[index for index, host in enumerate(found) if host is None],
                         rows=np.array(rows, dtype=np.int64),
-                        hosts=[found[index][0] for index in rows],  # type: ignore[index]
+                        hosts=tuple(found[index][0] for index in rows),  # type: ignore[index]
                         positions=np.array([p for p, _ in offsets]).reshape(-1, 3),
                         turns=np.array([math3d.to_matrix(q) for _, q in offsets]).reshape(-1, 3, 3))
 

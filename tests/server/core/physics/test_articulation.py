@@ -73,6 +73,35 @@ def test_turning_sets_the_joints_and_a_rebuild_keeps_angles_and_bases(world):
     assert world.rebuilds == 1 and "a" in world and len(world) == 1
 
 
+def test_parts_are_read_where_the_last_change_put_them(world):
+    """Bullet's link frames as each change leaves them: a base placed alone, joints set
+    alone, a rebuild; each read at once."""
+    origin, shape = ((0.5, 0.0, 0.2), math3d.euler_to_quat(0.3, 0, 0.1)), ((0, 0.4, 0.1), IDENTITY_POSE[1])
+    tree = Articulation("r", base_part="p", base_geometry=BOX, links=(
+        Link(-1, origin, Joint("m", (0.0, 0.0, 1.0), -3, 3), "a", shape, BOX),))
+    base, angle = ((1.0, 2.0, 3.0), math3d.euler_to_quat(0.1, 0.2, 0.3)), 0.7
+    world.add_tree(tree, base, {"m": angle})
+
+    def read_where_expected() -> None:
+        link = math3d.compose(math3d.compose(base, origin), turned("z", angle))
+        want_p, want_q = math3d.compose(link, shape)
+        keys, rows = world.part_pose_rows("r")
+        assert keys == ("p", "a")
+        assert rows[1, :3].tolist() == pytest.approx(list(want_p), abs=1e-12)
+        assert abs(rows[1, 3:] @ want_q) == pytest.approx(1, abs=1e-12)
+        assert world.pose("a")[0] == pytest.approx(want_p, abs=1e-12)
+
+    read_where_expected()
+    base = ((-2.0, 0.5, 1.0), math3d.euler_to_quat(-0.4, 0.0, 1.2))
+    world.move_base("r", base)
+    read_where_expected()
+    angle = -1.1
+    world.turn("r", [angle])
+    read_where_expected()
+    world.rebuild()
+    read_where_expected()
+
+
 def test_parts_of_one_tree_are_measured_against_each_other(world):
     tree = Articulation("r", "base", BOX, links=(
         Link(-1, ((0.1, 0, 0), (0, 0, 0, 1)), None, "near", ((0, 0, 0), (0, 0, 0, 1)), BOX),

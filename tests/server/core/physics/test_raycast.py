@@ -157,3 +157,16 @@ def test_trees_placed_at_once_and_shapes_moved_one_by_one_the_later_wins(targets
     targets.place_trees([(("b",), np.array([[0, 2, 0, *IDENTITY]], float))])
     assert first(targets, (0, 9, 0)) == ("b", 6.5)
     assert first(targets, (6, 9, 0)) == ("ground", 9)
+
+
+def test_shapes_added_and_removed_between_casts_are_met_at_their_own_size(targets):
+    ball = {"kind": "sphere", "radius": 0.1}
+    targets.add("small", ball, ((0, 2, 0), IDENTITY))
+    assert first(targets, (0.5, 9, 0)) == ("ground", 9)  # beside the small ball
+    targets.add("big", {**ball, "radius": 1.0}, ((0, 2, 0), IDENTITY))
+    assert first(targets, (0.5, 9, 0)) == ("big", pytest.approx(7 - math.sqrt(0.75), abs=1e-12))
+    targets.remove("small")  # the big ball takes its row
+    assert first(targets, (0.5, 9, 0)) == ("big", pytest.approx(7 - math.sqrt(0.75), abs=1e-12))
+    targets.remove("big")
+    targets.add("small", ball, ((0.5, 2, 0), IDENTITY))
+    assert first(targets, (0.5, 9, 0)) == ("small", pytest.approx(6.9, abs=1e-12))
