@@ -17,14 +17,20 @@ from .watches import Watches
 UNIT_SCALE: Vec3 = (1.0, 1.0, 1.0)
 
 
+class Forces(Protocol):
+    """What presses on parts (server/core/scene/part_forces.py)."""
+
+    def on(self, part: Node | None) -> float: ...
+
+
 class Bodies(Protocol):
     """What nodes ask of the scene's physical bodies (server/core/scene/bodies.py)."""
+
+    forces: Forces
 
     def read(self, sensors: list[Node], exact: bool = True) -> dict[str, Any]: ...
 
     def touching(self, part: Node | None, exact: bool = True) -> list[str]: ...
-
-    def force_on(self, part: Node | None) -> float: ...
 
     def motor_motion(self, motors: Sequence[Node]) -> list[tuple[float, float]]: ...
 

@@ -72,7 +72,7 @@ class Sensor(Part):
         or from ``other`` alone (a part or "ground"): a fingertip's force on what it holds,
         not on the table beside it (dynamic mode; 0 in kinematic mode, where nothing pushes)."""
         if other is None:
-            return self.scene.bodies.force_on(self.host())
+            return self.scene.bodies.forces.on(self.host())
         return self.reading().force_from(other if isinstance(other, str) else other.id)
 
     def sense_contacts(self) -> list[dict[str, Any]]:

@@ -30,7 +30,8 @@ from typing import Iterable, Protocol, Sequence
 
 import numpy as np
 
-from .engine import GROUND, TOUCH_TOLERANCE, Vec3
+from ..kit.math3d import Vec3
+from .bullet_parts import GROUND, TOUCH_TOLERANCE
 
 Pair = tuple[str, str]
 _BLOCK = 1024  # bodies whose candidates are found in one array operation (bounds memory)

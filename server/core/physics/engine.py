@@ -4,46 +4,35 @@ Every tree of parts is one multibody (:mod:`.articulation`): a tick places its b
 sets all its joints in one call each, and reads its parts' poses from Bullet's forward
 kinematics in one call. Kinematic mode, as in 1.0: nothing is ever stepped, so nothing
 falls or gets pushed. Rays are not Bullet's: see :mod:`server.core.physics.raycast`.
-
-Contacts are those of the exact shapes, the collision margin that pads convex hulls
-(``CONVEX_MARGIN``) subtracted again. :meth:`PhysicsWorld.detect` runs Bullet's own pair
-processing (broadphase and narrowphase in C++) over the parts it pairs; manifold points
-that drift beyond ``BREAKING_THRESHOLD`` are dropped, so a part placed elsewhere keeps no
-stale point, and a pair that begins is confirmed with ``getClosestPoints``
-(:meth:`PhysicsWorld.touching_many`), which also measures, one by one, the pairs of parts
-kept out of Bullet's pairing in a crowd. :mod:`server.core.physics.contacts` decides which.
+Where each part is in Bullet, and contacts, poses and boxes by part:
+:class:`~.bullet_parts.BulletParts` (``PhysicsWorld.parts``).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from itertools import chain
-from typing import Any, Collection, Iterator, Mapping, Sequence
+from typing import Any, Iterator, Mapping, Sequence
 
 import numpy as np
 
 from ..kit.math3d import Pose, Vec3, rotate
 from .articulation import NO_POSE, Articulation, check_links, multibody_arguments
 from .bullet import pybullet, shape_arguments
+from .bullet_parts import BulletParts
 from .clearance import Clearance
-from .contact_forces import ContactForce, contacts_by_part, forces_by_part
 from .dynamics import Dynamics
-from .filter_groups import BODY_GROUP, BODY_MASK, CROWD_GROUP, CROWD_MASK, GROUND_GROUP, GROUND_MASK
+from .filter_groups import GROUND_GROUP, GROUND_MASK
 from .self_contacts import dynamic_body
 from .settings import Physics
 
 ENGINE = "pybullet"  # the one physics engine (the viewer's engine= option must name it)
-GROUND = "ground"
-CONVEX_MARGIN = 0.001  # PyBullet pads every convex mesh shape by this much
-TOUCH_TOLERANCE = 1e-9  # shapes this close count as touching (rounding, not geometry)
 # Parts of one tree meet each other too, neighbours included (spec: self-collision); in
 # dynamic mode, see self_contacts.py.
 _SELF_COLLISION = pybullet.URDF_USE_SELF_COLLISION | pybullet.URDF_USE_SELF_COLLISION_INCLUDE_PARENT
 # Manifold points that drift this far from where they were found are dropped (a part
 # placed elsewhere keeps no stale point beyond it); Bullet's default is 0.02.
 BREAKING_THRESHOLD = 0.0005
-NAMED_POINTS = 20_000  # contact points' names kept (detect): beyond, they are named anew
 # PyBullet keeps about 1 kB for every body ever removed and never frees a shape; a fresh
 # client after this many removals gives the memory back.
 REBUILD_AFTER_REMOVALS = 10_000
@@ -70,19 +59,17 @@ class _Built:
 class PhysicsWorld:
     """Trees of parts, one multibody each (:mod:`.articulation`), plus the ground plane y = 0.
 
-    Parts are addressed by their node ids whatever link of whatever tree carries them;
-    a lone part is a tree with only a base. Shapes of equal geometry share one collision shape.
+    Parts are addressed by their node ids whatever link of whatever tree carries them
+    (:attr:`parts`); a lone part is a tree with only a base. Shapes of equal geometry share
+    one collision shape.
     """
 
     def __init__(self, physics: Physics = Physics()) -> None:
         self.physics = physics
         self.dynamics: Dynamics | None = None  # in dynamic mode
-        self.forces: dict[str, float] = {}  # dynamic mode: newtons on each part, last step
-        self._points: list[Any] = []  # dynamic mode: Bullet's contact points of the last step
+        self.parts = BulletParts()  # where each part is; contacts, poses and boxes by part
         self._client: int | None = None
         self._trees: dict[str, _Built] = {}
-        self._where: dict[str, tuple[int, int]] = {}  # part id -> (body, link); -1: the base
-        self._padding: dict[str, float] = {}
         self.removals = 0
         self.rebuilds = 0
         self._connect()
@@ -105,22 +92,7 @@ class PhysicsWorld:
         self._clearance = Clearance(pybullet, self._client, self._robot_bodies,
                                     lambda: self.dynamics.steps, self._ground) \
             if self.dynamics else None  # type: ignore[union-attr]
-        self._where[GROUND] = (self._ground, -1)
-        # body -> the part of each link, the base's last (so that link -1 finds it)
-        self._keys_of: dict[int, list[str | None]] = {self._ground: [GROUND]}
-        self._padding[GROUND] = 0.0
-        # Bullet's (body a, body b, link a, link b) -> the pair of parts, its reach (detect)
-        self._named: dict[tuple[int, int, int, int], tuple[tuple[str, str], float]] = {}
-
-    def _filter(self, body: int, link: int, crowded: bool = False) -> None:
-        group, mask = (CROWD_GROUP, CROWD_MASK) if crowded else (BODY_GROUP, BODY_MASK)
-        pybullet.setCollisionFilterGroupMask(body, link, group, mask, physicsClientId=self._client)
-
-    def crowd(self, key: str, crowded: bool) -> None:
-        """Let Bullet pair the part ``key`` with the ground and other parts, or (in a crowd)
-        with nothing; in dynamic mode everything meets everything (it must not fall through)."""
-        if self.dynamics is None:
-            self._filter(*self._where[key], crowded=crowded)
+        self.parts.connect(self._client, self._ground, self.dynamics)
 
     def close(self) -> None:
         """Release the PyBullet client."""
@@ -134,10 +106,10 @@ class PhysicsWorld:
         return self._client  # type: ignore[return-value]
 
     def __contains__(self, key: str) -> bool:
-        return key in self._where and key != GROUND
+        return key in self.parts
 
     def __len__(self) -> int:
-        return len(self._where) - 1
+        return len(self.parts)
 
     # --- trees ---------------------------------------------------------------------------
 
@@ -173,19 +145,13 @@ class PhysicsWorld:
         links = [k for k, link in enumerate(tree.links) if link.part is not None]
         built = _Built(tree, body, base_pose, [], joints, list(joints.values()), links)
         self._trees[tree.root] = built
-        for link in range(-1, len(tree.links)):  # kinematic: crowded until its neighbourhood is known
-            self._filter(body, link, crowded=dynamics is None)
+        places = ([(tree.base_part, -1, tree.base_geometry)] if tree.base_part is not None else []) \
+            + [(tree.links[k].part, k, tree.links[k].geometry) for k in links]
+        self.parts.add(body, len(tree.links), places)  # type: ignore[arg-type]
         if dynamics is not None:
             built.mount = dynamics.made(body, tree, base_pose, built.joint_links, mount)
             built.base_centre = base_centre
             built.part_centres = [centres[k] for k in links]
-        places = ([(tree.base_part, -1, tree.base_geometry)] if tree.base_part is not None else []) \
-            + [(tree.links[k].part, k, tree.links[k].geometry) for k in links]
-        keys_of = self._keys_of[body] = [None] * (len(tree.links) + 1)
-        for key, link, geometry in places:
-            self._where[key] = (body, link)
-            keys_of[link] = key
-            self._padding[key] = 0.0 if geometry["kind"] in ("sphere", "box") else CONVEX_MARGIN
         self.turn(tree.root, [angles[motor] for motor in joints])
         if free:  # where it is, or the nearest clear spot (read after the next step)
             self._clearance.place(body, *pybullet.getBasePositionAndOrientation(  # type: ignore[union-attr]
@@ -216,12 +182,7 @@ class PhysicsWorld:
         if self.dynamics is not None:
             self.dynamics.removed(built.body, built.mount)
             self._clearance.removed(built.body)  # type: ignore[union-attr]
-        for key in built.tree.parts():
-            del self._where[key], self._padding[key]
-        del self._keys_of[built.body]
-        self._named.clear()  # (Bullet gives a removed body's id to the next one made)
-        # Bullet may give its id to the next body: its contacts of the last step go with it
-        self._points = [p for p in self._points if built.body not in (p[1], p[2])]
+        self.parts.remove(built.body, built.tree.parts())
         pybullet.removeBody(built.body, physicsClientId=self._client)
         self.removals += 1
 
@@ -387,7 +348,7 @@ class PhysicsWorld:
     def needs_rebuild(self) -> bool:
         """True when enough bodies were removed that a fresh client would free memory."""
         return self.removals >= REBUILD_AFTER_REMOVALS or \
-            len(self._shapes) > 2 * len(self._where) + REBUILD_AFTER_REMOVALS // 10
+            len(self._shapes) > 2 * len(self.parts) + REBUILD_AFTER_REMOVALS // 10
 
     def rebuild(self, physics: Physics | None = None) -> None:
         """Move every tree into a fresh PyBullet world (with other ``physics``, when
@@ -395,108 +356,12 @@ class PhysicsWorld:
         they are."""
         trees = list(self._trees.values())
         self.physics = physics or self.physics
-        self.forces, self._points = {}, []
-        self._trees, self._where, self._padding = {}, {}, {}  # every part crowded again
+        self._trees = {}  # every part crowded again
         self._connect()
         for built in trees:
             self.add_tree(built.tree, built.base_pose, dict(zip(built.joints, built.angles)))
         self.removals = 0
         self.rebuilds += 1
-
-    # --- measures ------------------------------------------------------------------------
-
-    def pose(self, key: str) -> Pose:
-        """The world pose PyBullet holds for the part ``key``."""
-        body, link = self._where[key]
-        if link < 0:
-            position, orientation = pybullet.getBasePositionAndOrientation(
-                body, physicsClientId=self._client)
-        else:
-            position, orientation = pybullet.getLinkState(  # (as _link_states)
-                body, link, physicsClientId=self._client)[:2]
-        return tuple(position), tuple(orientation)
-
-    def aabb(self, key: str) -> tuple[Vec3, Vec3]:
-        """The world box around the part ``key`` (its shape's margin included)."""
-        body, link = self._where[key]
-        low, high = pybullet.getAABB(body, link, physicsClientId=self._client)
-        return tuple(low), tuple(high)
-
-    def aabbs(self, keys: list[str]) -> list[tuple[Vec3, Vec3]]:
-        """The world boxes of the parts of ``keys`` (as :meth:`aabb`), in order."""
-        get, where, client = pybullet.getAABB, self._where, self._client
-        return [get(*where[key], physicsClientId=client) for key in keys]
-
-    @property
-    def detects_afresh(self) -> bool:
-        """True when each :meth:`detect` runs Bullet's narrowphase once (kinematic mode), so
-        that a pair it did not report at the detect before has only points measured now;
-        in dynamic mode the steps between two detects ran it several times."""
-        return self.dynamics is None
-
-    def detect(self) -> dict[tuple[str, str], float]:
-        """Bullet's own collision detection over the parts it pairs (all but those in a
-        crowd) and the ground: for each pair with contact points, by how much its nearest
-        point misses touching (≤ 0: touching, by the measure of :meth:`touching`)."""
-        client = self._client
-        if self.dynamics is None:  # (dynamic mode: its last step detected them)
-            pybullet.performCollisionDetection(physicsClientId=client)
-        found: dict[tuple[str, str], float] = {}
-        nearest, inf, named, name = found.get, math.inf, self._named.get, self._name
-        points = pybullet.getContactPoints(physicsClientId=client)
-        if self.dynamics is not None:
-            self.forces = forces_by_part(points, self._keys_of, self.dynamics.units.force)
-            self._points = points
-        if len(self._named) > NAMED_POINTS:
-            self._named.clear()
-        for point in points:
-            where = point[1:5]  # (body a, body b, link a, link b)
-            pair, reach = named(where) or name(where)
-            excess = point[8] - reach
-            if excess < nearest(pair, inf):
-                found[pair] = excess
-        return found
-
-    def _name(self, where: tuple[int, int, int, int]) -> tuple[tuple[str, str], float]:
-        """The parts of a contact point's bodies and links, as a pair, and its reach: kept
-        for the point's next ticks (a tick's 160 points looked up, not worked out)."""
-        keys_of = self._keys_of
-        a, b = keys_of[where[0]][where[2]], keys_of[where[1]][where[3]]
-        pair = (a, b) if a < b else (b, a)  # type: ignore[operator]
-        self._named[where] = named = pair, self._reach(a, b)  # type: ignore[arg-type,assignment]
-        return named  # type: ignore[return-value]
-
-    def _reach(self, a: str, b: str) -> float:
-        """How far apart the points of two parts may be and still touch: the tolerance,
-        less what pads each shape (the same either way round)."""
-        return TOUCH_TOLERANCE - (self._padding[a] + self._padding[b])
-
-    def contacts(self, keys: Collection[str]) -> dict[str, tuple[ContactForce, ...]]:
-        """Dynamic mode: what presses on each part of ``keys`` at the last step, body by
-        body (parts nothing presses on are left out; kinematic mode: none)."""
-        if self.dynamics is None or not self._points:
-            return {}
-        return contacts_by_part(self._points, self._keys_of, keys, self.dynamics.units.force)
-
-    def touching(self, key_a: str, key_b: str) -> bool:
-        """True when the exact shapes of two parts (or a part and the ground) touch.
-
-        Convex shapes are padded by ``CONVEX_MARGIN``, which the distance is measured against.
-        """
-        return self.touching_many(key_a, [key_b])[0]
-
-    def touching_many(self, key: str, others: list[str]) -> list[bool]:
-        """For each of ``others``: does it touch ``key`` (as :meth:`touching`)?"""
-        closest, client = pybullet.getClosestPoints, self._client
-        where, tolerance = self._where, TOUCH_TOLERANCE
-        a, link_a = where[key]
-        out = []
-        for other in others:
-            b, link_b = where[other]
-            reach = self._reach(key, other)
-            out.append(any(point[8] <= reach for point in closest(
-                a, b, tolerance, link_a, link_b, physicsClientId=client)))
-        return out
 
 
 def _shifted(pose: Pose, centre: Vec3, sign: int = 1) -> Pose:

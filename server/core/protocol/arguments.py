@@ -19,7 +19,7 @@ from ..model.motor import Motor
 from ..model.node import Node, Slot
 from ..model.parts import Part
 from ..model.robot import Robot
-from ..physics.engine import GROUND
+from ..physics.bullet_parts import GROUND
 from ..physics.settings import MODES
 from ..scene.clock import MAX_STEP_TICKS
 from .api import REQUIRED, Param

@@ -53,7 +53,7 @@ def resimulate(stream: IO[bytes], scene: Scene, tolerance: float = 0.0) -> dict[
         if channel.topic == "/vp/document":
             before = _start(scene, data)
             anew.pairs = {tuple(pair) for pair in scene.bodies.contacts.wire()}
-            pressed = {k: round(v, 3) for k, v in scene.bodies.physics.forces.items()}  # (the
+            pressed = {k: round(v, 3) for k, v in scene.bodies.physics.parts.forces.items()}  # (the
             pressing = dict(pressed)  # recording keeps no forces at its start: taken as these)
         elif channel.topic == "/vp/snapshot" and recorded.pairs is None:  # the first: the start
             recorded.pairs = {tuple(pair) for pair in data["contacts"]}

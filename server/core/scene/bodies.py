@@ -31,6 +31,9 @@ from ..physics.raycast import RayTargets
 from ..physics.settings import Physics
 from .build_stages import BuildStages
 from .carriers import Carriers
+from .mounts import hold_mounts, mount_of, move_base
+from .part_forces import PartForces
+from .stepping import Stepping
 
 if TYPE_CHECKING:
     from ..kit.math3d import Pose
@@ -40,12 +43,7 @@ log = logging.getLogger(__name__)
 # How a sync builds the trees not built before: as this tick's build stage admits them
 # (dynamic mode), all of them, or none (left for a later sync)
 STAGED, ALL, LATER = "staged", "all", "later"
-HAIR = 1e-9  # dynamic mode: a joint or body that moved less than this (m, rad) has not moved
 _ANGLE = attrgetter("angle")
-
-
-def _apart(a: Pose, b: Pose) -> bool:
-    return any(abs(x - y) > HAIR for x, y in zip((*a[0], *a[1]), (*b[0], *b[1])))
 
 
 class SceneBodies:
@@ -61,7 +59,7 @@ class SceneBodies:
         self._name = name
         self.physics = PhysicsWorld()
         self._rays = RayTargets(assets)
-        self.tracker = ContactTracker(self.physics, limits.contact_tests, limits.contact_pairs)
+        self.tracker = ContactTracker(self.physics.parts, limits.contact_tests, limits.contact_pairs)
         self.contacts = ContactBook()  # as announced by the last tick
         self._restructured: set[str] = set()  # roots (then) whose trees are built again
         self._unchecked: set[str] = set()  # of those, the roots not yet checked (check_trees)
@@ -69,20 +67,13 @@ class SceneBodies:
         self._turned: set[str] = set()        # motors whose angles changed
         self._motor_root: dict[str, str] = {}  # motor id -> root of the tree it is a joint of
         self._joint_motors: dict[str, list[Node]] = {}  # root -> its joints' motors, in order
-        self._followers: dict[str, list[Node]] = {}  # root -> its motors that follow another
         self._ray_geometry: dict[str, dict[str, Any]] = {}
         self._parts = Carriers()  # the parts with bodies; what they carry
         self._unposed: set[str] = set()  # roots moved since their parts' poses were read
         self.failures = 0  # trees that could not be built or placed (a bug; logged)
-        self._targets_due = False  # dynamic mode: motors' targets to be driven toward
-        self._forces_sent: dict[str, float] = {}  # by the last frame (forces_changed)
         self._stirred = True  # anything built, put or moved since contacts were read
-        # dynamic mode: anything built, put or driven since steps were last taken (its own
-        # flag: a tick that took no step, its time too short or a paused scene's stand,
-        # read the contacts and so cleared the one above, and a still world then counted
-        # every later step as rest: a ball put up high in it hung there)
-        self._changed = True
-        self._still = False  # dynamic mode: the last steps moved nothing
+        self.stepping = Stepping(self.physics, nodes, self._joint_motors)  # dynamic mode
+        self.forces = PartForces(self.physics.parts)  # dynamic mode: what presses on parts
         self.stages = BuildStages()  # how many new trees a tick builds
 
     @property
@@ -128,21 +119,7 @@ class SceneBodies:
 
     def retargeted(self) -> None:
         """Dynamic mode: motors got new targets (or torques), driven from the next step."""
-        self._targets_due = True
-
-    def _follow(self) -> None:
-        """Dynamic mode: each follower aims at its share of where its leader really is (a
-        finger whose first joint an object stops stops curling, as a linkage does; Bullet's
-        own gear constraint was tried and measured wrong on a robot's floating base)."""
-        for followers in self._followers.values():
-            for follower in followers:
-                leader = follower.leader()  # type: ignore[attr-defined]
-                if leader is None:
-                    continue
-                aim = follower.share_of(leader.angle)  # type: ignore[attr-defined]
-                if aim is not None and aim != follower.target:  # type: ignore[attr-defined]
-                    follower.target = aim  # type: ignore[attr-defined]
-                    self._targets_due = True
+        self.stepping.targets_due = True
 
     def turned(self, motor_ids: Iterable[str]) -> None:
         """Motors turned: their joints are set at the next sync."""
@@ -155,7 +132,7 @@ class SceneBodies:
         ``new_trees``: how trees not built before are built (:data:`STAGED`)."""
         if not (self._restructured or self._based or self._turned):
             return
-        self._stirred = self._changed = True
+        self._stirred = self.stepping.changed = True
         rebuilt = self._rebuild(new_trees)
         moved = self._turn(rebuilt) | self._place_bases(rebuilt)
         for root_id in moved:
@@ -182,91 +159,26 @@ class SceneBodies:
         self._unposed.update(self.physics.roots())
         self.sync(new_trees=STAGED if staged else ALL)  # as the old world would have built them
         self.hold_mounts()  # (those moved from the old world, too: held from their first step)
-        self._targets_due = physics.dynamic
-        self._stirred = self._changed = True
+        self.stepping.targets_due = physics.dynamic
+        self._stirred = self.stepping.changed = True
 
     def advance(self, dt: float, exact: bool = False) -> tuple[float, dict[str, float], dict[str, Pose]]:
-        """Dynamic mode: drive the motors, step the world through ``dt``; the seconds the
-        world went through (less than ``dt`` when it is behind), the motors' new angles and
-        the free roots' new poses (what moved more than a hair). ``exact``: every step,
-        whatever it costs (a script steps the scene: Dynamics.advance)."""
+        """Dynamic mode: drive the motors, step the world through ``dt`` (:mod:`.stepping`);
+        the seconds the world went through, the motors' new angles and the free roots' new
+        poses. ``exact``: every step, whatever it costs (a script steps the scene)."""
         self.sync()
-        physics = self.physics
-        if self._followers:
-            self._follow()
-        if self._targets_due:
-            for root_id, motors in self._joint_motors.items():
-                physics.drive(root_id, [m.target for m in motors],  # type: ignore[attr-defined]
-                              [m.get_max_torque() for m in motors],  # type: ignore[attr-defined]
-                              [m.get_max_speed() for m in motors])  # type: ignore[attr-defined]
-            self._targets_due = False
-            self._stirred = self._changed = True
-        dynamics = physics.dynamics
-        at_rest = self._still and not self._changed
-        steps = dynamics.advance(dt, still=at_rest, exact=exact)  # type: ignore[union-attr]
-        if not steps or at_rest:
-            return steps * dynamics.physics.step, {}, {}  # type: ignore[union-attr]
-        self._changed = False
-        angles: dict[str, float] = {}
-        poses: dict[str, Pose] = {}
-        for root_id, pose, joints in physics.motions():
-            moved = False
-            for motor, angle in zip(self._joint_motors.get(root_id, ()), joints):
-                if abs(motor.angle - angle) > HAIR:  # type: ignore[attr-defined]
-                    angles[motor.id] = angle
-                    moved = True
-            if pose is not None and _apart(self._nodes[root_id].local_pose(), pose):
-                poses[root_id] = pose
-                moved = True
-            if moved:
-                self.tracker.moved(physics.tree(root_id).parts())  # type: ignore[union-attr]
-                self._unposed.add(root_id)
-        self._still = not (angles or poses or dynamics.woke)  # type: ignore[union-attr]
-        self._stirred = self._stirred or not self._still
-        return steps * dynamics.physics.step, angles, poses  # type: ignore[union-attr]
-
-    def forces_changed(self) -> dict[str, float]:
-        """Newtons on each part whose force changed since the last call (0: it ended),
-        rounded to 1 mN, as frames carry them (none in kinematic mode)."""
-        now = {key: round(force, 3) for key, force in self.physics.forces.items()}
-        changed = {key: force for key, force in now.items() if self._forces_sent.get(key) != force}
-        changed.update((key, 0.0) for key in self._forces_sent if key not in now)
-        self._forces_sent = {key: force for key, force in now.items() if force}
-        return changed
-
-    def forces_told(self) -> dict[str, float]:
-        """Newtons on each pressed part as the frames sent so far have told them: what a
-        snapshot gives a newcomer, so that a force that stopped changing is still known."""
-        return dict(self._forces_sent)
-
-    def peak_force(self) -> float:
-        """The most newtons pressing on any one part at the last tick (0 in kinematic mode)."""
-        return max(self.physics.forces.values(), default=0.0)
-
-    def force_on(self, part: Node | None) -> float:
-        """Newtons pressing on ``part`` at the last tick (0 in kinematic mode)."""
-        return 0.0 if part is None else self.physics.forces.get(part.id, 0.0)
+        steps = self.stepping.advance(dt, exact)
+        for root_id in steps.moved:
+            self.tracker.moved(self.physics.tree(root_id).parts())  # type: ignore[union-attr]
+            self._unposed.add(root_id)
+        self._stirred = self._stirred or steps.stirred
+        return steps.seconds, steps.angles, steps.poses
 
     def motor_motion(self, motors: Sequence[Node]) -> list[tuple[float, float]]:
-        """Each motor's speed (rad/s; a slider's, scene units/s) and the torque (a slider's
-        force) it drove with in the last step, N·m (N), positive turning its angle up; 0, 0
-        in kinematic mode, where motors jump to their angles, and for a motor not yet
-        built into its tree."""
+        """Each motor's speed and the torque it drove with in the last step
+        (:meth:`.Stepping.motor_motion`)."""
         self.sync()
-        out = []
-        read: dict[str, tuple[list[float], list[float]]] = {}
-        for motor in motors:
-            root_id = motor.root().id
-            built = self._joint_motors.get(root_id, [])
-            if self.physics.dynamics is None or motor not in built:
-                out.append((0.0, 0.0))
-                continue
-            if root_id not in read:  # one read of Bullet per tree
-                read[root_id] = self.physics.joint_motion(root_id)
-            speeds, efforts = read[root_id]
-            index = built.index(motor)
-            out.append((speeds[index], efforts[index]))
-        return out
+        return self.stepping.motor_motion(motors)
 
     def _read_poses(self) -> None:
         """Read the parts' poses of the trees moved since they were last read (Bullet's
@@ -341,7 +253,7 @@ class SceneBodies:
         for _, joint in tree.joints():
             self._motor_root.pop(joint.motor, None)
         self._joint_motors.pop(root_id, None)
-        self._followers.pop(root_id, None)
+        self.stepping.forgot(root_id)
 
     def _build(self, root_id: str) -> list[str]:
         """Build the tree of a root (nothing for a node gone, attached or without parts)."""
@@ -353,20 +265,14 @@ class SceneBodies:
             if not tree.parts():
                 return []
             angles = {joint.motor: self._nodes[joint.motor].angle for _, joint in tree.joints()}
-            self.physics.add_tree(tree, base_pose(node), angles, self._mount_of(node))
+            self.physics.add_tree(tree, base_pose(node), angles, mount_of(self.physics, node))
         except Exception:  # a bug: this tree is left out, the scene goes on
             self.failures += 1
             log.exception("the parts of %s in scene %s could not be placed", root_id, self._name)
             return []
         self._motor_root.update(dict.fromkeys(angles, root_id))
         self._joint_motors[root_id] = [self._nodes[motor] for motor in angles]
-        followers = [m for m in self._joint_motors[root_id] if m.following is not None]  # type: ignore[attr-defined]
-        if followers:
-            self._followers[root_id] = followers
-        else:
-            self._followers.pop(root_id, None)
-        if self.physics.dynamics is not None:
-            self._targets_due = True
+        self.stepping.built(root_id, self._joint_motors[root_id])
         keys, poses = self.physics.part_poses(root_id)
         geometries = {tree.base_part: tree.base_geometry,
                       **{link.part: link.geometry for link in tree.links}}
@@ -429,48 +335,15 @@ class SceneBodies:
             node = self._nodes.get(root_id)
             if root_id in rebuilt or node is None or not self.physics.tree(root_id):
                 continue
-            if self._guarded(root_id, lambda: self._move_base(root_id, node, fields)):
+            if self._guarded(root_id, lambda: move_base(self.physics, root_id, node, fields)):
                 placed.add(root_id)
         self._based.clear()
         return placed
 
-    def _move_base(self, root_id: str, node: Node, fields: set[str]) -> None:
-        """Put a root's base where its node is. A dynamic robot's node carries where the
-        physics put it (a loaded hand turns a little at its mount): what the script did not
-        set keeps its mount's value, or a held weight would tip the hand further at every
-        setPosition."""
-        pose = base_pose(node)
-        if self.physics.dynamics is None or not node.lists_motors:
-            self.physics.move_base(root_id, pose)
-            return
-        mount = self._mount_of(node) or pose
-        pose = (pose[0] if "position" in fields else mount[0],
-                pose[1] if "quaternion" in fields else mount[1])
-        self.physics.move_base(root_id, pose)
-        node.mount = pose  # type: ignore[attr-defined]
-
-    def _mount_of(self, node: Node) -> Pose | None:
-        """Dynamic mode: where a robot's mount holds it; the first time it is built in a
-        dynamic world, where its node is (so a script that puts it where it is, tick after
-        tick, holds it as one that does not: its node turned with the physics, and the
-        first put turned the mount to that). None: not a robot, or kinematic mode."""
-        if self.physics.dynamics is None or not node.lists_motors:
-            return None
-        if node.mount is None:  # type: ignore[attr-defined]
-            node.mount = base_pose(node)  # type: ignore[attr-defined]
-        return node.mount  # type: ignore[attr-defined,no-any-return]
-
     def hold_mounts(self) -> None:
-        """Dynamic mode: every built robot's mount put at once where its node's mount is:
-        where a document restored it (after its tree was built where its node is), or
-        where the robot is, for one moved into a new world (a mount first set at the next
-        setPosition took the turn the physics had given the node by then, and a script's
-        hand went one way or another as that came a tick sooner or later)."""
-        for root_id in self.physics.roots():
-            node = self._nodes.get(root_id)
-            mount = None if node is None else self._mount_of(node)
-            if mount is not None:
-                self.physics.place_mount(root_id, mount)
+        """Dynamic mode: every built robot's mount put where its node's mount is
+        (:func:`.mounts.hold_mounts`)."""
+        hold_mounts(self.physics, self._nodes)
 
     # --- contacts and sensors --------------------------------------------------------------
 
@@ -509,7 +382,7 @@ class SceneBodies:
             contacts = [self.touching(None if host is None else self._nodes.get(host)) for host in ids]
         else:
             contacts = self.tracker.overlaps().partners_of(ids)
-        pressing = self.physics.contacts({host for host in ids if host is not None})
+        pressing = self.physics.parts.contacts({host for host in ids if host is not None})
         return read_sensors(self._rays, sensors, contacts,
                             [pressing.get(host, ()) for host in ids] if pressing else None,
                             *self.world_frames(sensors))

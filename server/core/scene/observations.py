@@ -18,7 +18,7 @@ def observe(bodies: SceneBodies, watches: Watches, nodes: Mapping[str, Node]) ->
     began, ended = bodies.contacts.update(bodies.overlaps())
     if began or ended:
         out["contacts"] = {"begin": [list(p) for p in began], "end": [list(p) for p in ended]}
-    forces = bodies.forces_changed()
+    forces = bodies.forces.changed()
     if forces:
         out["forces"] = forces
     readings = watched_wire(bodies, watches, nodes)

@@ -348,7 +348,7 @@ class Scene:
                             contacts=self.bodies.contacts.wire())
         if self.caption.text:
             snapshot["caption"] = self.caption.text
-        forces = self.bodies.forces_told()
+        forces = self.bodies.forces.told()
         if forces:
             snapshot["forces"] = forces
         readings = watched_wire(self.bodies, self.watches, self.nodes)

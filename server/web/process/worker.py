@@ -405,7 +405,7 @@ class SceneWorker:
             self._flush()
         self.saver.tick(time.monotonic())
         self.metrics.ticked(time.monotonic(), (time.perf_counter() - started) * 1000,
-                            time.process_time(), self.scene.bodies.peak_force())
+                            time.process_time(), self.scene.bodies.forces.peak())
 
     def _stand(self) -> None:
         """A due tick of a paused scene: its clock stands, but what requests changed still

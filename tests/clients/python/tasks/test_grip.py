@@ -27,7 +27,7 @@ def test_a_10_hand_lies_palm_down_where_the_server_puts_its_parts(scene):
     hand.flex_fingers(0)
     hand.spread_finger(0, -1)  # its preshape: the thumb turned back, -(-1)
     world.tick(1 / 60)
-    boxes = {part.id: world.bodies.physics.aabb(part.id) for part in hand.get_parts() if part.physical}
+    boxes = {part.id: world.bodies.physics.parts.aabb(part.id) for part in hand.get_parts() if part.physical}
     palm = boxes[hand.get_parts()[0].id]
     lowest = min(box[0][1] for box in boxes.values())
     ahead = min(box[0][2] for box in boxes.values())

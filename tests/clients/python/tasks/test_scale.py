@@ -26,7 +26,7 @@ def test_at_the_default_unit_a_10_hand_is_a_human_hands_size():
     hand.flex_fingers(0)  # straight and together
     hand.spread_fingers(0)
     scene.tick(1 / 60)
-    boxes = [scene.bodies.physics.aabb(part.id) for part in hand.get_parts() if part.physical]
+    boxes = [scene.bodies.physics.parts.aabb(part.id) for part in hand.get_parts() if part.physical]
     along = max(box[1][2] for box in boxes) - min(box[0][2] for box in boxes)
     assert along * scene.physics.unit == pytest.approx(HUMAN_HAND, abs=0.005)  # metres
     scene.close()

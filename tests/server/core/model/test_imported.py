@@ -144,7 +144,7 @@ def test_beside_a_1_0_hand_an_imported_hand_keeps_its_metres(lab, hand_file):
     lab.tick(1 / 60)
 
     def extent(parts):  # metres along y, the fingers' way for both hands
-        boxes = [lab.bodies.physics.aabb(p.id) for p in parts if p.physical]
+        boxes = [lab.bodies.physics.parts.aabb(p.id) for p in parts if p.physical]
         return (max(b[1][1] for b in boxes) - min(b[0][1] for b in boxes)) * lab.physics.unit
     palm = next(p for p in robot.get_parts() if isinstance(p, RobotLink) and p.name == "palm")
     assert extent([palm]) == pytest.approx(hand_files.PALM[1], abs=0.002)  # 10 cm, as its file says

@@ -7,17 +7,9 @@ import pytest
 
 from server.core.kit import math3d
 from server.core.physics.articulation import Articulation, Joint, Link
-from server.core.physics.engine import PhysicsWorld
 
 BOX = {"kind": "box", "size": [0.2, 0.4, 0.6]}
 IDENTITY_POSE = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))
-
-
-@pytest.fixture
-def world():
-    w = PhysicsWorld()
-    yield w
-    w.close()
 
 
 def turned(axis, angle):
@@ -41,7 +33,7 @@ def test_origins_are_in_the_parent_links_frame_and_parts_at_their_shape_frame(wo
     for (position, orientation), (want_p, want_q) in zip(poses, expected):
         assert position == pytest.approx(want_p, abs=1e-12)
         assert abs(sum(x * y for x, y in zip(orientation, want_q))) == pytest.approx(1, abs=1e-12)
-    low, high = world.aabb("b")  # the shape sits at the part's frame too
+    low, high = world.parts.aabb("b")  # the shape sits at the part's frame too
     centre = [(lo + hi) / 2 for lo, hi in zip(low, high)]
     assert centre == pytest.approx(list(expected[1][0]), abs=1e-9)
 
@@ -89,7 +81,7 @@ def test_parts_are_read_where_the_last_change_put_them(world):
         assert keys == ("p", "a")
         assert rows[1, :3].tolist() == pytest.approx(list(want_p), abs=1e-12)
         assert abs(rows[1, 3:] @ want_q) == pytest.approx(1, abs=1e-12)
-        assert world.pose("a")[0] == pytest.approx(want_p, abs=1e-12)
+        assert world.parts.pose("a")[0] == pytest.approx(want_p, abs=1e-12)
 
     read_where_expected()
     base = ((-2.0, 0.5, 1.0), math3d.euler_to_quat(-0.4, 0.0, 1.2))
@@ -107,6 +99,6 @@ def test_parts_of_one_tree_are_measured_against_each_other(world):
         Link(-1, ((0.1, 0, 0), (0, 0, 0, 1)), None, "near", ((0, 0, 0), (0, 0, 0, 1)), BOX),
         Link(-1, ((5.0, 0, 0), (0, 0, 0, 1)), None, "far", ((0, 0, 0), (0, 0, 0, 1)), BOX)))
     world.add_tree(tree, ((0, 5, 0), (0, 0, 0, 1)), {})
-    assert world.touching_many("base", ["near", "far"]) == [True, False]
+    assert world.parts.touching_many("base", ["near", "far"]) == [True, False]
     world.remove_tree("r")
     assert len(world) == 0 and "near" not in world

@@ -15,7 +15,7 @@ def deepest_overlap(scene, ids):
     engine = scene.bodies.physics
     deepest = 0.0
     for a, b in itertools.combinations(ids, 2):
-        (pa, _), (pb, _) = engine.pose(a), engine.pose(b)
+        (pa, _), (pb, _) = engine.parts.pose(a), engine.parts.pose(b)
         radius_sum = scene.nodes[a].radius + scene.nodes[b].radius
         deepest = max(deepest, radius_sum - math.dist(pa, pb))
     return deepest
@@ -35,7 +35,7 @@ def test_a_pile_made_in_one_spot_becomes_a_heap_side_by_side_and_keeps_ticking(s
         assert ticks < 60
     ids = [f"b{i}" for i in range(300)]
     assert deepest_overlap(scene, ids) < 0.2 * 0.25
-    heights = [scene.bodies.physics.pose(i)[0][1] for i in ids]
+    heights = [scene.bodies.physics.parts.pose(i)[0][1] for i in ids]
     assert min(heights) > 0.0 and max(heights) < 2 + 11 * 0.41  # the nearest spots, not far away
     for _ in range(30):
         scene.tick(1 / 60)
@@ -51,8 +51,8 @@ def test_a_body_put_where_nothing_is_or_only_touching_stays_where_it_was_put(sce
     Ball(scene, "shallow", 0.5).set_position((5, 3.95, 5))  # 5 cm into "alone": the solver's
     scene.tick(1 / 60)
     engine = scene.bodies.physics
-    assert engine.pose("alone")[0][0] == pytest.approx(5) and engine.pose("alone")[0][2] == pytest.approx(5)
-    assert engine.pose("shallow")[0][0] == pytest.approx(5) and engine.pose("shallow")[0][2] == pytest.approx(5)
+    assert engine.parts.pose("alone")[0][0] == pytest.approx(5) and engine.parts.pose("alone")[0][2] == pytest.approx(5)
+    assert engine.parts.pose("shallow")[0][0] == pytest.approx(5) and engine.parts.pose("shallow")[0][2] == pytest.approx(5)
     assert engine.cleared == 0
 
 
@@ -71,8 +71,8 @@ def test_a_ball_a_script_puts_inside_another_is_moved_out_but_not_out_of_a_hand(
     second.set_position((0, 3, 0))  # into "first"
     scene.tick(1 / 60)
     assert deepest_overlap(scene, ["first", "second"]) < 0.5 * 0.25
-    finger_at = scene.bodies.physics.pose("f")[0]
+    finger_at = scene.bodies.physics.parts.pose("f")[0]
     third = Ball(scene, "third", 0.3)
     third.set_position(finger_at)  # a hand closes on what it is given: left to the solver
     scene.tick(1 / 60)
-    assert math.dist(scene.bodies.physics.pose("third")[0], finger_at) < 0.3
+    assert math.dist(scene.bodies.physics.parts.pose("third")[0], finger_at) < 0.3

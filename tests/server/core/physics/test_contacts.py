@@ -5,7 +5,8 @@ import random
 import pytest
 
 from server.core.physics.contacts import CROWD, ContactBook, ContactTracker, Overlaps, pair
-from server.core.physics.engine import GROUND, PhysicsWorld
+from server.core.physics.bullet_parts import GROUND, BulletParts
+from server.core.physics.engine import PhysicsWorld
 
 
 def test_update_reports_each_change_once():
@@ -38,13 +39,6 @@ IDENTITY = (0.0, 0.0, 0.0, 1.0)
 CUBE = {"kind": "box", "size": [1, 1, 1]}
 
 
-@pytest.fixture
-def world():
-    w = PhysicsWorld()
-    yield w
-    w.close()
-
-
 def place(world, tracker, key, position, geometry=CUBE):
     if key in world:
         world.move(key, (position, IDENTITY))
@@ -54,7 +48,7 @@ def place(world, tracker, key, position, geometry=CUBE):
 
 
 def test_tracker_measures_moved_bodies_and_the_ground(world):
-    tracker = ContactTracker(world, tests_per_update=100, max_pairs=100)
+    tracker = ContactTracker(world.parts, tests_per_update=100, max_pairs=100)
     place(world, tracker, "a", (0, 0.4, 0))
     place(world, tracker, "b", (0.9, 0.4, 0))
     place(world, tracker, "c", (5, 3, 0))
@@ -70,7 +64,7 @@ def test_tracker_measures_moved_bodies_and_the_ground(world):
 
 def test_crowds_are_measured_a_budget_at_a_time(world):
     """160 boxes in one spot crashed PyBullet's contact query; now it is 12 720 pair tests."""
-    tracker = ContactTracker(world, tests_per_update=2000, max_pairs=100_000)
+    tracker = ContactTracker(world.parts, tests_per_update=2000, max_pairs=100_000)
     for k in range(160):
         place(world, tracker, f"b{k:03}", (0, 5, 0))
     updates = 0
@@ -83,7 +77,7 @@ def test_crowds_are_measured_a_budget_at_a_time(world):
 
 
 def test_settle_measures_one_body_at_once(world):
-    tracker = ContactTracker(world, tests_per_update=1, max_pairs=100)
+    tracker = ContactTracker(world.parts, tests_per_update=1, max_pairs=100)
     for k in range(5):
         place(world, tracker, f"b{k}", (0, 5, 0))
     tracker.settle("b3")
@@ -91,7 +85,7 @@ def test_settle_measures_one_body_at_once(world):
 
 
 def test_settling_a_part_no_crowd_holds_leaves_nothing_for_another_update(world):
-    tracker = ContactTracker(world, tests_per_update=100, max_pairs=100)
+    tracker = ContactTracker(world.parts, tests_per_update=100, max_pairs=100)
     place(world, tracker, "a", (0, 0.4, 0))
     place(world, tracker, "b", (0.9, 0.4, 0))
     while tracker.unsettled:
@@ -101,7 +95,7 @@ def test_settling_a_part_no_crowd_holds_leaves_nothing_for_another_update(world)
 
 
 def test_pairs_beyond_the_cap_are_counted_not_kept(world):
-    tracker = ContactTracker(world, tests_per_update=1000, max_pairs=10)
+    tracker = ContactTracker(world.parts, tests_per_update=1000, max_pairs=10)
     for k in range(6):
         place(world, tracker, f"b{k}", (0, 5, 0))
     tracker.update()
@@ -113,7 +107,7 @@ def test_every_touching_pair_is_found_whatever_the_boxes_sizes(world, seed):
     """The tracker only measures pairs whose boxes overlap (sweep and prune): it must
     still find exactly the pairs that a test of every pair finds, a long slab included."""
     rng = random.Random(seed)
-    tracker = ContactTracker(world, tests_per_update=100_000, max_pairs=100_000)
+    tracker = ContactTracker(world.parts, tests_per_update=100_000, max_pairs=100_000)
     keys = [f"b{i}" for i in range(60)]
     for key in keys:
         size = [rng.uniform(0.1, 2) for _ in range(3)]
@@ -123,25 +117,25 @@ def test_every_touching_pair_is_found_whatever_the_boxes_sizes(world, seed):
     tracker.update()
     everything = [*keys, "slab", GROUND]
     expected = {pair(a, b) for i, a in enumerate(everything) for b in everything[i + 1:]
-                if a != GROUND and world.touching(a, b)}
+                if a != GROUND and world.parts.touching(a, b)}
     assert tracker.overlaps().pairs == expected and len(expected) > 30
 
 
 def test_a_pile_stays_out_of_bullets_pairing_and_a_part_that_leaves_it_goes_back(world):
-    tracker = ContactTracker(world, tests_per_update=2000, max_pairs=100_000)
+    tracker = ContactTracker(world.parts, tests_per_update=2000, max_pairs=100_000)
     for k in range(40):
         place(world, tracker, f"b{k:02}", (0, 5, 0))
     while tracker.deferred:
         tracker.update()
     assert len(tracker.overlaps().pairs) == 40 * 39 // 2
-    assert not world.detect()  # Bullet pairs none of them: no pair cache of 780
+    assert not world.parts.detect()  # Bullet pairs none of them: no pair cache of 780
     place(world, tracker, "b00", (10, 5, 0))  # alone now
     tracker.update()
-    assert tracker.overlaps().of("b00") == [] and not world.detect()
+    assert tracker.overlaps().of("b00") == [] and not world.parts.detect()
     place(world, tracker, "lone", (10.5, 5, 0))  # made next to it: both measured by Bullet
     tracker.update()
     tracker.update()
-    assert set(world.detect()) == {("b00", "lone")}
+    assert set(world.parts.detect()) == {("b00", "lone")}
     assert tracker.overlaps().of("b00") == ["lone"]
 
 
@@ -151,17 +145,19 @@ SHAPES = [{"kind": "box", "size": [0.5, 0.3, 0.4]}, {"kind": "sphere", "radius":
                                         [0.3, 0.3, 0.3]]}]
 
 
-class DoubtingWorld(PhysicsWorld):
-    """A world whose every pair that begins is measured again, points new or old."""
+class DoubtingParts(BulletParts):
+    """A world's parts whose every pair that begins is measured again, points new or old."""
 
     detects_afresh = False
 
 
-def wander(world, rounds=150):
+def wander(world, rounds=150, doubting=False):
     """Parts of every kind wandering a few millimetres a step among each other; after each
     update, the tracker's pairs, those a test of every pair finds, and the tests it made."""
     rng = random.Random(5)
-    tracker = ContactTracker(world, tests_per_update=100_000, max_pairs=100_000)
+    if doubting:
+        world.parts.__class__ = DoubtingParts  # (the same parts, measured with doubt)
+    tracker = ContactTracker(world.parts, tests_per_update=100_000, max_pairs=100_000)
     keys = [f"p{i:02}" for i in range(24)]
     where = {key: [rng.uniform(0, 1.2), rng.uniform(0.1, 1.2), rng.uniform(0, 1.2)] for key in keys}
     for k, key in enumerate(keys):
@@ -174,7 +170,7 @@ def wander(world, rounds=150):
         everything = [*keys, GROUND]
         yield tracker.overlaps().pairs, {pair(a, b) for i, a in enumerate(everything)
                                          for b in everything[i + 1:]
-                                         if a != GROUND and world.touching(a, b)}, tracker.tests
+                                         if a != GROUND and world.parts.touching(a, b)}, tracker.tests
 
 
 def test_a_pair_bullet_finds_anew_is_taken_as_found_and_one_it_had_is_measured_again(world):
@@ -183,11 +179,11 @@ def test_a_pair_bullet_finds_anew_is_taken_as_found_and_one_it_had_is_measured_a
     unless Bullet did not have it at the update before (its points are then all this pass's,
     the exact measure's own). The same wander, trusting new points or not: the same pairs
     after every update, exactly those a test of every pair finds, in fewer measures."""
-    doubting = DoubtingWorld()
+    doubting = PhysicsWorld()
     try:
         trusted = doubted = 0  # tests after the first update (where every part is new)
         for n, ((pairs, exact, tests), (doubted_pairs, _, doubted_tests)) in enumerate(
-                zip(wander(world), wander(doubting))):
+                zip(wander(world), wander(doubting, doubting=True))):
             assert pairs == exact == doubted_pairs
             if n:
                 trusted, doubted = trusted + tests, doubted + doubted_tests
@@ -203,7 +199,7 @@ def test_parts_brought_to_a_crowd_one_by_one_touch_it_and_leave_it(world):
     with more than CROWD others joins the crowd, however its pairs came: the counts follow
     Bullet's pairs from update to update (only those it found or lost since change them),
     and after every update they are those of its pairs then."""
-    tracker = ContactTracker(world, tests_per_update=100_000, max_pairs=100_000)
+    tracker = ContactTracker(world.parts, tests_per_update=100_000, max_pairs=100_000)
     keys = [f"b{k:02}" for k in range(30)]
     for k, key in enumerate(keys):
         place(world, tracker, key, (3 * k + 5, 5, 0))

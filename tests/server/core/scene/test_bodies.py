@@ -21,7 +21,7 @@ def test_collision_bodies_follow_the_motors(scene):
     robot.set_position((0, 1, 0))
     motor.set_angle(math.pi / 2)
     scene.tick(0.1)
-    position, orientation = scene.bodies.physics.pose("f")
+    position, orientation = scene.bodies.physics.parts.pose("f")
     assert position == pytest.approx((0, 1, 0), abs=1e-6)
     assert orientation == pytest.approx(math3d.axis_angle("z", math.pi / 2), abs=1e-6)
 
@@ -49,12 +49,12 @@ def test_a_hand_moved_as_a_whole_keeps_every_body_on_its_part(scene):
     parts = [p for p in hand.get_parts() if p.physical]
     assert len(parts) == 16 and len(scene.bodies) == 16
     for part in parts:
-        position, orientation = scene.bodies.physics.pose(part.id)
+        position, orientation = scene.bodies.physics.parts.pose(part.id)
         assert position == pytest.approx(part.world_pose()[0], abs=1e-12)
         same_turn = abs(sum(a * b for a, b in zip(orientation, part.world_pose()[1])))
         assert same_turn == pytest.approx(1, abs=1e-9)  # q and -q are one rotation
     for part in parts:  # straight down onto the middle of each part's box: the hand
-        low, high = scene.bodies.physics.aabb(part.id)
+        low, high = scene.bodies.physics.parts.aabb(part.id)
         x, z = (low[0] + high[0]) / 2, (low[2] + high[2]) / 2
         [(key, _)] = scene.bodies.rays.first_hits((x, 9, z), (0, -1, 0), [0], 20)
         assert key in {p.id for p in parts}, part.id
@@ -83,7 +83,7 @@ def test_a_tree_whose_joints_cannot_be_set_is_left_out_and_the_rest_turn(scene, 
     scene.tick(0.1)
     assert scene.bodies.failures == 1 and "f1" not in scene.bodies.physics
     for i in (0, 2):
-        assert scene.bodies.physics.pose(f"f{i}")[1] == pytest.approx(
+        assert scene.bodies.physics.parts.pose(f"f{i}")[1] == pytest.approx(
             math3d.axis_angle("z", math.pi / 2), abs=1e-6)
 
 
@@ -223,61 +223,8 @@ def test_trees_made_before_a_physics_switch_are_built_once_in_the_new_world(scen
     _, moved = _finger_robot(other)
     other.tick(0.1)  # built in the kinematic world
     other.set_physics("dynamic")
-    assert scene.bodies.physics.pose(finger.id) == other.bodies.physics.pose(moved.id)
+    assert scene.bodies.physics.parts.pose(finger.id) == other.bodies.physics.parts.pose(moved.id)
     other.close()
-
-
-def _held_hand(put_again: bool) -> list[tuple]:
-    """A hand in a dynamic world closing its fingers, its wrist put where it is every
-    tick or never; every part's pose after every tick."""
-    scene = Scene("wrist")
-    hand = EdgedHand(scene, "h", True)
-    hand.set_position((0, 3, 0))
-    hand.set_rotation(0.3, 0, 0)
-    scene.set_physics("dynamic")
-    poses = []
-    for k in range(30):
-        hand.flex_fingers(0.04 * k)
-        if put_again:
-            hand.set_position((0, 3, 0))
-        scene.tick(1 / 60)
-        poses.append(tuple((node.id, node.position, node.quaternion) for node in scene.in_order_made()))
-    scene.close()
-    return poses
-
-
-def test_a_wrist_put_where_it_is_every_tick_holds_as_one_never_put_again():
-    # the mount holds a robot where a script put it, from the moment it is built: it took
-    # the node's turn at the first setPosition, which by then was the physics' (the hand
-    # turned a hair under its weight), and the two scripts' hands went apart
-    assert _held_hand(put_again=True) == _held_hand(put_again=False)
-
-
-def _switched_hand(built_first: bool) -> list[float]:
-    """A hand made in a kinematic scene (built there at a tick, or not yet) before its
-    script pauses it and makes it dynamic, then swept along, closing; its angles after."""
-    scene = Scene("switch")
-    hand = EdgedHand(scene, "h", False)
-    hand.set_position((0, 1.2, 0))
-    if built_first:
-        scene.tick(1 / 60)
-    scene.clock.pause("c1")
-    scene.set_physics("dynamic")
-    for tick in range(60):
-        hand.flex_fingers(0.02 * tick)
-        hand.set_position((0.01 * tick, 1.2, 0))
-        scene.tick(1 / 60)
-    angles = [motor.angle for motor in hand.get_motors()]
-    scene.close()
-    return angles
-
-
-def test_a_robot_moved_into_a_dynamic_world_is_held_as_one_built_there():
-    # one built in the kinematic world first was moved into the dynamic one without a
-    # mount of its own: its first setPosition took the turn the physics had given it by
-    # then, and whether a kinematic tick came before the script's setPhysics (a busy
-    # server) decided which way its fingers went
-    assert _switched_hand(built_first=True) == _switched_hand(built_first=False)
 
 
 def test_a_still_world_is_not_measured_again_and_a_move_is(scene):

@@ -56,7 +56,7 @@ def test_set_angles_turns_all_motors_at_once_and_undoes_them_together(scene):
     robot.set_angles(0.5, 0, 0.25)
     frame = frame_of(scene.tick(0.1))
     assert frame["angles"] == {"r": [0.5, 0.0, 0.25]}  # all the robot's, in motor order
-    assert scene.bodies.physics.pose("f")[0] == pytest.approx(finger.world_pose()[0])
+    assert scene.bodies.physics.parts.pose("f")[0] == pytest.approx(finger.world_pose()[0])
 
 
 def test_tick_reports_added_frame_removed_in_order(scene):

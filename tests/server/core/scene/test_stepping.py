@@ -1,5 +1,6 @@
-"""Followers in dynamic mode aim at their share of their leader's real angle: a finger
-whose first joint an object stops stops curling, as a linkage does."""
+"""Dynamic mode's steps: a world at rest stays so until something is driven, and followers
+aim at their share of their leader's real angle (a finger whose first joint an object
+stops stops curling, as a linkage does)."""
 
 import math
 
@@ -51,3 +52,18 @@ def test_a_leader_stopped_by_an_object_stops_its_followers(scene):
     assert b.angle == pytest.approx(0.5 * a.angle + 0.1, abs=2e-3)  # and so its followers
     assert a.target == 1.4  # though it was sent further
     assert math.isfinite(c.angle) and c.angle == pytest.approx(-a.angle, abs=2e-3)
+
+
+def test_a_world_at_rest_takes_no_steps_until_a_motor_is_driven(scene):
+    robot, (a, b, c) = finger(scene)
+    scene.set_physics("dynamic", {"gravity": 0.0})
+    settle(scene)
+    stepping = scene.bodies.stepping
+    assert stepping.still
+    rest = stepping.advance(1 / 60, exact=False)
+    assert (rest.seconds, rest.angles, rest.poses, rest.moved, rest.stirred) == \
+        (pytest.approx(1 / 60), {}, {}, [], False)
+    a.set_angle(0.5)  # a new target: driven from the next step
+    driven = stepping.advance(1 / 60, exact=False)
+    assert driven.stirred and driven.moved == ["r"] and a.id in driven.angles
+    assert not stepping.still
